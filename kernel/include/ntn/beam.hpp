@@ -1,0 +1,222 @@
+// Two-node 3D frame element: local frame, stiffness, HRZ lumped mass, internal force (DESIGN §4).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "ntn/model_spec.hpp"
+
+namespace ntn {
+
+enum class ElementCheck : std::uint8_t { kOk, kZeroLength, kOrientationParallel, kBadProperty };
+
+// Stiffness constants of one element in its local frame (Euler-Bernoulli, Timoshenko with
+// Phi = 12 E I / (G A_s l^2)). Bending entries a..d of one plane: a = 12EI/(l^3(1+Phi)),
+// b = 6EI/(l^2(1+Phi)), c = (4+Phi)EI/(l(1+Phi)), d = (2-Phi)EI/(l(1+Phi)).
+struct BeamStiffness {
+  double axial = 0;               // N/m, EA/l
+  double torsion = 0;             // N m, GJ/l
+  std::array<double, 4> xy{};     // plane x-y: v along y, rotation about z (uses Iz)
+  std::array<double, 4> xz{};     // plane x-z: w along z, rotation about y (uses Iy)
+};
+
+// What step() needs of an element: its nodes, rotation (rows: local x, y, z in global) and
+// stiffness constants. 160 bytes; the force is applied on the fly from these.
+struct BeamData {
+  std::int32_t node_i = 0, node_j = 0;
+  std::array<double, 9> rotation{};  // row-major 3x3, local = rotation * global
+  BeamStiffness k;
+};
+
+struct BeamGeometry {
+  double length = 0;                 // m
+  std::array<double, 9> rotation{};  // as in BeamData
+  ElementCheck check = ElementCheck::kOk;
+};
+
+inline BeamGeometry beam_geometry(const NodeSpec& a, const NodeSpec& b, const ElementSpec& e) {
+  BeamGeometry g;
+  const double dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z;
+  g.length = std::sqrt(dx * dx + dy * dy + dz * dz);
+  if (!(g.length > 0)) {
+    g.check = ElementCheck::kZeroLength;
+    return g;
+  }
+  const double ex[3] = {dx / g.length, dy / g.length, dz / g.length};
+  // local z: the orientation vector with its component along x removed (DESIGN §3).
+  const double rx = e.ref_x, ry = e.ref_y, rz = e.ref_z;
+  const double rn = std::sqrt(rx * rx + ry * ry + rz * rz);
+  const double along = rx * ex[0] + ry * ex[1] + rz * ex[2];
+  double ez[3] = {rx - along * ex[0], ry - along * ex[1], rz - along * ex[2]};
+  const double zn = std::sqrt(ez[0] * ez[0] + ez[1] * ez[1] + ez[2] * ez[2]);
+  if (!(rn > 0) || !(zn > 1e-6 * rn)) {
+    g.check = ElementCheck::kOrientationParallel;
+    return g;
+  }
+  for (double& c : ez) c /= zn;
+  const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
+                        ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
+  g.rotation = {ex[0], ex[1], ex[2], ey[0], ey[1], ey[2], ez[0], ez[1], ez[2]};
+  return g;
+}
+
+inline std::array<double, 4> bending_terms(double E, double I, double G, double shear_area,
+                                           double l) {
+  const double phi = shear_area > 0 ? 12.0 * E * I / (G * shear_area * l * l) : 0.0;
+  const double s = 1.0 / (1.0 + phi);
+  return {12.0 * E * I / (l * l * l) * s, 6.0 * E * I / (l * l) * s, (4.0 + phi) * E * I / l * s,
+          (2.0 - phi) * E * I / l * s};
+}
+
+inline BeamStiffness beam_stiffness(const ElementSpec& e, double l) {
+  BeamStiffness k;
+  k.axial = e.E * e.A / l;
+  k.torsion = e.G * e.J / l;
+  k.xy = bending_terms(e.E, e.Iz, e.G, e.shear_area_y, l);
+  k.xz = bending_terms(e.E, e.Iy, e.G, e.shear_area_z, l);
+  return k;
+}
+
+inline bool beam_properties_valid(const ElementSpec& e) {
+  return e.E > 0 && e.G > 0 && e.rho > 0 && e.A > 0 && e.Iy > 0 && e.Iz > 0 && e.J > 0 &&
+         e.shear_area_y >= 0 && e.shear_area_z >= 0;
+}
+
+// Local 12x12 stiffness, DOF order [u_i, theta_i, u_j, theta_j] in local axes. Row-major.
+using Matrix12 = std::array<double, 144>;
+
+inline Matrix12 beam_local_stiffness(const BeamStiffness& k) {
+  Matrix12 K{};
+  auto set = [&K](int r, int c, double v) {
+    K[static_cast<std::size_t>(r * 12 + c)] = v;
+    K[static_cast<std::size_t>(c * 12 + r)] = v;
+  };
+  set(0, 0, k.axial), set(0, 6, -k.axial), set(6, 6, k.axial);
+  set(3, 3, k.torsion), set(3, 9, -k.torsion), set(9, 9, k.torsion);
+  const auto& p = k.xy;  // v: 1, 7; theta_z: 5, 11
+  set(1, 1, p[0]), set(1, 5, p[1]), set(1, 7, -p[0]), set(1, 11, p[1]);
+  set(5, 5, p[2]), set(5, 7, -p[1]), set(5, 11, p[3]);
+  set(7, 7, p[0]), set(7, 11, -p[1]), set(11, 11, p[2]);
+  const auto& q = k.xz;  // w: 2, 8; theta_y: 4, 10
+  set(2, 2, q[0]), set(2, 4, -q[1]), set(2, 8, -q[0]), set(2, 10, -q[1]);
+  set(4, 4, q[2]), set(4, 8, q[1]), set(4, 10, q[3]);
+  set(8, 8, q[0]), set(8, 10, q[1]), set(10, 10, q[2]);
+  return K;
+}
+
+// Global 12x12 stiffness T^T K_L T, T = diag(R, R, R, R). Row-major.
+inline Matrix12 beam_global_stiffness(const BeamData& b) {
+  const Matrix12 KL = beam_local_stiffness(b.k);
+  Matrix12 KT{}, K{};
+  const auto& R = b.rotation;
+  for (int r = 0; r < 12; ++r) {  // KT = KL T
+    for (int blk = 0; blk < 4; ++blk) {
+      for (int c = 0; c < 3; ++c) {
+        double s = 0;
+        for (int m = 0; m < 3; ++m) {
+          s += KL[static_cast<std::size_t>(r * 12 + blk * 3 + m)] *
+               R[static_cast<std::size_t>(m * 3 + c)];
+        }
+        KT[static_cast<std::size_t>(r * 12 + blk * 3 + c)] = s;
+      }
+    }
+  }
+  for (int blk = 0; blk < 4; ++blk) {  // K = T^T KT
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 12; ++c) {
+        double s = 0;
+        for (int m = 0; m < 3; ++m) {
+          s += R[static_cast<std::size_t>(m * 3 + r)] *
+               KT[static_cast<std::size_t>((blk * 3 + m) * 12 + c)];
+        }
+        K[static_cast<std::size_t>((blk * 3 + r) * 12 + c)] = s;
+      }
+    }
+  }
+  return K;
+}
+
+// HRZ lumped mass of one element end, in global axes (DESIGN §4): translations rho A l / 2;
+// rotations diag(rho I_p l/2, rho A l^3/78 [+ rho Iy l/2], rho A l^3/78 [+ rho Iz l/2]) in local
+// axes, taken to global as the diagonal of R^T D R (keeps the trace; exact for aligned members).
+inline std::array<double, kDofsPerNode> beam_end_mass(const ElementSpec& e,
+                                                      const BeamGeometry& g,
+                                                      bool rotary_inertia) {
+  const double l = g.length;
+  const double mt = e.rho * e.A * l / 2.0;
+  const double bend = e.rho * e.A * l * l * l / 78.0;
+  const double d[3] = {e.rho * (e.Iy + e.Iz) * l / 2.0,
+                       bend + (rotary_inertia ? e.rho * e.Iy * l / 2.0 : 0.0),
+                       bend + (rotary_inertia ? e.rho * e.Iz * l / 2.0 : 0.0)};
+  std::array<double, kDofsPerNode> m{mt, mt, mt, 0, 0, 0};
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 3; ++k) {
+      const double r = g.rotation[static_cast<std::size_t>(k * 3 + c)];
+      m[static_cast<std::size_t>(3 + c)] += r * r * d[k];
+    }
+  }
+  return m;
+}
+
+// Local end forces K_L d of one element: d and f in local axes [u_i, theta_i, u_j, theta_j].
+inline void beam_local_force(const BeamStiffness& k, const double* d, double* f) {
+  const double n = k.axial * (d[6] - d[0]);
+  const double t = k.torsion * (d[9] - d[3]);
+  f[0] = -n, f[6] = n, f[3] = -t, f[9] = t;
+  const auto& p = k.xy;  // plane x-y
+  const double dv = d[1] - d[7];
+  f[1] = p[0] * dv + p[1] * (d[5] + d[11]);
+  f[7] = -f[1];
+  f[5] = p[1] * dv + p[2] * d[5] + p[3] * d[11];
+  f[11] = p[1] * dv + p[3] * d[5] + p[2] * d[11];
+  const auto& q = k.xz;  // plane x-z
+  const double dw = d[2] - d[8];
+  f[2] = q[0] * dw - q[1] * (d[4] + d[10]);
+  f[8] = -f[2];
+  f[4] = -q[1] * dw + q[2] * d[4] + q[3] * d[10];
+  f[10] = -q[1] * dw + q[3] * d[4] + q[2] * d[10];
+}
+
+inline void rotate_to_local(const std::array<double, 9>& R, const double* g, double* l) {
+  l[0] = R[0] * g[0] + R[1] * g[1] + R[2] * g[2];
+  l[1] = R[3] * g[0] + R[4] * g[1] + R[5] * g[2];
+  l[2] = R[6] * g[0] + R[7] * g[1] + R[8] * g[2];
+}
+
+inline void rotate_to_global(const std::array<double, 9>& R, const double* l, double* g) {
+  g[0] = R[0] * l[0] + R[3] * l[1] + R[6] * l[2];
+  g[1] = R[1] * l[0] + R[4] * l[1] + R[7] * l[2];
+  g[2] = R[2] * l[0] + R[5] * l[1] + R[8] * l[2];
+}
+
+// Local displacements of one element from its nodes' global DOFs.
+inline void beam_local_displacements(const BeamData& b, const double* ui, const double* uj,
+                                     double* d) {
+  rotate_to_local(b.rotation, ui, d), rotate_to_local(b.rotation, ui + 3, d + 3);
+  rotate_to_local(b.rotation, uj, d + 6), rotate_to_local(b.rotation, uj + 3, d + 9);
+}
+
+// Internal force of one element on its two nodes, in global axes: f = T^T K_L T u (DESIGN §4),
+// applied on the fly. Fixed operation order: it is part of the result.
+inline void beam_force(const BeamData& b, const double* ui, const double* uj, double* fi,
+                       double* fj) {
+  double d[12], f[12];
+  beam_local_displacements(b, ui, uj, d);
+  beam_local_force(b.k, d, f);
+  rotate_to_global(b.rotation, f, fi), rotate_to_global(b.rotation, f + 3, fi + 3);
+  rotate_to_global(b.rotation, f + 6, fj), rotate_to_global(b.rotation, f + 9, fj + 3);
+}
+
+// End forces of one element in its local axes [N, Vy, Vz, T, My, Mz] at node i then node j:
+// the forces the nodes exert on the element, K_L T u (tension positive as -N at node i).
+inline std::array<double, 12> beam_local_end_forces(const BeamData& b, const double* ui,
+                                                    const double* uj) {
+  double d[12];
+  std::array<double, 12> f{};
+  beam_local_displacements(b, ui, uj, d);
+  beam_local_force(b.k, d, f.data());
+  return f;
+}
+
+}  // namespace ntn

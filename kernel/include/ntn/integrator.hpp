@@ -1,0 +1,183 @@
+// Fixed-step central difference (DESIGN §5, seed S 1-8) as a fixed pipeline of stages:
+// inputs -> loads -> element forces -> accelerations -> outputs -> update.
+#pragma once
+
+#include <array>
+
+#include "ntn/beam.hpp"
+#include "ntn/loads.hpp"
+#include "ntn/model.hpp"
+#include "ntn/state.hpp"
+#include "ntn/status.hpp"
+
+namespace ntn {
+
+namespace detail {
+
+// True for finite x. No libm: x - x is 0 for finite x, NaN for NaN and +-Inf.
+inline bool finite(double x) { return x - x == 0.0; }
+
+template <Sizes S>
+using Inputs = std::array<double, S.inputs>;
+
+// Non-finite inputs never reach the state: the last good value is held and counted (§8).
+template <Sizes S>
+bool accept_inputs(State<S>& s, const Inputs<S>& in) {
+  bool held = false;
+  for (int i = 0; i < S.inputs; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (finite(in[k])) {
+      s.held_inputs[k] = in[k];
+    } else {
+      held = true;
+      ++s.inputs_held;
+    }
+  }
+  if (held) s.faults |= kFaultInputHeld;
+  return !held;
+}
+
+// P_n: gravity M g and base excitation -M iota a_g on translations, then nodal loads and
+// force inputs (§5).
+template <Sizes S>
+void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
+  const double fg = load_factor(m.time_points, m.time_functions, m.gravity_function, t);
+  std::array<double, 3> g{m.gravity[0] * fg, m.gravity[1] * fg, m.gravity[2] * fg};
+  for (int i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = m.inputs[static_cast<std::size_t>(i)];
+    if (in.kind == InputKind::kGroundAcceleration) {
+      g[static_cast<std::size_t>(in.dof)] -= s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
+    }
+  }
+  for (int n = 0; n < S.nodes; ++n) {
+    const auto j = static_cast<std::size_t>(kDofsPerNode * n);
+    w.p[j] = m.mass[j] * g[0];
+    w.p[j + 1] = m.mass[j + 1] * g[1];
+    w.p[j + 2] = m.mass[j + 2] * g[2];
+    w.p[j + 3] = 0, w.p[j + 4] = 0, w.p[j + 5] = 0;
+  }
+  for (const LoadSpec& l : m.loads) {
+    w.p[static_cast<std::size_t>(kDofsPerNode * l.node + l.dof)] +=
+        l.value * load_factor(m.time_points, m.time_functions, l.time_function, t);
+  }
+  for (int i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = m.inputs[static_cast<std::size_t>(i)];
+    if (in.kind == InputKind::kNodalForce) {
+      w.p[static_cast<std::size_t>(kDofsPerNode * in.node + in.dof)] +=
+          s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
+    }
+  }
+}
+
+// F_n = sum over elements of T^T K_L T u_n, scattered in element order (S 2).
+template <Sizes S>
+void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  w.f.fill(0.0);
+  for (const BeamData& b : m.beams) {
+    double fi[6], fj[6];
+    const auto i = static_cast<std::size_t>(kDofsPerNode * b.node_i);
+    const auto j = static_cast<std::size_t>(kDofsPerNode * b.node_j);
+    beam_force(b, &s.u[i], &s.u[j], fi, fj);
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      w.f[i + d] += fi[d];
+      w.f[j + d] += fj[d];
+    }
+  }
+}
+
+// a_n = (R_n - C v_{n-1/2}) / m per DOF, R_n = P_n - F_n (S 2-4); zero at supported DOFs.
+template <Sizes S>
+void accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+    w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+  }
+}
+
+// Output channels at t_n: u_n, v_n = v_{n-1/2} + dt/2 a_n, a_n, end forces from u_n.
+template <Sizes S>
+void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
+  w.time = t;
+  for (int c = 0; c < S.outputs; ++c) {
+    const OutputSpec& o = m.outputs[static_cast<std::size_t>(c)];
+    const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
+    double value = 0;
+    switch (o.kind) {
+      case OutputKind::kDisplacement: value = s.u[j]; break;
+      case OutputKind::kVelocity: value = s.v[j] + 0.5 * m.dt * w.a[j]; break;
+      case OutputKind::kAcceleration: value = w.a[j]; break;
+      case OutputKind::kElementForce: {
+        const BeamData& b = m.beams[static_cast<std::size_t>(o.element)];
+        const auto f = beam_local_end_forces(b, &s.u[static_cast<std::size_t>(6 * b.node_i)],
+                                             &s.u[static_cast<std::size_t>(6 * b.node_j)]);
+        value = f[static_cast<std::size_t>(6 * o.end + o.dof)];
+        break;
+      }
+      case OutputKind::kDrift:
+        value = s.u[static_cast<std::size_t>(kDofsPerNode * o.node2 + o.dof)] - s.u[j];
+        break;
+      case OutputKind::kReaction:
+        for (int k = 0; k < m.num_supported; ++k) {
+          const int n = m.supported_nodes[static_cast<std::size_t>(k)];
+          if ((m.fixed[static_cast<std::size_t>(n)] >> o.dof) & 1U) {
+            const auto q = static_cast<std::size_t>(kDofsPerNode * n + o.dof);
+            value += w.f[q] - w.p[q];
+          }
+        }
+        break;
+    }
+    w.outputs[static_cast<std::size_t>(c)] = value * o.scale;
+  }
+}
+
+// v_{n+1/2} = v_{n-1/2} + dt a_n, u_{n+1} = u_n + dt v_{n+1/2} (S 5-7, constant dt).
+// Returns false when a velocity is non-finite.
+template <Sizes S>
+bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
+  bool ok = true;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+    s.v[j] += m.dt * w.a[j];
+    s.u[j] += m.dt * s.v[j];
+    ok &= finite(s.v[j]);
+  }
+  return ok;
+}
+
+}  // namespace detail
+
+// Starts a run from the caller's u_0 and v_0 in `s` (zero by default):
+// v_{-1/2} = v_0 - dt/2 a_0 (DESIGN §5), tick = 0.
+template <Sizes S>
+[[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w,
+                               const std::array<double, S.inputs>& in) {
+  s.tick = 0;
+  for (auto& h : s.held_inputs) h = 0.0;
+  const bool accepted = detail::accept_inputs(s, in);
+  detail::apply_loads(m, s, w, 0.0);
+  detail::element_forces(m, s, w);
+  detail::accelerations(m, s, w);  // with C v_0
+  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+    s.v[j] -= 0.5 * m.dt * w.a[j];
+  }
+  return accepted ? StepStatus::kOk : StepStatus::kInputHeld;
+}
+
+// One step t_n -> t_{n+1}. Outputs in `w` are the channels at t_n.
+template <Sizes S>
+[[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w,
+                              const std::array<double, S.inputs>& in) {
+  const bool accepted = detail::accept_inputs(s, in);  // hold non-finite inputs (§8)
+  const double t = static_cast<double>(s.tick) * m.dt;
+  detail::apply_loads(m, s, w, t);      // P_n (§5)
+  detail::element_forces(m, s, w);      // F_n (S 2)
+  detail::accelerations(m, s, w);       // a_n (S 3-4)
+  detail::sample_outputs(m, s, w, t);   // channels at t_n
+  const bool finite = detail::update(m, s, w);  // v_{n+1/2}, u_{n+1} (S 5-7)
+  ++s.tick;
+  if (!finite) {
+    s.faults |= kFaultDiverged;
+    return StepStatus::kDiverged;
+  }
+  return accepted ? StepStatus::kOk : StepStatus::kInputHeld;
+}
+
+}  // namespace ntn

@@ -1,0 +1,11 @@
+// ntn-rt kernel: include this one header.
+#pragma once
+
+#include "ntn/beam.hpp"
+#include "ntn/integrator.hpp"
+#include "ntn/loads.hpp"
+#include "ntn/model.hpp"
+#include "ntn/model_spec.hpp"
+#include "ntn/state.hpp"
+#include "ntn/status.hpp"
+#include "ntn/time_step.hpp"

@@ -1,0 +1,117 @@
+// Model<S>: everything constant during a run, built once by init() (DESIGN §2).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "ntn/beam.hpp"
+#include "ntn/model_spec.hpp"
+#include "ntn/status.hpp"
+#include "ntn/time_step.hpp"
+
+namespace ntn {
+
+template <Sizes S>
+struct Model {
+  static constexpr Sizes kSizes = S;
+  static constexpr int kDofs = kDofsPerNode * S.nodes;
+
+  std::array<BeamData, S.elements> beams{};
+  std::array<double, kDofs> mass{};      // kg or kg m^2, lumped (HRZ) plus point masses
+  std::array<double, kDofs> inv_mass{};  // 1/mass; 0 at supported DOFs, which stay at zero
+  std::array<double, kDofs> damping{};   // N s/m, diagonal C = alpha M (S 1)
+  std::array<std::uint8_t, S.nodes> fixed{};         // support bits per node (bit d: DOF d)
+  std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
+  int num_supported = 0;
+
+  std::array<TimePoint, S.time_points> time_points{};
+  std::array<TimeFunctionSpec, S.time_functions> time_functions{};
+  std::array<LoadSpec, S.loads> loads{};
+  std::array<InputSpec, S.inputs> inputs{};
+  std::array<OutputSpec, S.outputs> outputs{};
+  std::array<double, 3> gravity{};  // m/s^2
+  int gravity_function = kConstant;
+
+  double dt = 0;  // s, the fixed step
+  StableStepReport stable;
+};
+
+// Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
+inline void assemble_lumped_mass(const SpecView& spec, std::span<double> out) {
+  for (double& m : out) m = 0;
+  for (const ElementSpec& e : spec.elements) {
+    const NodeSpec& a = spec.nodes[static_cast<std::size_t>(e.node_i)];
+    const NodeSpec& b = spec.nodes[static_cast<std::size_t>(e.node_j)];
+    const BeamGeometry g = beam_geometry(a, b, e);
+    if (g.check != ElementCheck::kOk) continue;
+    const auto m = beam_end_mass(e, g, spec.settings.rotary_inertia);
+    for (int d = 0; d < kDofsPerNode; ++d) {
+      out[static_cast<std::size_t>(kDofsPerNode * e.node_i + d)] += m[static_cast<std::size_t>(d)];
+      out[static_cast<std::size_t>(kDofsPerNode * e.node_j + d)] += m[static_cast<std::size_t>(d)];
+    }
+  }
+  for (std::size_t n = 0; n < spec.nodes.size(); ++n) {
+    for (int d = 0; d < kDofsPerNode; ++d) {
+      out[n * kDofsPerNode + static_cast<std::size_t>(d)] +=
+          spec.nodes[n].added[static_cast<std::size_t>(d)];
+    }
+  }
+}
+
+// Builds the constant model from its spec. No heap: `model` is caller-owned (usually static).
+template <Sizes S>
+[[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model) {
+  static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
+  for (int i = 0; i < S.elements; ++i) {
+    const ElementSpec& e = spec.elements[static_cast<std::size_t>(i)];
+    if (e.node_i < 0 || e.node_i >= S.nodes || e.node_j < 0 || e.node_j >= S.nodes)
+      return {InitError::kBadReference, i};
+    if (!beam_properties_valid(e)) return {InitError::kBadProperty, i};
+    const BeamGeometry g = beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
+                                         spec.nodes[static_cast<std::size_t>(e.node_j)], e);
+    if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, i};
+    if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, i};
+    BeamData& b = model.beams[static_cast<std::size_t>(i)];
+    b.node_i = e.node_i, b.node_j = e.node_j;
+    b.rotation = g.rotation;
+    b.k = beam_stiffness(e, g.length);
+  }
+
+  const SpecView v = view(spec);
+  model.num_supported = 0;
+  assemble_lumped_mass(v, model.mass);
+  for (int n = 0; n < S.nodes; ++n) {
+    const std::uint8_t fixed = spec.nodes[static_cast<std::size_t>(n)].fixed;
+    model.fixed[static_cast<std::size_t>(n)] = fixed;
+    if (fixed != 0) model.supported_nodes[static_cast<std::size_t>(model.num_supported++)] = n;
+    for (int d = 0; d < kDofsPerNode; ++d) {
+      const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
+      const bool held = (fixed >> d) & 1U;
+      if (!held && !(model.mass[j] > 0)) return {InitError::kMassless, n * kDofsPerNode + d};
+      model.inv_mass[j] = held ? 0.0 : 1.0 / model.mass[j];
+      model.damping[j] = spec.settings.alpha * model.mass[j];
+    }
+  }
+
+  model.time_points = spec.time_points;
+  model.time_functions = spec.time_functions;
+  model.loads = spec.loads;
+  model.inputs = spec.inputs;
+  model.outputs = spec.outputs;
+  model.gravity = spec.settings.gravity;
+  model.gravity_function = spec.settings.gravity_function;
+  for (const LoadSpec& l : spec.loads) {
+    if (l.node < 0 || l.node >= S.nodes || l.dof < 0 || l.dof >= kDofsPerNode ||
+        l.time_function >= S.time_functions)
+      return {InitError::kBadReference, -1};
+  }
+
+  model.stable = stable_time_step(v);
+  model.dt = spec.settings.dt;
+  if (!(model.dt > 0)) return {InitError::kBadTimeStep, -1};
+  if (model.dt > model.stable.dt_stable && !spec.settings.allow_unstable)
+    return {InitError::kTimeStepAboveStable, model.stable.governing_element};
+  return {};
+}
+
+}  // namespace ntn

@@ -1,0 +1,139 @@
+// The model as data: what the model compiler emits (as constexpr) and what `init` reads.
+// Plain aggregates only, so a generated header can spell a whole model as one constant.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+namespace ntn {
+
+// Node DOF order (DESIGN §3): ux, uy, uz, rx, ry, rz.
+inline constexpr int kDofsPerNode = 6;
+enum Dof : std::uint8_t { kUx = 0, kUy, kUz, kRx, kRy, kRz };
+
+// Compile-time sizes of a model. A structural type, so it is a template parameter.
+struct Sizes {
+  int nodes = 0;
+  int elements = 0;
+  int time_functions = 0;
+  int time_points = 0;  // all time-function points, concatenated
+  int loads = 0;
+  int inputs = 0;
+  int outputs = 0;
+};
+
+struct NodeSpec {
+  double x = 0, y = 0, z = 0;                 // m
+  std::uint8_t fixed = 0;                     // bit d set: DOF d is held at zero (support)
+  std::array<double, kDofsPerNode> added{};  // point mass kg (ux,uy,uz), inertia kg m^2 (rx,ry,rz)
+};
+
+// One 2-node frame element with its material and section resolved (DESIGN §4).
+struct ElementSpec {
+  int node_i = 0, node_j = 0;
+  double E = 0, G = 0, rho = 0;      // Pa, Pa, kg/m^3
+  double A = 0, Iy = 0, Iz = 0, J = 0;  // m^2, m^4, m^4, m^4
+  double shear_area_y = 0;           // m^2, kappa*A for shear along local y; 0 = Euler-Bernoulli
+  double shear_area_z = 0;           // m^2, same along local z
+  double ref_x = 0, ref_y = 0, ref_z = 1;  // orientation vector: local z lies in plane(x, ref)
+  int member = 0;                    // index of the member it was meshed from (for reports)
+};
+
+struct TimePoint {
+  double t = 0;      // s
+  double value = 0;  // factor
+};
+
+// Piecewise-linear factor through points [first, first+count); held constant outside.
+struct TimeFunctionSpec {
+  int first = 0;
+  int count = 0;
+};
+
+inline constexpr int kConstant = -1;  // "no time function": factor 1
+
+struct LoadSpec {
+  int node = 0;
+  int dof = 0;
+  double value = 0;  // N or N m
+  int time_function = kConstant;
+};
+
+enum class InputKind : std::uint8_t {
+  kGroundAcceleration,  // uniform base excitation along `dof` (0..2): load -M iota a_g (S 1, §5)
+  kNodalForce,          // force or moment at (node, dof)
+};
+
+struct InputSpec {
+  InputKind kind = InputKind::kGroundAcceleration;
+  int node = 0;        // kNodalForce only
+  int dof = 0;         // direction (0..2) or node DOF (0..5)
+  double scale = 1;    // input value x scale = SI value (e.g. 9.80665 for records in g)
+  double min = -1e300;  // accepted range of the raw input value
+  double max = 1e300;
+};
+
+enum class OutputKind : std::uint8_t {
+  kDisplacement,  // node DOF, m or rad
+  kVelocity,      // node DOF, m/s or rad/s
+  kAcceleration,  // node DOF, relative to the ground, m/s^2 or rad/s^2
+  kElementForce,  // element end force in local axes: component 0..5 = N, Vy, Vz, T, My, Mz
+  kDrift,         // (u[node2] - u[node]) / height in DOF `dof`: inter-storey drift ratio
+  kReaction,      // sum over supported DOFs `dof` of (F - P): support reaction, N or N m
+};
+
+struct OutputSpec {
+  OutputKind kind = OutputKind::kDisplacement;
+  int node = 0;      // node, or lower node of a drift
+  int node2 = 0;     // upper node of a drift
+  int element = 0;   // kElementForce
+  int end = 0;       // kElementForce: 0 = start (node_i), 1 = end (node_j)
+  int dof = 0;       // DOF or force component
+  double scale = 1;  // output = SI value x scale; a drift stores 1/height here
+};
+
+struct Settings {
+  double dt = 0;                  // s, resolved by the model compiler ("auto" -> number)
+  double frame_period = 1e-3;     // s, the I/O frame that dt divides into substeps
+  double alpha = 0;               // 1/s, mass-proportional damping C = alpha M
+  std::array<double, 3> gravity{};  // m/s^2, applied as M g on translations
+  int gravity_function = kConstant;
+  bool rotary_inertia = false;    // add rho I l / 2 to the bending rotation masses (DESIGN §4)
+  bool allow_unstable = false;    // accept dt above the stable step (failure testing only)
+};
+
+// Everything a model is, at compile-time sizes.
+template <Sizes S>
+struct ModelSpec {
+  static constexpr Sizes kSizes = S;
+  std::array<NodeSpec, S.nodes> nodes{};
+  std::array<ElementSpec, S.elements> elements{};
+  std::array<TimePoint, S.time_points> time_points{};
+  std::array<TimeFunctionSpec, S.time_functions> time_functions{};
+  std::array<LoadSpec, S.loads> loads{};
+  std::array<InputSpec, S.inputs> inputs{};
+  std::array<OutputSpec, S.outputs> outputs{};
+  Settings settings{};
+};
+
+// A size-free view of a model, for code that runs on models of any size (model compiler,
+// modal analysis, reports). Produced from a ModelSpec or from a run-time description.
+struct SpecView {
+  std::span<const NodeSpec> nodes;
+  std::span<const ElementSpec> elements;
+  std::span<const TimePoint> time_points;
+  std::span<const TimeFunctionSpec> time_functions;
+  std::span<const LoadSpec> loads;
+  std::span<const InputSpec> inputs;
+  std::span<const OutputSpec> outputs;
+  Settings settings;
+};
+
+template <Sizes S>
+constexpr SpecView view(const ModelSpec<S>& spec) {
+  return {spec.nodes,          spec.elements, spec.time_points, spec.time_functions,
+          spec.loads,          spec.inputs,   spec.outputs,     spec.settings};
+}
+
+}  // namespace ntn

@@ -1,0 +1,32 @@
+// State<S>: what a replay must restore. Scratch<S>: recomputed every step, never saved.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "ntn/model_spec.hpp"
+
+namespace ntn {
+
+template <Sizes S>
+struct State {
+  static constexpr int kDofs = kDofsPerNode * S.nodes;
+  std::array<double, kDofs> u{};  // m, rad: displacements u_n relative to the ground
+  std::array<double, kDofs> v{};  // m/s, rad/s: v_{n-1/2} once started (S 5-6)
+  std::array<double, S.inputs> held_inputs{};  // last accepted value of each input channel
+  std::int64_t tick = 0;                       // step counter: t_n = tick * dt, never summed
+  std::uint64_t inputs_held = 0;               // non-finite inputs replaced by the held value
+  std::uint32_t faults = 0;                    // Fault bits, sticky
+};
+
+template <Sizes S>
+struct Scratch {
+  static constexpr int kDofs = kDofsPerNode * S.nodes;
+  std::array<double, kDofs> p{};  // external load P_n
+  std::array<double, kDofs> f{};  // internal force F_n
+  std::array<double, kDofs> a{};  // acceleration a_n
+  std::array<double, S.outputs> outputs{};  // output channels at t_n
+  double time = 0;                          // s, t_n of `outputs`
+};
+
+}  // namespace ntn

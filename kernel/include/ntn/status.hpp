@@ -1,0 +1,51 @@
+// Status codes: the kernel reports problems, it never throws (STYLE: counted and flagged).
+#pragma once
+
+#include <cstdint>
+
+namespace ntn {
+
+enum class InitError : std::uint8_t {
+  kNone,
+  kBadReference,         // a node, time function or element index out of range
+  kBadProperty,          // non-positive E, G, rho, A, I or J
+  kZeroLength,           // element nodes coincide
+  kOrientation,          // orientation vector parallel to the element axis
+  kMassless,             // a free DOF with no mass (`where` = global DOF index)
+  kBadTimeStep,          // dt not positive
+  kTimeStepAboveStable,  // dt above the stable step (`where` = governing element)
+};
+
+struct [[nodiscard]] InitStatus {
+  InitError error = InitError::kNone;
+  int where = -1;  // element, DOF or -1, as the error says
+  constexpr bool ok() const { return error == InitError::kNone; }
+};
+
+constexpr const char* to_string(InitError e) {
+  switch (e) {
+    case InitError::kNone: return "ok";
+    case InitError::kBadReference: return "reference out of range";
+    case InitError::kBadProperty: return "non-positive material or section property";
+    case InitError::kZeroLength: return "zero-length element";
+    case InitError::kOrientation: return "orientation vector parallel to the element axis";
+    case InitError::kMassless: return "free DOF without mass";
+    case InitError::kBadTimeStep: return "time step not positive";
+    case InitError::kTimeStepAboveStable: return "time step above the stable step";
+  }
+  return "unknown";
+}
+
+enum class StepStatus : std::uint8_t {
+  kOk,
+  kInputHeld,  // a non-finite input was replaced by its last good value (counted in State)
+  kDiverged,   // a velocity became non-finite: the state is no longer meaningful
+};
+
+// Fault bits kept in State::faults (sticky until the caller clears them).
+enum Fault : std::uint32_t {
+  kFaultInputHeld = 1U << 0,
+  kFaultDiverged = 1U << 1,
+};
+
+}  // namespace ntn

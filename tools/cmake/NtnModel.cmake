@@ -1,0 +1,2 @@
+# ntn_add_model(): compiles a TOML model into a constexpr header for a target (filled in by the
+# model compiler work).
