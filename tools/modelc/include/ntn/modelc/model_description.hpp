@@ -1,0 +1,65 @@
+// A validated model at run-time sizes: everything a ntn::ModelSpec holds, plus the names the
+// model file gave (nodes, members, channels) so that tools can report in the user's terms.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ntn/model_spec.hpp"
+#include "ntn/time_step.hpp"
+
+namespace ntn::modelc {
+
+inline constexpr int kGeneratedNode = -1;  // node_ids entry of a node made by meshing a member
+
+struct MemberInfo {
+  std::string name;
+  std::string material;
+  std::string section;
+  int first_element = 0;        // elements [first_element, first_element + element_count)
+  int element_count = 0;        // = divisions
+  int start_node = 0;           // node index of the member's first end
+  int end_node = 0;             // node index of the member's second end
+  int first_interior_node = 0;  // generated nodes [first, first + count), start to end
+  int interior_node_count = 0;  // = divisions - 1
+};
+
+struct ModelDescription {
+  std::string name;  // C++ identifier
+  std::string title;
+  std::string source_file;  // as given to load_model
+
+  std::vector<NodeSpec> nodes;
+  std::vector<ElementSpec> elements;
+  std::vector<TimePoint> time_points;
+  std::vector<TimeFunctionSpec> time_functions;
+  std::vector<LoadSpec> loads;
+  std::vector<InputSpec> inputs;
+  std::vector<OutputSpec> outputs;
+  Settings settings;
+
+  std::vector<int> node_ids;  // user id per node index, kGeneratedNode for mesh nodes
+  std::vector<MemberInfo> members;
+  std::vector<int> element_member;  // member index per element (= ElementSpec::member)
+  std::vector<std::string> time_function_ids;
+  std::vector<std::string> input_names;
+  std::vector<std::string> output_names;
+  std::vector<std::string> output_units;  // "m", "m/s", "m/s2", "rad", "N", "N m", "-", ...
+
+  bool dt_auto = true;           // dt = "auto" in the file
+  double dt_requested = 0;       // s, the number given when !dt_auto
+  double frame_rate = 1000;      // Hz; settings.frame_period = 1 / frame_rate
+  double damping_ratio = 0;      // [model.damping] ratio as given (0 when alpha was given)
+  double damping_frequency = 0;  // Hz, [model.damping] frequency as given (0 likewise)
+  StableStepReport stable;       // the kernel's stable step report for this model
+
+  Sizes sizes() const;
+  SpecView view() const;
+
+  // "member C1, element 3 of 4 (model element 17)"; element is a model element index.
+  std::string describe_element(int element) const;
+  // "node 12" for a user node, "node 2 of member C1 (model node 40)" for a generated one.
+  std::string describe_node(int node) const;
+};
+
+}  // namespace ntn::modelc

@@ -1,0 +1,244 @@
+#include "ntn/modelc/emit_header.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string_view>
+
+namespace ntn::modelc {
+namespace {
+
+constexpr std::string_view kKeywords[] = {"alignas",       "alignof",     "and",
+                                          "and_eq",        "asm",         "auto",
+                                          "bitand",        "bitor",       "bool",
+                                          "break",         "case",        "catch",
+                                          "char",          "char8_t",     "char16_t",
+                                          "char32_t",      "class",       "compl",
+                                          "concept",       "const",       "consteval",
+                                          "constexpr",     "constinit",   "const_cast",
+                                          "continue",      "co_await",    "co_return",
+                                          "co_yield",      "decltype",    "default",
+                                          "delete",        "do",          "double",
+                                          "dynamic_cast",  "else",        "enum",
+                                          "explicit",      "export",      "extern",
+                                          "false",         "float",       "for",
+                                          "friend",        "goto",        "if",
+                                          "inline",        "int",         "long",
+                                          "mutable",       "namespace",   "new",
+                                          "noexcept",      "not",         "not_eq",
+                                          "nullptr",       "operator",    "or",
+                                          "or_eq",         "private",     "protected",
+                                          "public",        "register",    "reinterpret_cast",
+                                          "requires",      "return",      "short",
+                                          "signed",        "sizeof",      "static",
+                                          "static_assert", "static_cast", "struct",
+                                          "switch",        "template",    "this",
+                                          "thread_local",  "throw",       "true",
+                                          "try",           "typedef",     "typeid",
+                                          "typename",      "union",       "unsigned",
+                                          "using",         "virtual",     "void",
+                                          "volatile",      "wchar_t",     "while",
+                                          "xor",           "xor_eq"};
+
+// A double literal that reads back to the same bits (%.17g) and is always a floating literal.
+std::string lit(double v) {
+  if (!std::isfinite(v)) throw std::invalid_argument("emit_header: non-finite number in model");
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::string s = buf;
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string lit(int v) {
+  return std::to_string(v);
+}
+std::string lit(bool v) {
+  return v ? "true" : "false";
+}
+
+// A C++ string literal; bytes outside printable ASCII as 3-digit octal escapes.
+std::string str(std::string_view s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (c >= 0x20 && c < 0x7F && c != '?') {  // '?' escaped: no trigraphs, ever
+      out += ch;
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\%03o", static_cast<unsigned>(c));
+      out += buf;
+    }
+  }
+  return out + "\"";
+}
+
+template <class T, std::size_t N>
+std::string lits(const std::array<T, N>& a) {
+  std::string s = "{{";
+  for (std::size_t i = 0; i < N; ++i)
+    s += (i ? ", " : "") + lit(a[i]);
+  return s + "}}";
+}
+
+// {{ item, item, ... }} for a std::array of N items, or {} when N = 0.
+template <class T, class F>
+void array_init(std::string& out, const char* field, const std::vector<T>& items, F item) {
+  out += "    .";
+  out += field;
+  if (items.empty()) {
+    out += " = {},\n";
+    return;
+  }
+  out += " = {{\n";
+  for (const T& x : items) {
+    out += "        ";
+    out += item(x);
+    out += ",\n";
+  }
+  out += "    }},\n";
+}
+
+std::string names(const std::vector<std::string>& v) {
+  if (v.empty()) return "{}";
+  std::string s = "{{";
+  for (std::size_t i = 0; i < v.size(); ++i)
+    s += (i ? ", " : "") + str(v[i]);
+  return s + "}}";
+}
+
+const char* input_kind(InputKind k) {
+  switch (k) {
+    case InputKind::kGroundAcceleration:
+      return "ntn::InputKind::kGroundAcceleration";
+    case InputKind::kNodalForce:
+      return "ntn::InputKind::kNodalForce";
+  }
+  throw std::invalid_argument("emit_header: unknown input kind");
+}
+
+const char* output_kind(OutputKind k) {
+  switch (k) {
+    case OutputKind::kDisplacement:
+      return "ntn::OutputKind::kDisplacement";
+    case OutputKind::kVelocity:
+      return "ntn::OutputKind::kVelocity";
+    case OutputKind::kAcceleration:
+      return "ntn::OutputKind::kAcceleration";
+    case OutputKind::kElementForce:
+      return "ntn::OutputKind::kElementForce";
+    case OutputKind::kDrift:
+      return "ntn::OutputKind::kDrift";
+    case OutputKind::kReaction:
+      return "ntn::OutputKind::kReaction";
+  }
+  throw std::invalid_argument("emit_header: unknown output kind");
+}
+
+}  // namespace
+
+bool is_cpp_identifier(const std::string& s) {
+  if (s.empty()) return false;
+  const auto alpha = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+  };
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (!alpha(s[0])) return false;
+  if (!std::all_of(s.begin(), s.end(), [&](char c) { return alpha(c) || digit(c); })) return false;
+  // Reserved for the implementation: __x anywhere, _X at the start.
+  if (s.find("__") != std::string::npos ||
+      (s[0] == '_' && s.size() > 1 && s[1] >= 'A' && s[1] <= 'Z'))
+    return false;
+  return std::find(std::begin(kKeywords), std::end(kKeywords), s) == std::end(kKeywords);
+}
+
+std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
+  const std::string ns = ns_name.empty() ? m.name : ns_name;
+  if (!is_cpp_identifier(ns)) {
+    throw std::invalid_argument("emit_header: namespace name '" + ns + "' is not a C++ identifier");
+  }
+  const Sizes z = m.sizes();
+  std::string o;
+  o.reserve(400 * (m.elements.size() + m.nodes.size()) + 4096);
+  o += "// Generated by ntn-modelc from " + m.source_file +
+       ". Do not edit: change the model file.\n";
+  o += "// Model '" + m.name + "'" + (m.title.empty() ? "" : ": " + m.title) + "\n";
+  o += "#pragma once\n\n#include <array>\n#include <string_view>\n\n#include "
+       "\"ntn/model_spec.hpp\"\n\n";
+  o += "namespace ntn::models::" + ns + " {\n\n";
+  o += "inline constexpr ntn::Sizes kSizes{.nodes = " + lit(z.nodes) +
+       ", .elements = " + lit(z.elements) + ", .time_functions = " + lit(z.time_functions) +
+       ", .time_points = " + lit(z.time_points) + ", .loads = " + lit(z.loads) +
+       ", .inputs = " + lit(z.inputs) + ", .outputs = " + lit(z.outputs) + "};\n\n";
+
+  o += "inline constexpr ntn::ModelSpec<kSizes> kSpec{\n";
+  array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {
+    return "{.x = " + lit(n.x) + ", .y = " + lit(n.y) + ", .z = " + lit(n.z) +
+           ", .fixed = " + std::to_string(static_cast<unsigned>(n.fixed)) +
+           ", .added = " + lits(n.added) + "}";
+  });
+  array_init(o, "elements", m.elements, [](const ElementSpec& e) {
+    return "{.node_i = " + lit(e.node_i) + ", .node_j = " + lit(e.node_j) + ", .E = " + lit(e.E) +
+           ", .G = " + lit(e.G) + ", .rho = " + lit(e.rho) + ", .A = " + lit(e.A) +
+           ", .Iy = " + lit(e.Iy) + ", .Iz = " + lit(e.Iz) + ", .J = " + lit(e.J) +
+           ", .shear_area_y = " + lit(e.shear_area_y) + ", .shear_area_z = " + lit(e.shear_area_z) +
+           ", .ref_x = " + lit(e.ref_x) + ", .ref_y = " + lit(e.ref_y) +
+           ", .ref_z = " + lit(e.ref_z) + ", .member = " + lit(e.member) + "}";
+  });
+  array_init(o, "time_points", m.time_points, [](const TimePoint& p) {
+    return "{.t = " + lit(p.t) + ", .value = " + lit(p.value) + "}";
+  });
+  array_init(o, "time_functions", m.time_functions, [](const TimeFunctionSpec& f) {
+    return "{.first = " + lit(f.first) + ", .count = " + lit(f.count) + "}";
+  });
+  array_init(o, "loads", m.loads, [](const LoadSpec& l) {
+    return "{.node = " + lit(l.node) + ", .dof = " + lit(l.dof) + ", .value = " + lit(l.value) +
+           ", .time_function = " + lit(l.time_function) + "}";
+  });
+  array_init(o, "inputs", m.inputs, [](const InputSpec& i) {
+    return "{.kind = " + std::string(input_kind(i.kind)) + ", .node = " + lit(i.node) +
+           ", .dof = " + lit(i.dof) + ", .scale = " + lit(i.scale) + ", .min = " + lit(i.min) +
+           ", .max = " + lit(i.max) + "}";
+  });
+  array_init(o, "outputs", m.outputs, [](const OutputSpec& q) {
+    return "{.kind = " + std::string(output_kind(q.kind)) + ", .node = " + lit(q.node) +
+           ", .node2 = " + lit(q.node2) + ", .element = " + lit(q.element) +
+           ", .end = " + lit(q.end) + ", .dof = " + lit(q.dof) + ", .scale = " + lit(q.scale) + "}";
+  });
+  const Settings& s = m.settings;
+  o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +
+       ", .alpha = " + lit(s.alpha) + ", .gravity = " + lits(s.gravity) +
+       ", .gravity_function = " + lit(s.gravity_function) +
+       ", .rotary_inertia = " + lit(s.rotary_inertia) +
+       ", .allow_unstable = " + lit(s.allow_unstable) + "},\n};\n\n";
+
+  std::vector<std::string> member_names;
+  for (const MemberInfo& mi : m.members)
+    member_names.push_back(mi.name);
+  o += "inline constexpr std::string_view kName = " + str(m.name) + ";\n";
+  o += "inline constexpr std::string_view kTitle = " + str(m.title) + ";\n";
+  o += "inline constexpr std::string_view kSourceFile = " + str(m.source_file) + ";\n";
+  o += "inline constexpr bool kDtAuto = " + lit(m.dt_auto) + ";  // dt = \"auto\" in the file\n";
+  o += "inline constexpr double kFrameRate = " + lit(m.frame_rate) + ";  // Hz\n";
+  o += "inline constexpr std::array<std::string_view, kSizes.inputs> kInputNames" +
+       names(m.input_names) + ";\n";
+  o += "inline constexpr std::array<std::string_view, kSizes.outputs> kOutputNames" +
+       names(m.output_names) + ";\n";
+  o += "inline constexpr std::array<std::string_view, kSizes.outputs> kOutputUnits" +
+       names(m.output_units) + ";\n";
+  o += "inline constexpr std::array<std::string_view, " + std::to_string(member_names.size()) +
+       "> kMemberNames" + names(member_names) + ";  // by ElementSpec::member\n";
+  o += "// User node id per node; -1 for nodes made by meshing a member.\n";
+  o += "inline constexpr std::array<int, kSizes.nodes> kNodeIds{{";
+  for (std::size_t i = 0; i < m.node_ids.size(); ++i) {
+    o += (i ? (i % 20 == 0 ? ",\n    " : ", ") : "") + std::to_string(m.node_ids[i]);
+  }
+  o += "}};\n\n}  // namespace ntn::models::" + ns + "\n";
+  return o;
+}
+
+}  // namespace ntn::modelc

@@ -1,0 +1,1271 @@
+// Model file (TOML) -> ModelDescription. Three passes, each collecting every problem it can:
+//   1. read every table, check keys, types and values (unknown/missing keys, ranges, duplicates);
+//   2. resolve references, mesh the members, check geometry (zero length, orientation);
+//   3. physics with the kernel's own functions: lumped mass (no mass, massless free DOFs) and
+//      the stable time step (dt = "auto", or a given dt above the stable step).
+// A pass runs only when the ones before it found nothing: its checks need their results.
+#include "ntn/modelc/load_model.hpp"
+
+#include <toml++/toml.h>
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <utility>
+
+#include "ntn/beam.hpp"
+#include "ntn/model.hpp"
+#include "ntn/modelc/emit_header.hpp"
+#include "ntn/time_step.hpp"
+
+namespace ntn::modelc {
+namespace {
+
+constexpr double kStandardGravity = 9.80665;  // m/s^2 per g (CGPM 1901)
+constexpr long long kMaxDivisions = 1000000;
+constexpr long long kMaxNodeId = INT_MAX;
+
+const std::vector<std::string_view> kDofNames = {"ux", "uy", "uz", "rx", "ry", "rz"};
+const std::vector<std::string_view> kDirections3 = {"x", "y", "z"};
+const std::vector<std::string_view> kReactionDirections = {"x", "y", "z", "rx", "ry", "rz"};
+const std::vector<std::string_view> kComponents = {"N", "Vy", "Vz", "T", "My", "Mz"};
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string quoted_list(const std::vector<std::string_view>& items) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) s += ", ";
+    s += '"';  // appended piecewise: GCC 12 -Wrestrict misfires on "\"" + string + "\""
+    s += items[i];
+    s += '"';
+  }
+  return s;
+}
+
+std::string plain_list(const std::vector<std::string_view>& items) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) s += ", ";
+    s += std::string(items[i]);
+  }
+  return s;
+}
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
+  }
+}
+
+int line_of(const toml::source_region& r) {
+  return static_cast<int>(r.begin.line);
+}
+
+// A place in the file and the key it belongs to, kept for checks made after reading.
+struct Where {
+  toml::source_region region;
+  std::string key;
+};
+
+class Loader {
+ public:
+  explicit Loader(std::string file) : file_(std::move(file)) {}
+
+  void error(const toml::source_region& r, const std::string& key, std::string message) {
+    errors_.push_back({file_, std::max(1, static_cast<int>(r.begin.line)),
+                       std::max(1, static_cast<int>(r.begin.column)), key, std::move(message)});
+  }
+  void error(const Where& w, std::string message) { error(w.region, w.key, std::move(message)); }
+  void error_at_start(const std::string& key, std::string message) {
+    errors_.push_back({file_, 1, 1, key, std::move(message)});
+  }
+  bool failed() const { return !errors_.empty(); }
+  std::vector<Diagnostic> take_errors() {
+    std::stable_sort(errors_.begin(), errors_.end(), [](const Diagnostic& a, const Diagnostic& b) {
+      return a.line != b.line ? a.line < b.line : a.column < b.column;
+    });
+    return std::move(errors_);
+  }
+
+  // --- values (n is the value node, key its full path) ---
+  std::optional<double> number(const toml::node& n, const std::string& key) {
+    double v = 0;
+    if (const auto* f = n.as_floating_point()) {
+      v = f->get();
+    } else if (const auto* i = n.as_integer()) {
+      v = static_cast<double>(i->get());
+    } else {
+      error(n.source(), key, "expected a number, got " + type_name(n));
+      return std::nullopt;
+    }
+    if (!std::isfinite(v)) {
+      error(n.source(), key, "must be a finite number");
+      return std::nullopt;
+    }
+    return v;
+  }
+  std::optional<double> positive(const toml::node& n, const std::string& key) {
+    const auto v = number(n, key);
+    if (v && !(*v > 0)) {
+      error(n.source(), key, "must be positive (got " + num(*v) + ")");
+      return std::nullopt;
+    }
+    return v;
+  }
+  std::optional<double> non_negative(const toml::node& n, const std::string& key) {
+    const auto v = number(n, key);
+    if (v && *v < 0) {
+      error(n.source(), key, "must not be negative (got " + num(*v) + ")");
+      return std::nullopt;
+    }
+    return v;
+  }
+  std::optional<long long> integer(const toml::node& n, const std::string& key, long long lo,
+                                   long long hi) {
+    const auto* i = n.as_integer();
+    if (i == nullptr) {
+      error(n.source(), key, "expected an integer, got " + type_name(n));
+      return std::nullopt;
+    }
+    const long long v = i->get();
+    if (v < lo) {
+      error(n.source(), key,
+            "must be at least " + std::to_string(lo) + " (got " + std::to_string(v) + ")");
+      return std::nullopt;
+    }
+    if (v > hi) {
+      error(n.source(), key,
+            "must be at most " + std::to_string(hi) + " (got " + std::to_string(v) + ")");
+      return std::nullopt;
+    }
+    return v;
+  }
+  std::optional<std::string> string(const toml::node& n, const std::string& key) {
+    const auto* s = n.as_string();
+    if (s == nullptr) {
+      error(n.source(), key, "expected a string, got " + type_name(n));
+      return std::nullopt;
+    }
+    return s->get();
+  }
+  std::optional<int> choice(const toml::node& n, const std::string& key,
+                            const std::vector<std::string_view>& options) {
+    const auto s = string(n, key);
+    if (!s) return std::nullopt;
+    for (std::size_t i = 0; i < options.size(); ++i) {
+      if (*s == options[i]) return static_cast<int>(i);
+    }
+    error(n.source(), key, "must be one of " + quoted_list(options) + " (got \"" + *s + "\")");
+    return std::nullopt;
+  }
+  // A fixed-length array; each item read by `item(node, key)`.
+  template <class T, class F>
+  std::optional<std::vector<T>> array_of(const toml::node& n, const std::string& key,
+                                         std::size_t count, F item) {
+    const auto* a = n.as_array();
+    if (a == nullptr) {
+      error(n.source(), key,
+            "expected an array of " + std::to_string(count) + " values, got " + type_name(n));
+      return std::nullopt;
+    }
+    if (a->size() != count) {
+      error(n.source(), key,
+            "expected " + std::to_string(count) + " values, got " + std::to_string(a->size()));
+      return std::nullopt;
+    }
+    std::vector<T> out;
+    bool ok = true;
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto v = item((*a)[i], key + "[" + std::to_string(i) + "]");
+      if (v) {
+        out.push_back(*v);
+      } else {
+        ok = false;
+      }
+    }
+    if (!ok) return std::nullopt;
+    return out;
+  }
+
+ private:
+  std::string file_;
+  std::vector<Diagnostic> errors_;
+};
+
+enum class Need { kRequired, kOptional };
+
+// One TOML table being read: the keys it may hold, and typed access to them.
+class Table {
+ public:
+  Table(Loader& L, const toml::table& t, std::string path, std::vector<std::string_view> allowed)
+      : L_(L), t_(t), path_(std::move(path)), allowed_(std::move(allowed)) {}
+
+  std::string key(std::string_view k) const {
+    return path_.empty() ? std::string(k) : path_ + "." + std::string(k);
+  }
+  const toml::table& raw() const { return t_; }
+  Where where(std::string_view k) const {
+    const toml::node* n = t_.get(k);
+    return {n != nullptr ? n->source() : t_.source(), key(k)};
+  }
+  bool has(std::string_view k) const { return t_.get(k) != nullptr; }
+
+  const toml::node* get(std::string_view k, Need need, std::string_view hint = {}) {
+    const toml::node* n = t_.get(k);
+    if (n == nullptr && need == Need::kRequired) {
+      L_.error(t_.source(), key(k),
+               "missing required key '" + std::string(k) + "'" + std::string(hint));
+    }
+    return n;
+  }
+  std::optional<double> number(std::string_view k, Need need) {
+    const toml::node* n = get(k, need);
+    return n ? L_.number(*n, key(k)) : std::nullopt;
+  }
+  std::optional<double> positive(std::string_view k, Need need) {
+    const toml::node* n = get(k, need);
+    return n ? L_.positive(*n, key(k)) : std::nullopt;
+  }
+  std::optional<double> non_negative(std::string_view k, Need need) {
+    const toml::node* n = get(k, need);
+    return n ? L_.non_negative(*n, key(k)) : std::nullopt;
+  }
+  std::optional<long long> integer(std::string_view k, Need need, long long lo, long long hi) {
+    const toml::node* n = get(k, need);
+    return n ? L_.integer(*n, key(k), lo, hi) : std::nullopt;
+  }
+  std::optional<std::string> string(std::string_view k, Need need) {
+    const toml::node* n = get(k, need);
+    return n ? L_.string(*n, key(k)) : std::nullopt;
+  }
+  std::optional<bool> boolean(std::string_view k, Need need) {
+    const toml::node* n = get(k, need);
+    if (n == nullptr) return std::nullopt;
+    if (const auto* b = n->as_boolean()) return b->get();
+    L_.error(n->source(), key(k), "expected a boolean, got " + type_name(*n));
+    return std::nullopt;
+  }
+  std::optional<int> choice(std::string_view k, Need need,
+                            const std::vector<std::string_view>& options) {
+    const toml::node* n = get(k, need);
+    return n ? L_.choice(*n, key(k), options) : std::nullopt;
+  }
+  // Fixed-length array of numbers; sign: 0 any finite, 1 non-negative.
+  std::optional<std::vector<double>> numbers(std::string_view k, Need need, std::size_t count,
+                                             bool non_negative = false) {
+    const toml::node* n = get(k, need);
+    if (n == nullptr) return std::nullopt;
+    return L_.array_of<double>(*n, key(k), count,
+                               [this, non_negative](const toml::node& e, const std::string& ek) {
+                                 return non_negative ? L_.non_negative(e, ek) : L_.number(e, ek);
+                               });
+  }
+  std::optional<std::vector<long long>> node_ids(std::string_view k, Need need, std::size_t count) {
+    const toml::node* n = get(k, need);
+    if (n == nullptr) return std::nullopt;
+    return L_.array_of<long long>(*n, key(k), count,
+                                  [this](const toml::node& e, const std::string& ek) {
+                                    return L_.integer(e, ek, 0, kMaxNodeId);
+                                  });
+  }
+  // "cannot be given together with" for two keys that exclude each other; true if both given.
+  bool conflict(std::string_view a, std::string_view b) {
+    const toml::node* na = t_.get(a);
+    const toml::node* nb = t_.get(b);
+    if (na == nullptr || nb == nullptr) return false;
+    const bool b_later = nb->source().begin > na->source().begin;
+    const toml::node* later = b_later ? nb : na;
+    L_.error(later->source(), key(b_later ? b : a),
+             "cannot be given together with '" + std::string(b_later ? a : b) + "'");
+    return true;
+  }
+  void check_unknown() {
+    for (auto&& [k, v] : t_) {
+      (void)v;
+      if (std::find(allowed_.begin(), allowed_.end(), k.str()) == allowed_.end()) {
+        L_.error(k.source(), key(k.str()),
+                 "unknown key '" + std::string(k.str()) +
+                     "' (this table takes: " + plain_list(allowed_) + ")");
+      }
+    }
+  }
+
+ private:
+  Loader& L_;
+  const toml::table& t_;
+  std::string path_;
+  std::vector<std::string_view> allowed_;
+};
+
+// --- what pass 1 reads ---
+
+struct IdAt {
+  std::string id;
+  Where at;  // the id's value
+};
+
+struct Material {
+  IdAt id;
+  double E = 0, G = 0, rho = 0;
+};
+
+struct Section {
+  IdAt id;
+  double A = 0, Iy = 0, Iz = 0, J = 0, shear_y = 0, shear_z = 0;
+};
+
+struct UserNode {
+  long long id = 0;
+  Where at;
+  double x = 0, y = 0, z = 0;
+};
+
+struct Member {
+  IdAt id;
+  std::vector<long long> nodes;
+  Where nodes_at;
+  IdAt material, section;
+  int divisions = 1;
+  std::optional<std::array<double, 3>> orientation;
+  Where orientation_at;
+  double roll_deg = 0;
+};
+
+struct Support {
+  long long node = 0;
+  Where at;
+  std::uint8_t fixed = 0;
+};
+
+struct PointMass {
+  long long node = 0;
+  Where at;
+  double mass = 0;
+  std::array<double, 3> inertia{};
+};
+
+struct TimeFunction {
+  IdAt id;
+  std::vector<TimePoint> points;
+};
+
+struct Load {
+  long long node = 0;
+  Where at;
+  std::vector<std::pair<int, double>> components;  // (dof, value)
+  std::optional<IdAt> function;
+};
+
+struct Input {
+  IdAt name;
+  InputKind kind = InputKind::kGroundAcceleration;
+  long long node = 0;
+  Where node_at;
+  int dof = 0;
+  double scale = 1, min = -1e300, max = 1e300;
+};
+
+enum class OutKind { kNode, kElementForce, kDrift, kReaction };
+
+struct Output {
+  IdAt name;
+  OutKind kind = OutKind::kNode;
+  OutputKind node_kind = OutputKind::kDisplacement;
+  std::vector<long long> nodes;  // node kinds: 1; drift: 2
+  Where nodes_at;
+  int dof = 0;  // DOF, direction or component
+  Where dof_at;
+  IdAt member;
+  int end = 0;
+};
+
+struct ModelTable {
+  std::string name, title;
+  bool dt_auto = true;
+  double dt = 0;
+  Where dt_at;
+  double frame_rate = 1000;
+  bool rotary_inertia = false, allow_unstable = false;
+  std::array<double, 3> gravity{};
+  std::optional<IdAt> gravity_function;
+  double alpha = 0;
+  double damping_ratio = 0, damping_frequency = 0;
+};
+
+struct Parsed {
+  ModelTable model;
+  std::vector<Material> materials;
+  std::vector<Section> sections;
+  std::vector<UserNode> nodes;
+  std::vector<Member> members;
+  std::vector<Support> supports;
+  std::vector<PointMass> point_masses;
+  std::vector<TimeFunction> time_functions;
+  std::vector<Load> loads;
+  std::vector<Input> inputs;
+  std::vector<Output> outputs;
+};
+
+std::optional<IdAt> read_id(Table& t, std::string_view k, Need need = Need::kRequired) {
+  auto s = t.string(k, need);
+  if (!s) return std::nullopt;
+  return IdAt{*s, t.where(k)};
+}
+
+// Calls f(table, path) for each table of the array of tables `name` at the root.
+template <class F>
+void for_each_table(Loader& L, const toml::table& root, std::string_view name, F f) {
+  const toml::node* n = root.get(name);
+  if (n == nullptr) return;
+  const auto* a = n->as_array();
+  if (a == nullptr) {
+    L.error(n->source(), std::string(name),
+            "expected an array of tables ([[" + std::string(name) + "]]), got " + type_name(*n));
+    return;
+  }
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = (*a)[i];
+    const std::string path = std::string(name) + "[" + std::to_string(i) + "]";
+    if (const auto* t = e.as_table()) {
+      f(*t, path);
+    } else {
+      L.error(e.source(), path, "expected a table, got " + type_name(e));
+    }
+  }
+}
+
+void read_model(Loader& L, const toml::table& root, ModelTable& m) {
+  const toml::node* n = root.get("model");
+  if (n == nullptr) {
+    L.error_at_start("model", "missing required table [model]");
+    return;
+  }
+  const auto* mt = n->as_table();
+  if (mt == nullptr) {
+    L.error(n->source(), "model", "expected a table ([model]), got " + type_name(*n));
+    return;
+  }
+  Table t(L, *mt, "model",
+          {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
+           "allow_unstable", "damping"});
+  t.check_unknown();
+  if (auto name = t.string("name", Need::kRequired)) {
+    if (is_cpp_identifier(*name)) {
+      m.name = *name;
+    } else {
+      L.error(t.where("name"),
+              "must be a C++ identifier (letters, digits and _, not starting with a digit, not a "
+              "keyword), got \"" +
+                  *name + "\"");
+    }
+  }
+  if (auto title = t.string("title", Need::kOptional)) m.title = *title;
+  if (const toml::node* dt = t.get("dt", Need::kOptional)) {
+    m.dt_at = t.where("dt");
+    if (const auto* s = dt->as_string()) {
+      if (s->get() == "auto") {
+        m.dt_auto = true;
+      } else {
+        L.error(m.dt_at, "must be \"auto\" or a number of seconds (got \"" + s->get() + "\")");
+      }
+    } else if (auto v = L.positive(*dt, t.key("dt"))) {
+      m.dt_auto = false;
+      m.dt = *v;
+    }
+  } else {
+    m.dt_at = {mt->source(), "model.dt"};
+  }
+  if (auto f = t.positive("frame_rate", Need::kOptional)) m.frame_rate = *f;
+  if (auto b = t.boolean("rotary_inertia", Need::kOptional)) m.rotary_inertia = *b;
+  if (auto b = t.boolean("allow_unstable", Need::kOptional)) m.allow_unstable = *b;
+  if (auto g = t.numbers("gravity", Need::kOptional, 3)) m.gravity = {(*g)[0], (*g)[1], (*g)[2]};
+  m.gravity_function = read_id(t, "gravity_function", Need::kOptional);
+
+  if (const toml::node* d = t.get("damping", Need::kOptional)) {
+    const auto* dt = d->as_table();
+    if (dt == nullptr) {
+      L.error(d->source(), "model.damping",
+              "expected a table ([model.damping]), got " + type_name(*d));
+      return;
+    }
+    Table dmp(L, *dt, "model.damping", {"alpha", "ratio", "frequency"});
+    dmp.check_unknown();
+    if (dmp.conflict("alpha", "ratio")) return;
+    if (dmp.has("alpha")) {
+      if (auto a = dmp.non_negative("alpha", Need::kRequired)) m.alpha = *a;
+      if (dmp.has("frequency")) L.error(dmp.where("frequency"), "only applies with 'ratio'");
+    } else {
+      // C = alpha M gives the fraction of critical damping alpha / (2 omega) in a mode of
+      // circular frequency omega: alpha = 2 ratio (2 pi f) sets `ratio` at `frequency`.
+      const auto ratio = dmp.non_negative("ratio", Need::kRequired);
+      const auto f = dmp.positive("frequency", Need::kRequired);
+      if (ratio && f) {
+        m.alpha = 2.0 * *ratio * (2.0 * std::numbers::pi * *f);
+        m.damping_ratio = *ratio, m.damping_frequency = *f;
+      }
+    }
+  }
+}
+
+void read_tables(Loader& L, const toml::table& root, Parsed& p) {
+  {
+    Table top(L, root, "",
+              {"model", "materials", "sections", "nodes", "members", "supports", "point_masses",
+               "time_functions", "loads", "inputs", "outputs"});
+    top.check_unknown();
+  }
+  read_model(L, root, p.model);
+
+  for_each_table(L, root, "materials", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"id", "E", "G", "nu", "rho"});
+    t.check_unknown();
+    Material m;
+    auto id = read_id(t, "id");
+    auto E = t.positive("E", Need::kRequired);
+    auto rho = t.positive("rho", Need::kRequired);
+    std::optional<double> G;
+    if (!t.conflict("G", "nu")) {
+      if (t.has("nu")) {
+        if (auto nu = t.number("nu", Need::kRequired)) {
+          if (!(*nu > -1.0 && *nu < 0.5)) {
+            L.error(t.where("nu"),
+                    "must be greater than -1 and less than 0.5 (got " + num(*nu) + ")");
+          } else if (E) {
+            G = *E / (2.0 * (1.0 + *nu));  // isotropic elasticity
+          }
+        }
+      } else {
+        G = t.positive("G", Need::kRequired);
+      }
+    }
+    if (!id || !E || !rho || !G) return;
+    m.id = *id, m.E = *E, m.G = *G, m.rho = *rho;
+    p.materials.push_back(m);
+  });
+
+  for_each_table(L, root, "sections", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"id", "A", "Iy", "Iz", "J", "shear", "kappa_y", "kappa_z"});
+    t.check_unknown();
+    Section s;
+    auto id = read_id(t, "id");
+    auto A = t.positive("A", Need::kRequired);
+    auto Iy = t.positive("Iy", Need::kRequired);
+    auto Iz = t.positive("Iz", Need::kRequired);
+    auto J = t.positive("J", Need::kRequired);
+    auto shear = t.choice("shear", Need::kOptional, {"euler_bernoulli", "timoshenko"});
+    double ky = 5.0 / 6.0, kz = 5.0 / 6.0;  // shear coefficient of a rectangle
+    bool ok = id && A && Iy && Iz && J && (shear || !t.has("shear"));
+    if (shear.value_or(0) == 1) {
+      auto y = t.positive("kappa_y", Need::kOptional);
+      auto z = t.positive("kappa_z", Need::kOptional);
+      if (y) ky = *y;
+      if (z) kz = *z;
+      ok = ok && (y || !t.has("kappa_y")) && (z || !t.has("kappa_z"));
+    } else {
+      for (std::string_view k : {"kappa_y", "kappa_z"}) {
+        if (t.has(k)) {
+          L.error(t.where(k), "only applies with shear = \"timoshenko\"");
+          ok = false;
+        }
+      }
+    }
+    if (!ok) return;
+    s.id = *id, s.A = *A, s.Iy = *Iy, s.Iz = *Iz, s.J = *J;
+    if (shear.value_or(0) == 1) s.shear_y = ky * *A, s.shear_z = kz * *A;
+    p.sections.push_back(s);
+  });
+
+  for_each_table(L, root, "nodes", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"id", "xyz"});
+    t.check_unknown();
+    auto id = t.integer("id", Need::kRequired, 0, kMaxNodeId);
+    auto xyz = t.numbers("xyz", Need::kRequired, 3);
+    if (!id || !xyz) return;
+    p.nodes.push_back({*id, t.where("id"), (*xyz)[0], (*xyz)[1], (*xyz)[2]});
+  });
+
+  for_each_table(L, root, "members", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path,
+            {"id", "nodes", "material", "section", "divisions", "orientation", "roll"});
+    t.check_unknown();
+    Member m;
+    auto id = read_id(t, "id");
+    auto nodes = t.node_ids("nodes", Need::kRequired, 2);
+    auto mat = read_id(t, "material");
+    auto sec = read_id(t, "section");
+    auto div = t.integer("divisions", Need::kOptional, 1, kMaxDivisions);
+    bool ok = id && nodes && mat && sec && (div || !t.has("divisions"));
+    if (!t.conflict("orientation", "roll")) {
+      if (t.has("orientation")) {
+        auto o = t.numbers("orientation", Need::kRequired, 3);
+        if (o) {
+          m.orientation = std::array<double, 3>{(*o)[0], (*o)[1], (*o)[2]};
+        } else {
+          ok = false;
+        }
+        m.orientation_at = t.where("orientation");
+      } else if (t.has("roll")) {
+        auto r = t.number("roll", Need::kRequired);
+        if (r) {
+          m.roll_deg = *r;
+        } else {
+          ok = false;
+        }
+      }
+    } else {
+      ok = false;
+    }
+    if (!ok) return;
+    m.id = *id, m.nodes = *nodes, m.nodes_at = t.where("nodes"), m.material = *mat;
+    m.section = *sec, m.divisions = static_cast<int>(div.value_or(1));
+    p.members.push_back(m);
+  });
+
+  for_each_table(L, root, "supports", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"node", "fix"});
+    t.check_unknown();
+    auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    const toml::node* fix = t.get("fix", Need::kRequired);
+    std::optional<std::uint8_t> bits;
+    if (fix != nullptr) {
+      const std::string msg =
+          "must be \"all\", \"pinned\" or an array of DOF names (" + quoted_list(kDofNames) + ")";
+      if (const auto* s = fix->as_string()) {
+        if (s->get() == "all") {
+          bits = 0x3F;
+        } else if (s->get() == "pinned") {
+          bits = 0x07;  // translations held, rotations free
+        } else {
+          L.error(fix->source(), t.key("fix"), msg + ", got \"" + s->get() + "\"");
+        }
+      } else if (const auto* a = fix->as_array(); a != nullptr && !a->empty()) {
+        std::uint8_t b = 0;
+        bool ok = true;
+        for (std::size_t i = 0; i < a->size(); ++i) {
+          auto d = L.choice((*a)[i], t.key("fix") + "[" + std::to_string(i) + "]", kDofNames);
+          if (d) {
+            b = static_cast<std::uint8_t>(b | (1U << *d));
+          } else {
+            ok = false;
+          }
+        }
+        if (ok) bits = b;
+      } else {
+        L.error(fix->source(), t.key("fix"),
+                msg + ", got " + (fix->is_array() ? "an empty array" : type_name(*fix)));
+      }
+    }
+    if (!node || !bits) return;
+    p.supports.push_back({*node, t.where("node"), *bits});
+  });
+
+  for_each_table(L, root, "point_masses", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"node", "mass", "inertia"});
+    t.check_unknown();
+    auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    auto mass = t.non_negative("mass", Need::kRequired);
+    auto inertia = t.numbers("inertia", Need::kOptional, 3, true);
+    if (!node || !mass || (!inertia && t.has("inertia"))) return;
+    PointMass pm{*node, t.where("node"), *mass, {}};
+    if (inertia) pm.inertia = {(*inertia)[0], (*inertia)[1], (*inertia)[2]};
+    p.point_masses.push_back(pm);
+  });
+
+  for_each_table(L, root, "time_functions", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"id", "points"});
+    t.check_unknown();
+    auto id = read_id(t, "id");
+    const toml::node* pts = t.get("points", Need::kRequired);
+    if (pts == nullptr) return;
+    const std::string pkey = t.key("points");
+    const auto* a = pts->as_array();
+    if (a == nullptr || a->empty()) {
+      L.error(pts->source(), pkey,
+              "expected an array of [t, value] points (at least one), got " +
+                  (a ? std::string("an empty array") : type_name(*pts)));
+      return;
+    }
+    TimeFunction f;
+    bool ok = true;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string k = pkey + "[" + std::to_string(i) + "]";
+      auto tv = L.array_of<double>((*a)[i], k, 2, [&L](const toml::node& e, const std::string& ek) {
+        return L.number(e, ek);
+      });
+      if (!tv) {
+        ok = false;
+        continue;
+      }
+      if (!f.points.empty() && !((*tv)[0] > f.points.back().t)) {
+        L.error((*a)[i].source(), k,
+                "t = " + num((*tv)[0]) + " s does not come after the previous point's t = " +
+                    num(f.points.back().t) + " s: times must increase strictly");
+        ok = false;
+      }
+      f.points.push_back({(*tv)[0], (*tv)[1]});
+    }
+    if (!id || !ok) return;
+    f.id = *id;
+    p.time_functions.push_back(f);
+  });
+
+  for_each_table(L, root, "loads", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"node", "dof", "value", "force", "function"});
+    t.check_unknown();
+    Load l;
+    auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    bool ok = node.has_value();
+    if (t.conflict("dof", "force") || t.conflict("value", "force")) return;
+    if (t.has("force")) {
+      auto f = t.numbers("force", Need::kRequired, 6);
+      if (f) {
+        for (int d = 0; d < kDofsPerNode; ++d) {
+          const double v = (*f)[static_cast<std::size_t>(d)];
+          if (v != 0.0) l.components.emplace_back(d, v);
+        }
+      }
+      ok = ok && f;
+    } else {
+      const std::string hint = " (or give force = [Fx, Fy, Fz, Mx, My, Mz])";
+      const toml::node* dn = t.get("dof", Need::kRequired, hint);
+      std::optional<int> dof;
+      if (dn != nullptr) dof = L.choice(*dn, t.key("dof"), kDofNames);
+      auto v = t.number("value", Need::kRequired);
+      if (dof && v) l.components.emplace_back(*dof, *v);
+      ok = ok && dof && v;
+    }
+    if (t.has("function")) {
+      l.function = read_id(t, "function");
+      ok = ok && l.function;
+    }
+    if (!ok) return;
+    l.node = *node, l.at = t.where("node");
+    p.loads.push_back(l);
+  });
+
+  for_each_table(L, root, "inputs", [&](const toml::table& tt, const std::string& path) {
+    Input in;
+    const std::vector<std::string_view> kinds = {"ground_acceleration", "nodal_force"};
+    Table head(L, tt, path, {});
+    auto name = read_id(head, "name");
+    auto kind = head.choice("kind", Need::kRequired, kinds);
+    if (!kind) return;
+    const bool ground = *kind == 0;
+    Table t(
+        L, tt, path,
+        ground
+            ? std::vector<std::string_view>{"name", "kind", "direction", "units", "min", "max"}
+            : std::vector<std::string_view>{"name", "kind", "node", "dof", "scale", "min", "max"});
+    t.check_unknown();
+    bool ok = name.has_value();
+    if (ground) {
+      in.kind = InputKind::kGroundAcceleration;
+      auto dir = t.choice("direction", Need::kRequired, kDirections3);
+      auto units = t.choice("units", Need::kOptional, {"m/s2", "g"});
+      if (dir) in.dof = *dir;
+      in.scale = units.value_or(0) == 1 ? kStandardGravity : 1.0;
+      ok = ok && dir && (units || !t.has("units"));
+    } else {
+      in.kind = InputKind::kNodalForce;
+      auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+      auto dof = t.choice("dof", Need::kRequired, kDofNames);
+      auto scale = t.number("scale", Need::kOptional);
+      if (node) in.node = *node, in.node_at = t.where("node");
+      if (dof) in.dof = *dof;
+      if (scale) in.scale = *scale;
+      ok = ok && node && dof && (scale || !t.has("scale"));
+    }
+    auto lo = t.number("min", Need::kOptional);
+    auto hi = t.number("max", Need::kOptional);
+    if (lo) in.min = *lo;
+    if (hi) in.max = *hi;
+    ok = ok && (lo || !t.has("min")) && (hi || !t.has("max"));
+    if (lo && hi && !(*lo < *hi)) {
+      L.error(t.where("min"), "min = " + num(*lo) + " must be less than max = " + num(*hi));
+      ok = false;
+    }
+    if (!ok) return;
+    in.name = *name;
+    p.inputs.push_back(in);
+  });
+
+  for_each_table(L, root, "outputs", [&](const toml::table& tt, const std::string& path) {
+    Output o;
+    const std::vector<std::string_view> kinds = {"displacement",  "velocity", "acceleration",
+                                                 "element_force", "drift",    "reaction"};
+    Table head(L, tt, path, {});
+    auto name = read_id(head, "name");
+    auto kind = head.choice("kind", Need::kRequired, kinds);
+    if (!kind) return;
+    bool ok = name.has_value();
+    if (*kind <= 2) {
+      Table t(L, tt, path, {"name", "kind", "node", "dof"});
+      t.check_unknown();
+      o.kind = OutKind::kNode;
+      o.node_kind = *kind == 0   ? OutputKind::kDisplacement
+                    : *kind == 1 ? OutputKind::kVelocity
+                                 : OutputKind::kAcceleration;
+      auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+      auto dof = t.choice("dof", Need::kRequired, kDofNames);
+      if (node) o.nodes = {*node}, o.nodes_at = t.where("node");
+      if (dof) o.dof = *dof;
+      ok = ok && node && dof;
+    } else if (*kind == 3) {
+      Table t(L, tt, path, {"name", "kind", "member", "end", "component"});
+      t.check_unknown();
+      o.kind = OutKind::kElementForce;
+      auto member = read_id(t, "member");
+      auto end = t.choice("end", Need::kRequired, {"start", "end"});
+      auto comp = t.choice("component", Need::kRequired, kComponents);
+      if (member) o.member = *member;
+      if (end) o.end = *end;
+      if (comp) o.dof = *comp;
+      ok = ok && member && end && comp;
+    } else if (*kind == 4) {
+      Table t(L, tt, path, {"name", "kind", "nodes", "direction"});
+      t.check_unknown();
+      o.kind = OutKind::kDrift;
+      auto nodes = t.node_ids("nodes", Need::kRequired, 2);
+      auto dir = t.choice("direction", Need::kRequired, {"x", "y"});
+      if (nodes) o.nodes = *nodes, o.nodes_at = t.where("nodes");
+      if (dir) o.dof = *dir;
+      ok = ok && nodes && dir;
+    } else {
+      Table t(L, tt, path, {"name", "kind", "direction"});
+      t.check_unknown();
+      o.kind = OutKind::kReaction;
+      auto dir = t.choice("direction", Need::kRequired, kReactionDirections);
+      if (dir) o.dof = *dir, o.dof_at = t.where("direction");
+      ok = ok && dir;
+    }
+    if (!ok) return;
+    o.name = *name;
+    p.outputs.push_back(o);
+  });
+}
+
+// Index by id; reports every repeat at the repeated id, naming the line of the first.
+template <class T, class GetId>
+std::map<std::string, int> index_by_id(Loader& L, const std::vector<T>& items, GetId get,
+                                       const std::string& what) {
+  std::map<std::string, int> index;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const IdAt& id = get(items[i]);
+    const auto [it, inserted] = index.emplace(id.id, static_cast<int>(i));
+    if (!inserted) {
+      const IdAt& first = get(items[static_cast<std::size_t>(it->second)]);
+      L.error(id.at, "duplicate " + what + " '" + id.id + "' (first defined at line " +
+                         std::to_string(line_of(first.at.region)) + ")");
+    }
+  }
+  return index;
+}
+
+// Pass 2 and 3: references, meshing, geometry, mass, time step.
+std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::string& file) {
+  ModelDescription d;
+  d.name = p.model.name;
+  d.title = p.model.title;
+  d.source_file = file;
+  d.frame_rate = p.model.frame_rate;
+  d.dt_auto = p.model.dt_auto;
+  d.dt_requested = p.model.dt;
+  d.damping_ratio = p.model.damping_ratio;
+  d.damping_frequency = p.model.damping_frequency;
+  Settings& s = d.settings;
+  s.frame_period = 1.0 / p.model.frame_rate;
+  s.alpha = p.model.alpha;
+  s.gravity = p.model.gravity;
+  s.rotary_inertia = p.model.rotary_inertia;
+  s.allow_unstable = p.model.allow_unstable;
+
+  const auto materials = index_by_id(
+      L, p.materials, [](const Material& m) -> const IdAt& { return m.id; }, "material id");
+  const auto sections = index_by_id(
+      L, p.sections, [](const Section& x) -> const IdAt& { return x.id; }, "section id");
+  const auto members = index_by_id(
+      L, p.members, [](const Member& x) -> const IdAt& { return x.id; }, "member id");
+  const auto functions = index_by_id(
+      L, p.time_functions, [](const TimeFunction& x) -> const IdAt& { return x.id; },
+      "time function id");
+  index_by_id(
+      L, p.inputs, [](const Input& x) -> const IdAt& { return x.name; }, "input name");
+  index_by_id(
+      L, p.outputs, [](const Output& x) -> const IdAt& { return x.name; }, "output name");
+  std::map<long long, int> node_index;
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+    const UserNode& n = p.nodes[i];
+    const auto [it, inserted] = node_index.emplace(n.id, static_cast<int>(i));
+    if (!inserted) {
+      L.error(n.at,
+              "duplicate node id " + std::to_string(n.id) + " (first defined at line " +
+                  std::to_string(line_of(p.nodes[static_cast<std::size_t>(it->second)].at.region)) +
+                  ")");
+    }
+  }
+
+  auto node_ref = [&](long long id, const Where& at) -> int {
+    const auto it = node_index.find(id);
+    if (it != node_index.end()) return it->second;
+    L.error(at, "unknown node " + std::to_string(id));
+    return -1;
+  };
+  auto ref = [&](const std::map<std::string, int>& index, const IdAt& id,
+                 const std::string& what) -> int {
+    const auto it = index.find(id.id);
+    if (it != index.end()) return it->second;
+    L.error(id.at, "unknown " + what + " '" + id.id + "'");
+    return -1;
+  };
+
+  // Time functions, concatenated.
+  for (const TimeFunction& f : p.time_functions) {
+    d.time_functions.push_back(
+        {static_cast<int>(d.time_points.size()), static_cast<int>(f.points.size())});
+    d.time_points.insert(d.time_points.end(), f.points.begin(), f.points.end());
+    d.time_function_ids.push_back(f.id.id);
+  }
+  if (p.model.gravity_function) {
+    s.gravity_function = ref(functions, *p.model.gravity_function, "time function");
+  }
+
+  // User nodes first, in file order; generated nodes follow, member by member.
+  for (const UserNode& n : p.nodes) {
+    NodeSpec ns;
+    ns.x = n.x, ns.y = n.y, ns.z = n.z;
+    d.nodes.push_back(ns);
+    d.node_ids.push_back(static_cast<int>(n.id));
+  }
+
+  if (p.members.empty()) {
+    L.error_at_start("members",
+                     "the model has no members, so it has no mass and nothing to integrate");
+  }
+
+  for (std::size_t mi = 0; mi < p.members.size(); ++mi) {
+    const Member& m = p.members[mi];
+    const int a = node_ref(m.nodes[0], m.nodes_at);
+    const int b = node_ref(m.nodes[1], m.nodes_at);
+    const int mat = ref(materials, m.material, "material");
+    const int sec = ref(sections, m.section, "section");
+    if (a < 0 || b < 0 || mat < 0 || sec < 0) continue;
+    const Material& ma = p.materials[static_cast<std::size_t>(mat)];
+    const Section& se = p.sections[static_cast<std::size_t>(sec)];
+    const NodeSpec na = d.nodes[static_cast<std::size_t>(a)];
+    const NodeSpec nb = d.nodes[static_cast<std::size_t>(b)];
+
+    ElementSpec e;
+    e.E = ma.E, e.G = ma.G, e.rho = ma.rho;
+    e.A = se.A, e.Iy = se.Iy, e.Iz = se.Iz, e.J = se.J;
+    e.shear_area_y = se.shear_y, e.shear_area_z = se.shear_z;
+    e.member = static_cast<int>(mi);
+
+    // Orientation vector (DESIGN §3): given, or the default reference turned by `roll`.
+    const double dx = nb.x - na.x, dy = nb.y - na.y, dz = nb.z - na.z;
+    const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (m.orientation) {
+      e.ref_x = (*m.orientation)[0], e.ref_y = (*m.orientation)[1], e.ref_z = (*m.orientation)[2];
+    } else if (len > 0) {
+      const double ex[3] = {dx / len, dy / len, dz / len};
+      // Vertical members (axis within 1e-3 rad of global Z) take global X as the reference,
+      // all others global Z.
+      const bool vertical = std::sqrt(ex[0] * ex[0] + ex[1] * ex[1]) < 1e-3;
+      const double r0[3] = {vertical ? 1.0 : 0.0, 0.0, vertical ? 0.0 : 1.0};
+      const double along = r0[0] * ex[0] + r0[1] * ex[1] + r0[2] * ex[2];
+      double ez[3] = {r0[0] - along * ex[0], r0[1] - along * ex[1], r0[2] - along * ex[2]};
+      const double zn = std::sqrt(ez[0] * ez[0] + ez[1] * ez[1] + ez[2] * ez[2]);
+      for (double& c : ez)
+        c /= zn;
+      const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
+                            ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
+      // Right-handed turn by `roll` about local x: z' = cos(roll) z - sin(roll) y.
+      const double th = m.roll_deg * std::numbers::pi / 180.0;
+      const double c = m.roll_deg == 0.0 ? 1.0 : std::cos(th);
+      const double sn = m.roll_deg == 0.0 ? 0.0 : std::sin(th);
+      e.ref_x = c * ez[0] - sn * ey[0];
+      e.ref_y = c * ez[1] - sn * ey[1];
+      e.ref_z = c * ez[2] - sn * ey[2];
+    }
+
+    // Whole-member geometry with the kernel's own check.
+    e.node_i = a, e.node_j = b;
+    const BeamGeometry g = beam_geometry(na, nb, e);
+    if (g.check == ElementCheck::kZeroLength) {
+      L.error(m.nodes_at, "member " + m.id.id + " has zero length: nodes " +
+                              std::to_string(m.nodes[0]) + " and " + std::to_string(m.nodes[1]) +
+                              " are both at (" + num(na.x) + ", " + num(na.y) + ", " + num(na.z) +
+                              ")");
+      continue;
+    }
+    if (g.check == ElementCheck::kOrientationParallel) {
+      L.error(m.orientation_at, "orientation (" + num(e.ref_x) + ", " + num(e.ref_y) + ", " +
+                                    num(e.ref_z) + ") is parallel to the axis of member " +
+                                    m.id.id);
+      continue;
+    }
+
+    // Mesh: divisions equal elements, interior nodes at x_a + (k / N)(x_b - x_a).
+    MemberInfo info;
+    info.name = m.id.id;
+    info.material = ma.id.id;
+    info.section = se.id.id;
+    info.first_element = static_cast<int>(d.elements.size());
+    info.element_count = m.divisions;
+    info.start_node = a;
+    info.end_node = b;
+    info.first_interior_node = static_cast<int>(d.nodes.size());
+    info.interior_node_count = m.divisions - 1;
+    int prev = a;
+    for (int k = 1; k <= m.divisions; ++k) {
+      int next = b;
+      if (k < m.divisions) {
+        const double t = static_cast<double>(k) / static_cast<double>(m.divisions);
+        NodeSpec n;
+        n.x = na.x + t * dx, n.y = na.y + t * dy, n.z = na.z + t * dz;
+        next = static_cast<int>(d.nodes.size());
+        d.nodes.push_back(n);
+        d.node_ids.push_back(kGeneratedNode);
+      }
+      ElementSpec el = e;
+      el.node_i = prev, el.node_j = next;
+      d.elements.push_back(el);
+      d.element_member.push_back(static_cast<int>(mi));
+      prev = next;
+    }
+    d.members.push_back(info);
+  }
+
+  // Supports.
+  std::map<int, int> support_of;  // node -> support index
+  for (std::size_t i = 0; i < p.supports.size(); ++i) {
+    const Support& sp = p.supports[i];
+    const int n = node_ref(sp.node, sp.at);
+    if (n < 0) continue;
+    const auto [it, inserted] = support_of.emplace(n, static_cast<int>(i));
+    if (!inserted) {
+      L.error(sp.at, "node " + std::to_string(sp.node) + " already has a support (line " +
+                         std::to_string(
+                             line_of(p.supports[static_cast<std::size_t>(it->second)].at.region)) +
+                         ")");
+      continue;
+    }
+    d.nodes[static_cast<std::size_t>(n)].fixed = sp.fixed;
+  }
+
+  // Point masses add up on their node.
+  for (const PointMass& pm : p.point_masses) {
+    const int n = node_ref(pm.node, pm.at);
+    if (n < 0) continue;
+    auto& added = d.nodes[static_cast<std::size_t>(n)].added;
+    for (std::size_t k = 0; k < 3; ++k) {
+      added[k] += pm.mass;
+      added[3 + k] += pm.inertia[k];
+    }
+  }
+
+  for (const Load& l : p.loads) {
+    const int n = node_ref(l.node, l.at);
+    int f = kConstant;
+    if (l.function) f = ref(functions, *l.function, "time function");
+    if (n < 0 || (l.function && f < 0)) continue;
+    for (const auto& [dof, value] : l.components) {
+      d.loads.push_back({n, dof, value, f});
+    }
+  }
+
+  for (const Input& in : p.inputs) {
+    InputSpec is;
+    is.kind = in.kind, is.dof = in.dof, is.scale = in.scale, is.min = in.min, is.max = in.max;
+    if (in.kind == InputKind::kNodalForce) {
+      is.node = node_ref(in.node, in.node_at);
+      if (is.node < 0) continue;
+    }
+    d.inputs.push_back(is);
+    d.input_names.push_back(in.name.id);
+  }
+
+  const char* const rot_units[3] = {"rad", "rad/s", "rad/s2"};
+  const char* const trans_units[3] = {"m", "m/s", "m/s2"};
+  for (const Output& o : p.outputs) {
+    OutputSpec os;
+    std::string units;
+    os.dof = o.dof;
+    switch (o.kind) {
+      case OutKind::kNode: {
+        os.kind = o.node_kind;
+        os.node = node_ref(o.nodes[0], o.nodes_at);
+        if (os.node < 0) continue;
+        const auto k = static_cast<std::size_t>(o.node_kind);
+        units = o.dof < 3 ? trans_units[k] : rot_units[k];
+        break;
+      }
+      case OutKind::kElementForce: {
+        os.kind = OutputKind::kElementForce;
+        const int m = ref(members, o.member, "member");
+        if (m < 0) continue;
+        // Geometry errors leave a member without elements; nothing to point at then.
+        const auto it = std::find_if(d.members.begin(), d.members.end(),
+                                     [&](const MemberInfo& mi) { return mi.name == o.member.id; });
+        if (it == d.members.end()) continue;
+        os.end = o.end;
+        os.element = o.end == 0 ? it->first_element : it->first_element + it->element_count - 1;
+        units = o.dof < 3 ? "N" : "N m";
+        break;
+      }
+      case OutKind::kDrift: {
+        os.kind = OutputKind::kDrift;
+        os.node = node_ref(o.nodes[0], o.nodes_at);
+        os.node2 = node_ref(o.nodes[1], o.nodes_at);
+        if (os.node < 0 || os.node2 < 0) continue;
+        const double z0 = d.nodes[static_cast<std::size_t>(os.node)].z;
+        const double z1 = d.nodes[static_cast<std::size_t>(os.node2)].z;
+        const double h = z1 - z0;
+        if (h == 0.0) {
+          L.error(o.nodes_at, "drift height is zero: nodes " + std::to_string(o.nodes[0]) +
+                                  " and " + std::to_string(o.nodes[1]) +
+                                  " are both at z = " + num(z0) + " m");
+          continue;
+        }
+        if (h < 0.0) {
+          L.error(o.nodes_at, "the upper node " + std::to_string(o.nodes[1]) + " (z = " + num(z1) +
+                                  " m) is below the lower node " + std::to_string(o.nodes[0]) +
+                                  " (z = " + num(z0) + " m)");
+          continue;
+        }
+        os.scale = 1.0 / h;  // drift ratio = relative displacement / storey height
+        units = "-";
+        break;
+      }
+      case OutKind::kReaction: {
+        os.kind = OutputKind::kReaction;
+        const bool held = std::any_of(d.nodes.begin(), d.nodes.end(), [&](const NodeSpec& n) {
+          return ((n.fixed >> o.dof) & 1U) != 0;
+        });
+        if (!held) {
+          L.error(o.dof_at, "no support holds DOF " +
+                                std::string(kDofNames[static_cast<std::size_t>(o.dof)]) +
+                                ", so this reaction is always zero");
+          continue;
+        }
+        units = o.dof < 3 ? "N" : "N m";
+        break;
+      }
+    }
+    d.outputs.push_back(os);
+    d.output_names.push_back(o.name.id);
+    d.output_units.push_back(units);
+  }
+
+  if (L.failed()) return std::nullopt;
+
+  // Pass 3: mass, from the kernel's lumped mass.
+  std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * d.nodes.size());
+  assemble_lumped_mass(d.view(), mass);
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) {  // generated nodes always have mass
+    std::string missing;
+    for (int k = 0; k < kDofsPerNode; ++k) {
+      const bool held = ((d.nodes[i].fixed >> k) & 1U) != 0;
+      if (!held && !(mass[i * kDofsPerNode + static_cast<std::size_t>(k)] > 0)) {
+        missing +=
+            (missing.empty() ? "" : ", ") + std::string(kDofNames[static_cast<std::size_t>(k)]);
+      }
+    }
+    if (!missing.empty()) {
+      L.error(p.nodes[i].at, "node " + std::to_string(p.nodes[i].id) +
+                                 " has no mass in its free DOFs " + missing +
+                                 ": connect it to a member, give it a point mass (with inertia "
+                                 "for rotations) or support those DOFs");
+    }
+  }
+  if (L.failed()) return std::nullopt;
+
+  // Time step (DESIGN §6): the element eigenvalue bound, with damping.
+  d.stable = stable_time_step(d.view());
+  if (d.dt_auto) {
+    s.dt = auto_time_step(d.stable.dt_stable, s.frame_period);
+  } else {
+    s.dt = d.dt_requested;
+    if (s.dt > d.stable.dt_stable && !s.allow_unstable) {
+      L.error(p.model.dt_at, "dt = " + num(s.dt) + " s is above the stable step " +
+                                 num(d.stable.dt_stable) + " s set by " +
+                                 d.describe_element(d.stable.governing_element) +
+                                 "; use dt = \"auto\" or a smaller dt");
+    }
+  }
+  if (L.failed()) return std::nullopt;
+  return d;
+}
+
+LoadResult load_parsed(Loader& L, const toml::table& root, const std::string& file) {
+  Parsed p;
+  read_tables(L, root, p);
+  LoadResult r;
+  if (!L.failed()) r.model = build(L, p, file);
+  r.errors = L.take_errors();
+  if (!r.errors.empty()) r.model.reset();
+  return r;
+}
+
+LoadResult load_text(std::string_view text, const std::string& file) {
+  Loader L(file);
+  try {
+    const toml::table root = toml::parse(text, file);
+    return load_parsed(L, root, file);
+  } catch (const toml::parse_error& e) {
+    L.error(e.source(), "", "TOML syntax: " + std::string(e.description()));
+  } catch (const std::exception& e) {
+    L.error_at_start("", std::string("internal error: ") + e.what());
+  }
+  LoadResult r;
+  r.errors = L.take_errors();
+  return r;
+}
+
+}  // namespace
+
+LoadResult load_model(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    LoadResult r;
+    r.errors.push_back({path, 1, 1, "", "cannot open the model file"});
+    return r;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_text(text.str(), path);
+}
+
+LoadResult load_model_from_string(std::string_view toml_text, const std::string& source_name) {
+  return load_text(toml_text, source_name);
+}
+
+}  // namespace ntn::modelc

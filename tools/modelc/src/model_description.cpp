@@ -1,0 +1,45 @@
+#include "ntn/modelc/model_description.hpp"
+
+#include <string>
+
+namespace ntn::modelc {
+
+Sizes ModelDescription::sizes() const {
+  Sizes s;
+  s.nodes = static_cast<int>(nodes.size());
+  s.elements = static_cast<int>(elements.size());
+  s.time_functions = static_cast<int>(time_functions.size());
+  s.time_points = static_cast<int>(time_points.size());
+  s.loads = static_cast<int>(loads.size());
+  s.inputs = static_cast<int>(inputs.size());
+  s.outputs = static_cast<int>(outputs.size());
+  return s;
+}
+
+SpecView ModelDescription::view() const {
+  return {nodes, elements, time_points, time_functions, loads, inputs, outputs, settings};
+}
+
+std::string ModelDescription::describe_element(int element) const {
+  if (element < 0 || element >= static_cast<int>(elements.size())) return "no element";
+  const MemberInfo& m =
+      members[static_cast<std::size_t>(element_member[static_cast<std::size_t>(element)])];
+  return "member " + m.name + ", element " + std::to_string(element - m.first_element + 1) +
+         " of " + std::to_string(m.element_count) + " (model element " + std::to_string(element) +
+         ")";
+}
+
+std::string ModelDescription::describe_node(int node) const {
+  if (node < 0 || node >= static_cast<int>(nodes.size())) return "no node";
+  const int id = node_ids[static_cast<std::size_t>(node)];
+  if (id != kGeneratedNode) return "node " + std::to_string(id);
+  for (const MemberInfo& m : members) {
+    if (node >= m.first_interior_node && node < m.first_interior_node + m.interior_node_count) {
+      return "interior node " + std::to_string(node - m.first_interior_node + 1) + " of member " +
+             m.name + " (model node " + std::to_string(node) + ")";
+    }
+  }
+  return "model node " + std::to_string(node);
+}
+
+}  // namespace ntn::modelc
