@@ -1,0 +1,18 @@
+# cmake -DCMD="prog|arg|..." -DEXIT=<code> [-DMATCH=<regex>] [-DOUTPUT=<file>] -P expect_exit.cmake
+# Runs CMD; fails unless it exits with EXIT, its stdout+stderr match MATCH, and OUTPUT (if given)
+# exists afterwards.
+string(REPLACE "|" ";" CMD "${CMD}")
+if(OUTPUT)
+  file(REMOVE "${OUTPUT}")
+endif()
+execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL EXIT)
+  message(FATAL_ERROR "exit code ${rc}, expected ${EXIT}")
+endif()
+if(MATCH AND NOT "${out}${err}" MATCHES "${MATCH}")
+  message(FATAL_ERROR "output does not match '${MATCH}'")
+endif()
+if(OUTPUT AND NOT EXISTS "${OUTPUT}")
+  message(FATAL_ERROR "${OUTPUT} was not written")
+endif()

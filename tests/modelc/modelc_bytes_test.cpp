@@ -1,0 +1,45 @@
+// model_bytes(S) is the memory the kernel's three structs take for sizes known at run time:
+// it must equal sizeof(Model<S>) + sizeof(State<S>) + sizeof(Scratch<S>) exactly, padding and
+// zero-size arrays included. Truth: the compiler's own sizeof.
+#include <gtest/gtest.h>
+
+#include "ntn/model.hpp"
+#include "ntn/modelc/model_bytes.hpp"
+#include "ntn/state.hpp"
+
+namespace {
+
+template <ntn::Sizes S>
+void expect_exact() {
+  const auto f = ntn::modelc::memory_footprint(S);
+  EXPECT_EQ(f.model, sizeof(ntn::Model<S>));
+  EXPECT_EQ(f.state, sizeof(ntn::State<S>));
+  EXPECT_EQ(f.scratch, sizeof(ntn::Scratch<S>));
+  EXPECT_EQ(ntn::modelc::model_bytes(S),
+            sizeof(ntn::Model<S>) + sizeof(ntn::State<S>) + sizeof(ntn::Scratch<S>));
+}
+
+TEST(ModelBytes, EqualsSizeofExactly) {
+  // Sizes: nodes, elements, time functions, time points, loads, inputs, outputs.
+  expect_exact<ntn::Sizes{2, 1, 0, 0, 0, 0, 0}>();     // every optional array empty
+  expect_exact<ntn::Sizes{21, 20, 0, 0, 1, 0, 3}>();   // cantilever
+  expect_exact<ntn::Sizes{96, 104, 0, 0, 0, 1, 7}>();  // frame3d
+  expect_exact<ntn::Sizes{3, 2, 1, 1, 1, 1, 1}>();     // odd counts: padding
+  expect_exact<ntn::Sizes{5, 4, 3, 7, 3, 2, 5}>();
+  expect_exact<ntn::Sizes{7, 9, 2, 3, 0, 3, 0}>();
+  expect_exact<ntn::Sizes{10001, 10000, 0, 0, 0, 0, 0}>();  // 10 000 elements
+}
+
+// The marginal cost of one more element or node, as ntn-model prints it.
+TEST(ModelBytes, PerElementAndPerNode) {
+  constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 9, 0, 0, 0, 0, 0};
+  EXPECT_EQ(ntn::modelc::model_bytes(e) - ntn::modelc::model_bytes(a),
+            ntn::modelc::memory_footprint(a).per_element);
+  EXPECT_EQ(ntn::modelc::memory_footprint(a).per_element, sizeof(ntn::BeamData));
+  // Eight more nodes keep the 1-byte `fixed` array a multiple of 8: no new padding.
+  constexpr ntn::Sizes n{16, 8, 0, 0, 0, 0, 0};
+  EXPECT_EQ(ntn::modelc::model_bytes(n) - ntn::modelc::model_bytes(a),
+            8 * ntn::modelc::memory_footprint(a).per_node);
+}
+
+}  // namespace

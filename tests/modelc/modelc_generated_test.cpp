@@ -1,0 +1,68 @@
+// The headers that ntn_add_model generated at build time for config/frame3d.toml (through the
+// generic NTN_MODEL_HEADER / NTN_MODEL_NS a main uses) and config/cantilever.toml: they compile
+// as constexpr, hold exactly what load_model reads from the same files, and initialize the
+// kernel.
+#include <gtest/gtest.h>
+
+#include "cantilever_model.hpp"
+#include "ntn/kernel.hpp"
+#include "ntn/modelc/load_model.hpp"
+#include "spec_compare.hpp"
+#include NTN_MODEL_HEADER
+
+namespace {
+
+namespace frame = NTN_MODEL_NS;
+namespace cant = ntn::models::cantilever;
+
+// Sizes straight from the files: frame3d has 18 nodes, 26 members of 4 divisions (3 interior
+// nodes each), 1 input and 7 outputs; the cantilever 2 nodes and 1 member of 20 divisions.
+static_assert(frame::kSizes.nodes == 18 + 26 * 3);
+static_assert(frame::kSizes.elements == 26 * 4);
+static_assert(frame::kSizes.inputs == 1 && frame::kSizes.outputs == 7);
+static_assert(frame::kSizes.loads == 0 && frame::kSizes.time_functions == 0);
+static_assert(cant::kSizes.nodes == 21 && cant::kSizes.elements == 20);
+static_assert(cant::kSizes.loads == 1 && cant::kSizes.inputs == 0 && cant::kSizes.outputs == 3);
+static_assert(frame::kName == "frame3d" && cant::kName == "cantilever");
+static_assert(frame::kInputNames[0] == "ag_x");
+static_assert(cant::kSpec.loads[0].value == -1000.0);  // constexpr data, usable at compile time
+static_assert(frame::kSpec.settings.dt > 0 && frame::kDtAuto);
+
+ntn::Model<frame::kSizes> g_frame;
+ntn::Model<cant::kSizes> g_cant;
+
+template <ntn::Sizes S, std::size_t M>
+void check(const ntn::ModelSpec<S>& spec, std::string_view source,
+           const std::array<std::string_view, S.inputs>& inputs,
+           const std::array<std::string_view, S.outputs>& outputs,
+           const std::array<std::string_view, S.outputs>& units,
+           const std::array<std::string_view, M>& members, ntn::Model<S>& model) {
+  const auto r = ntn::modelc::load_model(std::string(source));
+  ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
+  ntn::test::expect_same_spec(spec, *r.model);
+  ntn::test::expect_same_names(inputs, r.model->input_names);
+  ntn::test::expect_same_names(outputs, r.model->output_names);
+  ntn::test::expect_same_names(units, r.model->output_units);
+  std::vector<std::string> member_names;
+  for (const auto& m : r.model->members)
+    member_names.push_back(m.name);
+  ntn::test::expect_same_names(members, member_names);
+
+  const ntn::InitStatus st = ntn::init(spec, model);
+  ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  EXPECT_EQ(model.dt, r.model->settings.dt);
+  EXPECT_EQ(model.stable.governing_element, r.model->stable.governing_element);
+  EXPECT_EQ(model.stable.dt_stable, r.model->stable.dt_stable);
+}
+
+TEST(GeneratedHeader, Frame3dMatchesFileAndInitializes) {
+  check(frame::kSpec, frame::kSourceFile, frame::kInputNames, frame::kOutputNames,
+        frame::kOutputUnits, frame::kMemberNames, g_frame);
+}
+
+TEST(GeneratedHeader, CantileverMatchesFileAndInitializes) {
+  check(cant::kSpec, cant::kSourceFile, cant::kInputNames, cant::kOutputNames, cant::kOutputUnits,
+        cant::kMemberNames, g_cant);
+}
+
+}  // namespace
