@@ -15,10 +15,10 @@ enum class ElementCheck : std::uint8_t { kOk, kZeroLength, kOrientationParallel,
 // Phi = 12 E I / (G A_s l^2)). Bending entries a..d of one plane: a = 12EI/(l^3(1+Phi)),
 // b = 6EI/(l^2(1+Phi)), c = (4+Phi)EI/(l(1+Phi)), d = (2-Phi)EI/(l(1+Phi)).
 struct BeamStiffness {
-  double axial = 0;               // N/m, EA/l
-  double torsion = 0;             // N m, GJ/l
-  std::array<double, 4> xy{};     // plane x-y: v along y, rotation about z (uses Iz)
-  std::array<double, 4> xz{};     // plane x-z: w along z, rotation about y (uses Iy)
+  double axial = 0;            // N/m, EA/l
+  double torsion = 0;          // N m, GJ/l
+  std::array<double, 4> xy{};  // plane x-y: v along y, rotation about z (uses Iz)
+  std::array<double, 4> xz{};  // plane x-z: w along z, rotation about y (uses Iy)
 };
 
 // What step() needs of an element: its nodes, rotation (rows: local x, y, z in global) and
@@ -54,7 +54,8 @@ inline BeamGeometry beam_geometry(const NodeSpec& a, const NodeSpec& b, const El
     g.check = ElementCheck::kOrientationParallel;
     return g;
   }
-  for (double& c : ez) c /= zn;
+  for (double& c : ez)
+    c /= zn;
   const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
                         ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
   g.rotation = {ex[0], ex[1], ex[2], ey[0], ey[1], ey[2], ez[0], ez[1], ez[2]};
@@ -140,8 +141,7 @@ inline Matrix12 beam_global_stiffness(const BeamData& b) {
 // HRZ lumped mass of one element end, in global axes (DESIGN §4): translations rho A l / 2;
 // rotations diag(rho I_p l/2, rho A l^3/78 [+ rho Iy l/2], rho A l^3/78 [+ rho Iz l/2]) in local
 // axes, taken to global as the diagonal of R^T D R (keeps the trace; exact for aligned members).
-inline std::array<double, kDofsPerNode> beam_end_mass(const ElementSpec& e,
-                                                      const BeamGeometry& g,
+inline std::array<double, kDofsPerNode> beam_end_mass(const ElementSpec& e, const BeamGeometry& g,
                                                       bool rotary_inertia) {
   const double l = g.length;
   const double mt = e.rho * e.A * l / 2.0;

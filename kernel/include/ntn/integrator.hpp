@@ -15,7 +15,9 @@ namespace ntn {
 namespace detail {
 
 // True for finite x. No libm: x - x is 0 for finite x, NaN for NaN and +-Inf.
-inline bool finite(double x) { return x - x == 0.0; }
+inline bool finite(double x) {
+  return x - x == 0.0;
+}
 
 template <Sizes S>
 using Inputs = std::array<double, S.inputs>;
@@ -42,13 +44,16 @@ bool accept_inputs(State<S>& s, const Inputs<S>& in) {
 template <Sizes S>
 void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   const double fg = load_factor(m.time_points, m.time_functions, m.gravity_function, t);
-  std::array<double, 3> g{m.gravity[0] * fg, m.gravity[1] * fg, m.gravity[2] * fg};
+  w.ground = {0.0, 0.0, 0.0};
   for (int i = 0; i < S.inputs; ++i) {
     const InputSpec& in = m.inputs[static_cast<std::size_t>(i)];
     if (in.kind == InputKind::kGroundAcceleration) {
-      g[static_cast<std::size_t>(in.dof)] -= s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
+      w.ground[static_cast<std::size_t>(in.dof)] +=
+          s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
     }
   }
+  const std::array<double, 3> g{m.gravity[0] * fg - w.ground[0], m.gravity[1] * fg - w.ground[1],
+                                m.gravity[2] * fg - w.ground[2]};
   for (int n = 0; n < S.nodes; ++n) {
     const auto j = static_cast<std::size_t>(kDofsPerNode * n);
     w.p[j] = m.mass[j] * g[0];
@@ -102,9 +107,18 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
     const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
     double value = 0;
     switch (o.kind) {
-      case OutputKind::kDisplacement: value = s.u[j]; break;
-      case OutputKind::kVelocity: value = s.v[j] + 0.5 * m.dt * w.a[j]; break;
-      case OutputKind::kAcceleration: value = w.a[j]; break;
+      case OutputKind::kDisplacement:
+        value = s.u[j];
+        break;
+      case OutputKind::kVelocity:
+        value = s.v[j] + 0.5 * m.dt * w.a[j];
+        break;
+      case OutputKind::kAcceleration:
+        value = w.a[j];
+        break;
+      case OutputKind::kAbsoluteAcceleration:
+        value = o.dof < 3 ? w.a[j] + w.ground[static_cast<std::size_t>(o.dof)] : w.a[j];
+        break;
       case OutputKind::kElementForce: {
         const BeamData& b = m.beams[static_cast<std::size_t>(o.element)];
         const auto f = beam_local_end_forces(b, &s.u[static_cast<std::size_t>(6 * b.node_i)],
@@ -150,7 +164,8 @@ template <Sizes S>
 [[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w,
                                const std::array<double, S.inputs>& in) {
   s.tick = 0;
-  for (auto& h : s.held_inputs) h = 0.0;
+  for (auto& h : s.held_inputs)
+    h = 0.0;
   const bool accepted = detail::accept_inputs(s, in);
   detail::apply_loads(m, s, w, 0.0);
   detail::element_forces(m, s, w);
@@ -167,10 +182,10 @@ template <Sizes S>
                               const std::array<double, S.inputs>& in) {
   const bool accepted = detail::accept_inputs(s, in);  // hold non-finite inputs (§8)
   const double t = static_cast<double>(s.tick) * m.dt;
-  detail::apply_loads(m, s, w, t);      // P_n (§5)
-  detail::element_forces(m, s, w);      // F_n (S 2)
-  detail::accelerations(m, s, w);       // a_n (S 3-4)
-  detail::sample_outputs(m, s, w, t);   // channels at t_n
+  detail::apply_loads(m, s, w, t);              // P_n (§5)
+  detail::element_forces(m, s, w);              // F_n (S 2)
+  detail::accelerations(m, s, w);               // a_n (S 3-4)
+  detail::sample_outputs(m, s, w, t);           // channels at t_n
   const bool finite = detail::update(m, s, w);  // v_{n+1/2}, u_{n+1} (S 5-7)
   ++s.tick;
   if (!finite) {

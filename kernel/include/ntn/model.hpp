@@ -17,10 +17,10 @@ struct Model {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
 
   std::array<BeamData, S.elements> beams{};
-  std::array<double, kDofs> mass{};      // kg or kg m^2, lumped (HRZ) plus point masses
-  std::array<double, kDofs> inv_mass{};  // 1/mass; 0 at supported DOFs, which stay at zero
-  std::array<double, kDofs> damping{};   // N s/m, diagonal C = alpha M (S 1)
-  std::array<std::uint8_t, S.nodes> fixed{};         // support bits per node (bit d: DOF d)
+  std::array<double, kDofs> mass{};           // kg or kg m^2, lumped (HRZ) plus point masses
+  std::array<double, kDofs> inv_mass{};       // 1/mass; 0 at supported DOFs, which stay at zero
+  std::array<double, kDofs> damping{};        // N s/m, diagonal C = alpha M (S 1)
+  std::array<std::uint8_t, S.nodes> fixed{};  // support bits per node (bit d: DOF d)
   std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
   int num_supported = 0;
 
@@ -38,7 +38,8 @@ struct Model {
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
 inline void assemble_lumped_mass(const SpecView& spec, std::span<double> out) {
-  for (double& m : out) m = 0;
+  for (double& m : out)
+    m = 0;
   for (const ElementSpec& e : spec.elements) {
     const NodeSpec& a = spec.nodes[static_cast<std::size_t>(e.node_i)];
     const NodeSpec& b = spec.nodes[static_cast<std::size_t>(e.node_j)];

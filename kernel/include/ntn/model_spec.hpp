@@ -24,20 +24,20 @@ struct Sizes {
 };
 
 struct NodeSpec {
-  double x = 0, y = 0, z = 0;                 // m
-  std::uint8_t fixed = 0;                     // bit d set: DOF d is held at zero (support)
+  double x = 0, y = 0, z = 0;                // m
+  std::uint8_t fixed = 0;                    // bit d set: DOF d is held at zero (support)
   std::array<double, kDofsPerNode> added{};  // point mass kg (ux,uy,uz), inertia kg m^2 (rx,ry,rz)
 };
 
 // One 2-node frame element with its material and section resolved (DESIGN §4).
 struct ElementSpec {
   int node_i = 0, node_j = 0;
-  double E = 0, G = 0, rho = 0;      // Pa, Pa, kg/m^3
+  double E = 0, G = 0, rho = 0;         // Pa, Pa, kg/m^3
   double A = 0, Iy = 0, Iz = 0, J = 0;  // m^2, m^4, m^4, m^4
-  double shear_area_y = 0;           // m^2, kappa*A for shear along local y; 0 = Euler-Bernoulli
-  double shear_area_z = 0;           // m^2, same along local z
+  double shear_area_y = 0;              // m^2, kappa*A for shear along local y; 0 = Euler-Bernoulli
+  double shear_area_z = 0;              // m^2, same along local z
   double ref_x = 0, ref_y = 0, ref_z = 1;  // orientation vector: local z lies in plane(x, ref)
-  int member = 0;                    // index of the member it was meshed from (for reports)
+  int member = 0;                          // index of the member it was meshed from (for reports)
 };
 
 struct TimePoint {
@@ -67,20 +67,21 @@ enum class InputKind : std::uint8_t {
 
 struct InputSpec {
   InputKind kind = InputKind::kGroundAcceleration;
-  int node = 0;        // kNodalForce only
-  int dof = 0;         // direction (0..2) or node DOF (0..5)
-  double scale = 1;    // input value x scale = SI value (e.g. 9.80665 for records in g)
+  int node = 0;         // kNodalForce only
+  int dof = 0;          // direction (0..2) or node DOF (0..5)
+  double scale = 1;     // input value x scale = SI value (e.g. 9.80665 for records in g)
   double min = -1e300;  // accepted range of the raw input value
   double max = 1e300;
 };
 
 enum class OutputKind : std::uint8_t {
-  kDisplacement,  // node DOF, m or rad
-  kVelocity,      // node DOF, m/s or rad/s
-  kAcceleration,  // node DOF, relative to the ground, m/s^2 or rad/s^2
-  kElementForce,  // element end force in local axes: component 0..5 = N, Vy, Vz, T, My, Mz
-  kDrift,         // (u[node2] - u[node]) / height in DOF `dof`: inter-storey drift ratio
-  kReaction,      // sum over supported DOFs `dof` of (F - P): support reaction, N or N m
+  kDisplacement,          // node DOF, m or rad
+  kVelocity,              // node DOF, m/s or rad/s
+  kAcceleration,          // node DOF, relative to the ground, m/s^2 or rad/s^2
+  kElementForce,          // element end force in local axes: component 0..5 = N, Vy, Vz, T, My, Mz
+  kDrift,                 // (u[node2] - u[node]) / height in DOF `dof`: inter-storey drift ratio
+  kReaction,              // sum over supported DOFs `dof` of (F - P): support reaction, N or N m
+  kAbsoluteAcceleration,  // node DOF, a_n plus the ground acceleration: what an accelerometer reads
 };
 
 struct OutputSpec {
@@ -94,13 +95,13 @@ struct OutputSpec {
 };
 
 struct Settings {
-  double dt = 0;                  // s, resolved by the model compiler ("auto" -> number)
-  double frame_period = 1e-3;     // s, the I/O frame that dt divides into substeps
-  double alpha = 0;               // 1/s, mass-proportional damping C = alpha M
+  double dt = 0;                    // s, resolved by the model compiler ("auto" -> number)
+  double frame_period = 1e-3;       // s, the I/O frame that dt divides into substeps
+  double alpha = 0;                 // 1/s, mass-proportional damping C = alpha M
   std::array<double, 3> gravity{};  // m/s^2, applied as M g on translations
   int gravity_function = kConstant;
-  bool rotary_inertia = false;    // add rho I l / 2 to the bending rotation masses (DESIGN §4)
-  bool allow_unstable = false;    // accept dt above the stable step (failure testing only)
+  bool rotary_inertia = false;  // add rho I l / 2 to the bending rotation masses (DESIGN §4)
+  bool allow_unstable = false;  // accept dt above the stable step (failure testing only)
 };
 
 // Everything a model is, at compile-time sizes.
@@ -132,8 +133,8 @@ struct SpecView {
 
 template <Sizes S>
 constexpr SpecView view(const ModelSpec<S>& spec) {
-  return {spec.nodes,          spec.elements, spec.time_points, spec.time_functions,
-          spec.loads,          spec.inputs,   spec.outputs,     spec.settings};
+  return {spec.nodes, spec.elements, spec.time_points, spec.time_functions,
+          spec.loads, spec.inputs,   spec.outputs,     spec.settings};
 }
 
 }  // namespace ntn

@@ -11,8 +11,8 @@ namespace ntn {
 template <Sizes S>
 struct State {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
-  std::array<double, kDofs> u{};  // m, rad: displacements u_n relative to the ground
-  std::array<double, kDofs> v{};  // m/s, rad/s: v_{n-1/2} once started (S 5-6)
+  std::array<double, kDofs> u{};               // m, rad: displacements u_n relative to the ground
+  std::array<double, kDofs> v{};               // m/s, rad/s: v_{n-1/2} once started (S 5-6)
   std::array<double, S.inputs> held_inputs{};  // last accepted value of each input channel
   std::int64_t tick = 0;                       // step counter: t_n = tick * dt, never summed
   std::uint64_t inputs_held = 0;               // non-finite inputs replaced by the held value
@@ -22,10 +22,11 @@ struct State {
 template <Sizes S>
 struct Scratch {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
-  std::array<double, kDofs> p{};  // external load P_n
-  std::array<double, kDofs> f{};  // internal force F_n
-  std::array<double, kDofs> a{};  // acceleration a_n
+  std::array<double, kDofs> p{};            // external load P_n
+  std::array<double, kDofs> f{};            // internal force F_n
+  std::array<double, kDofs> a{};            // acceleration a_n
   std::array<double, S.outputs> outputs{};  // output channels at t_n
+  std::array<double, 3> ground{};           // m/s^2, ground acceleration a_g at t_n (x, y, z)
   double time = 0;                          // s, t_n of `outputs`
 };
 

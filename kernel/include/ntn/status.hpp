@@ -24,14 +24,22 @@ struct [[nodiscard]] InitStatus {
 
 constexpr const char* to_string(InitError e) {
   switch (e) {
-    case InitError::kNone: return "ok";
-    case InitError::kBadReference: return "reference out of range";
-    case InitError::kBadProperty: return "non-positive material or section property";
-    case InitError::kZeroLength: return "zero-length element";
-    case InitError::kOrientation: return "orientation vector parallel to the element axis";
-    case InitError::kMassless: return "free DOF without mass";
-    case InitError::kBadTimeStep: return "time step not positive";
-    case InitError::kTimeStepAboveStable: return "time step above the stable step";
+    case InitError::kNone:
+      return "ok";
+    case InitError::kBadReference:
+      return "reference out of range";
+    case InitError::kBadProperty:
+      return "non-positive material or section property";
+    case InitError::kZeroLength:
+      return "zero-length element";
+    case InitError::kOrientation:
+      return "orientation vector parallel to the element axis";
+    case InitError::kMassless:
+      return "free DOF without mass";
+    case InitError::kBadTimeStep:
+      return "time step not positive";
+    case InitError::kTimeStepAboveStable:
+      return "time step above the stable step";
   }
   return "unknown";
 }

@@ -15,7 +15,7 @@ namespace ntn {
 // eigenvalue theorem max_e omega_e bounds the assembled model's omega_max: added point masses
 // and supports only lower it. Returns 0 for an invalid element.
 inline double element_omega_max(const ElementSpec& e, const NodeSpec& a, const NodeSpec& b,
-                                 bool rotary_inertia) {
+                                bool rotary_inertia) {
   const BeamGeometry g = beam_geometry(a, b, e);
   if (g.check != ElementCheck::kOk || !beam_properties_valid(e)) return 0;
   BeamData data;
@@ -30,8 +30,7 @@ inline double element_omega_max(const ElementSpec& e, const NodeSpec& a, const N
       A(r, c) = K[static_cast<std::size_t>(r * 12 + c)] / std::sqrt(mr * mc);
     }
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>> eig(A,
-                                                                         Eigen::EigenvaluesOnly);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>> eig(A, Eigen::EigenvaluesOnly);
   if (eig.info() != Eigen::Success) return 0;
   return std::sqrt(eig.eigenvalues().maxCoeff());
 }
@@ -45,11 +44,11 @@ inline double damped_stable_step(double omega, double alpha) {
 }
 
 struct StableStepReport {
-  double dt_stable = 0;         // s, from the element eigenvalue bound with damping
-  double omega_max = 0;         // rad/s, max over elements of omega_e
-  int governing_element = -1;   // element that sets omega_max
-  double dt_cfl = 0;            // s, the seed's estimate min_e l / sqrt(E / rho) (S 9-10)
-  int cfl_element = -1;         // element that sets dt_cfl
+  double dt_stable = 0;        // s, from the element eigenvalue bound with damping
+  double omega_max = 0;        // rad/s, max over elements of omega_e
+  int governing_element = -1;  // element that sets omega_max
+  double dt_cfl = 0;           // s, the seed's estimate min_e l / sqrt(E / rho) (S 9-10)
+  int cfl_element = -1;        // element that sets dt_cfl
 };
 
 inline StableStepReport stable_time_step(const SpecView& spec) {

@@ -135,6 +135,8 @@ const char* output_kind(OutputKind k) {
       return "ntn::OutputKind::kDrift";
     case OutputKind::kReaction:
       return "ntn::OutputKind::kReaction";
+    case OutputKind::kAbsoluteAcceleration:
+      return "ntn::OutputKind::kAbsoluteAcceleration";
   }
   throw std::invalid_argument("emit_header: unknown output kind");
 }

@@ -820,20 +820,22 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
 
   for_each_table(L, root, "outputs", [&](const toml::table& tt, const std::string& path) {
     Output o;
-    const std::vector<std::string_view> kinds = {"displacement",  "velocity", "acceleration",
-                                                 "element_force", "drift",    "reaction"};
+    const std::vector<std::string_view> kinds = {"displacement",         "velocity", "acceleration",
+                                                 "element_force",        "drift",    "reaction",
+                                                 "absolute_acceleration"};
     Table head(L, tt, path, {});
     auto name = read_id(head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
     if (!kind) return;
     bool ok = name.has_value();
-    if (*kind <= 2) {
+    if (*kind <= 2 || *kind == 6) {
       Table t(L, tt, path, {"name", "kind", "node", "dof"});
       t.check_unknown();
       o.kind = OutKind::kNode;
       o.node_kind = *kind == 0   ? OutputKind::kDisplacement
                     : *kind == 1 ? OutputKind::kVelocity
-                                 : OutputKind::kAcceleration;
+                    : *kind == 2 ? OutputKind::kAcceleration
+                                 : OutputKind::kAbsoluteAcceleration;
       auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
       auto dof = t.choice("dof", Need::kRequired, kDofNames);
       if (node) o.nodes = {*node}, o.nodes_at = t.where("node");
@@ -1124,7 +1126,9 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
         os.kind = o.node_kind;
         os.node = node_ref(o.nodes[0], o.nodes_at);
         if (os.node < 0) continue;
-        const auto k = static_cast<std::size_t>(o.node_kind);
+        const std::size_t k = o.node_kind == OutputKind::kAbsoluteAcceleration
+                                  ? 2
+                                  : static_cast<std::size_t>(o.node_kind);
         units = o.dof < 3 ? trans_units[k] : rot_units[k];
         break;
       }
