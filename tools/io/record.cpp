@@ -32,7 +32,8 @@ bool read_lines(const std::string& path, std::vector<std::string>& lines) {
       line.clear();
     } else if (c == '\r') {
       std::size_t k = i;
-      while (k + 1 < text.size() && text[k + 1] == '\r') ++k;
+      while (k + 1 < text.size() && text[k + 1] == '\r')
+        ++k;
       if (k + 1 < text.size() && text[k + 1] == '\n') ++k;
       i = k;
       lines.push_back(line);
@@ -82,7 +83,8 @@ std::optional<double> header_value(const std::string& line, const std::string& n
   const auto pos = l.find(lower(name));
   if (pos == std::string::npos) return std::nullopt;
   std::size_t i = pos + name.size();
-  while (i < l.size() && (l[i] == ' ' || l[i] == '=' || l[i] == ':')) ++i;
+  while (i < l.size() && (l[i] == ' ' || l[i] == '=' || l[i] == ':'))
+    ++i;
   std::vector<double> v;
   std::string rest = line.substr(i);
   const auto end = rest.find_first_of(", \t");
@@ -110,7 +112,8 @@ double Record::at(double t) const {
 
 double Record::peak_abs() const {
   double p = 0;
-  for (double v : values) p = std::max(p, std::abs(v));
+  for (double v : values)
+    p = std::max(p, std::abs(v));
   return p;
 }
 
@@ -142,7 +145,8 @@ ReadResult read_at2(const std::string& path) {
     const auto text = head.find_first_of("ABCDFGHIJKLMNOPQRSTUVWXYZabcdfghijklmnopqrstuvwxyz");
     if (text != std::string::npos) head = head.substr(0, text);
     if (parse_numbers(head, v) != 0 || v.size() < 2)
-      return fail(path, 4, 1, "expected NPTS and DT on the fourth line, e.g. 'NPTS= 1559, DT= .02 SEC'");
+      return fail(path, 4, 1,
+                  "expected NPTS and DT on the fourth line, e.g. 'NPTS= 1559, DT= .02 SEC'");
     npts = v[0];
     r.dt = v[1];
   }

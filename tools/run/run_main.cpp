@@ -38,13 +38,15 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-bool is_translation(const ntn::OutputSpec& o) { return o.dof < 3; }
+bool is_translation(const ntn::OutputSpec& o) {
+  return o.dof < 3;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Run the model '" + std::string(mdl::kName) + "' (" +
-               std::string(mdl::kSourceFile) + ") on recorded inputs"};
+  CLI::App app{"Run the model '" + std::string(mdl::kName) + "' (" + std::string(mdl::kSourceFile) +
+               ") on recorded inputs"};
   std::vector<std::string> input_args;
   double duration = -1;
   std::string out_path;
@@ -132,7 +134,8 @@ int main(int argc, char** argv) {
 
   auto inputs_at = [&records](double t) {
     std::array<double, kS.inputs> in{};
-    for (std::size_t k = 0; k < in.size(); ++k) in[k] = records[k].at(t);
+    for (std::size_t k = 0; k < in.size(); ++k)
+      in[k] = records[k].at(t);
     return in;
   };
 
@@ -215,16 +218,19 @@ int main(int argc, char** argv) {
     }
     std::printf("  size        %d nodes, %d elements, %d DOFs\n", kS.nodes, kS.elements,
                 6 * kS.nodes);
-    std::printf("  time step   dt = %.6g s (stable %.6g s, element %d of member %s), %lld per %g ms frame\n",
-                dt, stable.dt_stable, gov,
-                std::string(mdl::kMemberNames[static_cast<std::size_t>(
-                                mdl::kSpec.elements[static_cast<std::size_t>(gov)].member)])
-                    .c_str(),
-                static_cast<long long>(per_frame), period * 1e3);
-    std::printf("  run         %lld steps, %.3f s simulated, wall %.3f s, real-time factor %.1fx, "
-                "%.3f us/step\n",
-                static_cast<long long>(n), simulated, wall, simulated / wall,
-                wall / static_cast<double>(n) * 1e6);
+    std::printf(
+        "  time step   dt = %.6g s (stable %.6g s, element %d of member %s), %lld per %g ms "
+        "frame\n",
+        dt, stable.dt_stable, gov,
+        std::string(mdl::kMemberNames[static_cast<std::size_t>(
+                        mdl::kSpec.elements[static_cast<std::size_t>(gov)].member)])
+            .c_str(),
+        static_cast<long long>(per_frame), period * 1e3);
+    std::printf(
+        "  run         %lld steps, %.3f s simulated, wall %.3f s, real-time factor %.1fx, "
+        "%.3f us/step\n",
+        static_cast<long long>(n), simulated, wall, simulated / wall,
+        wall / static_cast<double>(n) * 1e6);
     for (int c = 0; c < kS.outputs; ++c) {
       const auto& o = mdl::kSpec.outputs[static_cast<std::size_t>(c)];
       const auto& p = peaks[static_cast<std::size_t>(c)];
@@ -242,8 +248,11 @@ int main(int argc, char** argv) {
                     std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]).c_str(), p.time);
       }
     }
-    if (held > 0) std::printf("  inputs held %d steps had a non-finite input (last good value held)\n", held);
-    if (diverged) std::printf("  DIVERGED    the state became non-finite at step %lld\n", static_cast<long long>(n));
+    if (held > 0)
+      std::printf("  inputs held %d steps had a non-finite input (last good value held)\n", held);
+    if (diverged)
+      std::printf("  DIVERGED    the state became non-finite at step %lld\n",
+                  static_cast<long long>(n));
     if (!out_path.empty()) {
       std::printf("  response    %s (%lld rows, one per frame)\n", out_path.c_str(),
                   static_cast<long long>((n + per_frame - 1) / per_frame));
