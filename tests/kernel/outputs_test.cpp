@@ -1,0 +1,93 @@
+// Output channels (sample_outputs in step(), DESIGN §8): values at t_n, and support reaction and
+// element end forces of a statically loaded cantilever against equilibrium.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ntn/kernel.hpp"
+#include "support/builders.hpp"
+#include "support/no_heap.hpp"
+#include "support/relaxation.hpp"
+
+namespace {
+
+using ntn_test::dof;
+using K = ntn::OutputKind;
+
+constexpr int kN = 8;
+constexpr ntn::Sizes kS{.nodes = kN + 1, .elements = kN, .loads = 2, .outputs = 10};
+constexpr double kL = 2.0, kP = 500.0, kT = 30.0;  // m, N, N m
+
+ntn::ModelSpec<kS> spec;
+ntn::Model<kS> model;
+ntn::State<kS> state;
+ntn::Scratch<kS> scratch;
+
+void build() {
+  spec = {};
+  ntn_test::straight_beam(spec, kL, ntn_test::kSteel, ntn_test::rectangle(0.05, 0.1));
+  spec.loads[0] = {kN, ntn::kUz, kP, ntn::kConstant};
+  spec.loads[1] = {kN, ntn::kRx, kT, ntn::kConstant};
+  spec.outputs[0] = {K::kDisplacement, kN, 0, 0, 0, ntn::kUz, 1000.0};  // mm
+  spec.outputs[1] = {K::kVelocity, kN, 0, 0, 0, ntn::kUz, 1.0};
+  spec.outputs[2] = {K::kAcceleration, kN / 2, 0, 0, 0, ntn::kUz, 1.0};
+  spec.outputs[3] = {K::kDrift, 2, 6, 0, 0, ntn::kUz, 1.0 / 1.0};  // nodes 1 m apart
+  spec.outputs[4] = {K::kReaction, 0, 0, 0, 0, ntn::kUz, 1.0};
+  spec.outputs[5] = {K::kReaction, 0, 0, 0, 0, ntn::kRy, 1.0};
+  spec.outputs[6] = {K::kElementForce, 0, 0, 0, 0, 2, 1.0};           // Vz at the clamped end
+  spec.outputs[7] = {K::kElementForce, 0, 0, 0, 0, 4, 1.0};           // My at the clamped end
+  spec.outputs[8] = {K::kElementForce, 0, 0, kN / 2 - 1, 1, 4, 1.0};  // My at mid-span, end j
+  spec.outputs[9] = {K::kElementForce, 0, 0, kN - 1, 1, 3, 1.0};      // torque near the tip
+  const double w1 = 3.516 / (kL * kL) * std::sqrt(210e9 * 0.05 * 1e-3 / 12 / (7850 * 5e-3));
+  spec.settings.alpha = 2 * w1;  // near critical for the first x-z mode: relaxes quickly
+  spec.settings.dt = 0.9 * ntn::stable_time_step(ntn::view(spec)).dt_stable;
+}
+
+// Channels are sampled at t_n inside step(n): displacement u_n (scaled), velocity
+// v_n = v_{n-1/2} + dt/2 a_n (= the average of the two half-step velocities), acceleration a_n,
+// drift u[node2] - u[node] times 1/height. Rounding tolerance 1e-13.
+TEST(Outputs, KinematicChannelsAreTheStateAtTn) {
+  build();
+  const ntn_test::EigenNoMalloc guard;
+  ASSERT_TRUE(ntn::init(spec, model).ok());
+  state = {};
+  ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
+  for (int n = 0; n < 500; ++n) {
+    const ntn::State<kS> before = state;
+    ASSERT_EQ(ntn::step(model, state, scratch, {}), ntn::StepStatus::kOk);
+    const std::size_t tip = dof(kN, ntn::kUz);
+    EXPECT_EQ(scratch.outputs[0], 1000.0 * before.u[tip]);
+    const double vn = 0.5 * (before.v[tip] + state.v[tip]);
+    EXPECT_NEAR(scratch.outputs[1], vn, 1e-13 * std::abs(state.v[tip]) + 1e-300);
+    EXPECT_EQ(scratch.outputs[2], scratch.a[dof(kN / 2, ntn::kUz)]);
+    EXPECT_EQ(scratch.outputs[3], before.u[dof(6, ntn::kUz)] - before.u[dof(2, ntn::kUz)]);
+  }
+}
+
+// After dynamic relaxation under a tip force P (z) and torque T: the support reaction is -P
+// in z and +P L about y (the support holds the beam against the load's moment -P L about y);
+// the first element's end forces at the clamp (forces the node exerts on the element) are the
+// same reaction, Vz = -P, My = P L; at mid-span the outer half acts on the element through its
+// end j with My = -P L / 2 (the moment of P about that point), and the tip node on the last
+// element with the torque T. Statics, exact for the converged solution: tolerance 1e-8 (relaxation
+// converged to 1e-10).
+TEST(Outputs, ReactionAndEndForcesSatisfyStatics) {
+  build();
+  ntn_test::RelaxationResult r;
+  {
+    const ntn_test::EigenNoMalloc guard;
+    ASSERT_TRUE(ntn::init(spec, model).ok());
+    state = {};
+    r = ntn_test::relax(model, state, scratch, 1e-10, 1'000'000);
+  }
+  ASSERT_TRUE(r.converged);
+  const auto& o = scratch.outputs;
+  EXPECT_NEAR(o[4] / -kP, 1.0, 1e-8);
+  EXPECT_NEAR(o[5] / (kP * kL), 1.0, 1e-8);
+  EXPECT_NEAR(o[6] / -kP, 1.0, 1e-8);
+  EXPECT_NEAR(o[7] / (kP * kL), 1.0, 1e-8);
+  EXPECT_NEAR(o[8] / (-kP * kL / 2), 1.0, 1e-8);
+  EXPECT_NEAR(o[9] / kT, 1.0, 1e-8);
+}
+
+}  // namespace

@@ -1,0 +1,234 @@
+// Stable time step (kernel/include/ntn/time_step.hpp, DESIGN §6): the element eigenvalue bound
+// against closed forms, the damped formula against the amplification matrix of the update
+// (DESIGN §5), the report and dt = "auto", and the tightness of the bound: a free single element
+// is stable at 0.99 x the reported step and blows up at 1.05 x.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "ntn/kernel.hpp"
+#include "support/builders.hpp"
+#include "support/no_heap.hpp"
+
+namespace {
+
+using ntn_test::Vec3;
+
+ntn::NodeSpec node_at(double x, double y, double z) {
+  ntn::NodeSpec n;
+  n.x = x, n.y = y, n.z = z;
+  return n;
+}
+
+const ntn_test::Section kSlender = ntn_test::circle(0.01);              // l / r = 200 at 1 m
+const ntn_test::Section kStocky = ntn_test::rectangle(0.1, 0.2, true);  // l / h = 0.5 at 0.1 m
+
+// A free-free two-node bar with lumped masses rho A l / 2 has omega^2 = 2 k / (m/2) = 4 E / (rho
+// l^2): omega = 2 c / l, so dt_stable = l / c, the seed's CFL estimate (S 9-10). For a slender
+// element the axial mode is the highest, so element_omega_max must equal 2 c / l (rounding of a
+// 12x12 eigen solve, 1e-12). For any element it can only be larger.
+TEST(ElementOmegaMax, SlenderElementIsGovernedByTheAxialMode) {
+  const ntn::ElementSpec e = ntn_test::element(0, 1, ntn_test::kSteel, kSlender, {0, 0, 1});
+  const double l = 1.0, c = std::sqrt(e.E / e.rho);
+  const double w = ntn::element_omega_max(e, node_at(0, 0, 0), node_at(l, 0, 0), false);
+  EXPECT_NEAR(w / (2 * c / l), 1.0, 1e-12);
+  // Orientation does not change an element's spectrum.
+  const double w2 = ntn::element_omega_max(e, node_at(1, 1, 1),
+                                           node_at(1 + l / 3, 1 + 2 * l / 3, 1 - 2 * l / 3), false);
+  EXPECT_NEAR(w2 / w, 1.0, 1e-12);
+}
+
+TEST(ElementOmegaMax, StockyElementIsGovernedByBendingAndAboveTheAxialMode) {
+  const ntn::ElementSpec e = ntn_test::element(0, 1, ntn_test::kSteel, kStocky, {0, 0, 1});
+  const double l = 0.1, c = std::sqrt(e.E / e.rho);
+  const double w = ntn::element_omega_max(e, node_at(0, 0, 0), node_at(l, 0, 0), false);
+  std::printf("  stocky element: omega_max / (2 c / l) = %.4f\n", w / (2 * c / l));
+  EXPECT_GT(w, 2 * c / l * 1.01);  // the CFL estimate would be unsafe here: the point of §6
+  EXPECT_EQ(ntn::element_omega_max(e, node_at(0, 0, 0), node_at(0, 0, 0), false), 0.0);
+}
+
+// Amplification matrix of DESIGN §5 for one mode (unit mass, stiffness omega^2, damping
+// c = alpha): state (u_n, v_{n-1/2}) -> (u_{n+1}, v_{n+1/2}), written from the equations, not
+// from the kernel. Its spectral radius is 1 exactly at the stable step.
+double spectral_radius(double omega, double alpha, double dt) {
+  Eigen::Matrix2d A;
+  for (int col = 0; col < 2; ++col) {
+    const double u = col == 0 ? 1.0 : 0.0, v = col == 1 ? 1.0 : 0.0;
+    const double a = -omega * omega * u - alpha * v;  // a_n = M^-1 (R_n - C v_{n-1/2})
+    const double v1 = v + dt * a;                     // v_{n+1/2}
+    const double u1 = u + dt * v1;                    // u_{n+1}
+    A(0, col) = u1, A(1, col) = v1;
+  }
+  return A.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// Delta t_stable = (2 / omega)(sqrt(1 + xi^2) - xi) is where the update above loses stability:
+// spectral radius <= 1 just below it and > 1 just above, for damping from 0 to 100 % of
+// critical. Tolerance on the radius 1e-9 (a double eigen solve near a double root).
+TEST(DampedStableStep, MatchesTheAmplificationMatrixOfTheUpdate) {
+  const double omega = 1e4;
+  for (double xi : {0.0, 0.01, 0.1, 0.3, 1.0}) {
+    const double alpha = 2 * xi * omega;
+    const double dt = ntn::damped_stable_step(omega, alpha);
+    EXPECT_LE(spectral_radius(omega, alpha, dt * (1 - 1e-6)), 1.0 + 1e-9) << "xi " << xi;
+    EXPECT_GT(spectral_radius(omega, alpha, dt * (1 + 1e-6)), 1.0 + 1e-7) << "xi " << xi;
+  }
+  EXPECT_EQ(ntn::damped_stable_step(0.0, 1.0), 0.0);
+}
+
+// The report names the governing element (the shortest of three otherwise equal slender
+// elements), the CFL estimate l / c and its element; with alpha the step follows the damped
+// formula.
+TEST(StableTimeStep, ReportNamesTheGoverningElement) {
+  constexpr ntn::Sizes S{.nodes = 4, .elements = 3};
+  static ntn::ModelSpec<S> spec;
+  spec = {};
+  ntn_test::FrameBuilder<S> f(spec);
+  const int a = f.add_node({0, 0, 0}), b = f.add_node({1, 0, 0}), c = f.add_node({1.5, 0, 0}),
+            d = f.add_node({2.5, 0, 0});
+  f.add_member(a, b, 1, ntn_test::kSteel, kSlender, {0, 0, 1});
+  f.add_member(b, c, 1, ntn_test::kSteel, kSlender, {0, 0, 1});  // 0.5 m: governs
+  f.add_member(c, d, 1, ntn_test::kSteel, kSlender, {0, 0, 1});
+  ASSERT_TRUE(f.complete());
+  const double wave = std::sqrt(ntn_test::kSteel.E / ntn_test::kSteel.rho);
+  ntn::StableStepReport r = ntn::stable_time_step(ntn::view(spec));
+  EXPECT_EQ(r.governing_element, 1);
+  EXPECT_EQ(r.cfl_element, 1);
+  EXPECT_NEAR(r.dt_cfl, 0.5 / wave, 1e-15);
+  EXPECT_NEAR(r.omega_max, 2 * wave / 0.5, 1e-12 * r.omega_max);
+  EXPECT_NEAR(r.dt_stable, 0.5 / wave, 1e-12 * r.dt_stable);  // axial governs: equals the CFL
+  spec.settings.alpha = 0.2 * r.omega_max;
+  r = ntn::stable_time_step(ntn::view(spec));
+  EXPECT_DOUBLE_EQ(r.dt_stable, ntn::damped_stable_step(r.omega_max, spec.settings.alpha));
+  EXPECT_LT(r.dt_stable, r.dt_cfl);
+}
+
+// dt = "auto": the largest period / N, N integer, not above 0.9 dt_stable.
+TEST(AutoTimeStep, LargestIntegerDivisionOfTheFrameBelowNinetyPercent) {
+  for (double dt_stable : {1e-3, 2e-4, 1.234e-5, 3.3e-6, 5e-2}) {
+    const double frame = 1e-3;
+    const double dt = ntn::auto_time_step(dt_stable, frame);
+    const double n = std::round(frame / dt);
+    EXPECT_NEAR(frame / dt, n, 1e-9 * n);
+    EXPECT_LE(dt, 0.9 * dt_stable);
+    if (n > 1) {
+      EXPECT_GT(frame / (n - 1), 0.9 * dt_stable);
+    }
+  }
+  EXPECT_EQ(ntn::auto_time_step(0.0, 1e-3), 0.0);
+}
+
+// --- Tightness of the bound on a free single element ---------------------------------------
+//
+// A free element's omega_max is exactly the one init reports (no assembly, no supports), so
+// its stable step is exact: at 0.99 x the response must stay bounded, at 1.05 x the highest mode
+// grows by a factor |lambda| ~ 1.5 - 1.9 per step and overflows long before 1e5 steps.
+//
+// "Bounded" is measured with the mechanical energy at whole steps,
+// E_n = 1/2 v_n^T M v_n + 1/2 u_n^T K u_n with v_n = (v_{n-1/2} + v_{n+1/2}) / 2: starting from
+// rest, each undamped mode of central difference has E_n = E_0 (1 - (omega dt)^2 / 4
+// sin^2(n theta)) <= E_0, so max_n E_n <= E_0 exactly; the tolerance 1e-9 covers rounding.
+// With damping, the energy must not grow: the maximum over the last 10 % of the run stays below
+// that over the first 10 %.
+
+constexpr ntn::Sizes kOne{.nodes = 2, .elements = 1};
+ntn::ModelSpec<kOne> one_spec;
+ntn::Model<kOne> one_model;
+ntn::State<kOne> one_state;
+ntn::Scratch<kOne> one_scratch;
+
+struct FreeRun {
+  bool diverged = false;
+  long steps = 0;
+  double e0 = 0, e_max = 0, first_max = 0, last_max = 0;
+};
+
+FreeRun run_free_element(double factor, long steps) {
+  FreeRun r;
+  one_spec.settings.dt = factor * ntn::stable_time_step(ntn::view(one_spec)).dt_stable;
+  one_spec.settings.allow_unstable = factor > 1;  // init refuses it otherwise
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(-1e-3, 1e-3);
+  one_state = {};
+  for (double& x : one_state.u)
+    x = u(rng);
+  const ntn_test::EigenNoMalloc guard;
+  if (!ntn::init(one_spec, one_model).ok()) return r;
+  if (ntn::start(one_model, one_state, one_scratch, {}) != ntn::StepStatus::kOk) return r;
+  std::array<double, 12> u_n{}, v_prev{};
+  for (long n = 0; n < steps; ++n) {
+    u_n = one_state.u, v_prev = one_state.v;
+    const ntn::StepStatus st = ntn::step(one_model, one_state, one_scratch, {});
+    r.steps = n + 1;
+    if (st == ntn::StepStatus::kDiverged) {
+      r.diverged = true;
+      return r;
+    }
+    double e = 0;
+    for (std::size_t j = 0; j < 12; ++j) {
+      const double v = 0.5 * (v_prev[j] + one_state.v[j]);
+      e += 0.5 * one_model.mass[j] * v * v + 0.5 * one_scratch.f[j] * u_n[j];
+    }
+    if (n == 0) r.e0 = e;
+    r.e_max = std::max(r.e_max, e);
+    if (n < steps / 10) r.first_max = std::max(r.first_max, e);
+    if (n >= steps - steps / 10) r.last_max = std::max(r.last_max, e);
+  }
+  return r;
+}
+
+struct ElementCase {
+  const char* name;
+  ntn_test::Section section;
+  double length;
+  Vec3 axis, ref;
+  double xi;  // fraction of critical damping of the highest mode
+  bool rotary_inertia;
+};
+
+class FreeElement : public ::testing::TestWithParam<ElementCase> {};
+
+TEST_P(FreeElement, StableAt099AndDivergesAt105TimesTheReportedStep) {
+  const ElementCase& c = GetParam();
+  one_spec = {};
+  ntn_test::straight_beam(one_spec, c.length, ntn_test::kSteel, c.section, 0, 0, c.axis, c.ref);
+  one_spec.settings.rotary_inertia = c.rotary_inertia;
+  const double omega = ntn::stable_time_step(ntn::view(one_spec)).omega_max;
+  one_spec.settings.alpha = 2 * c.xi * omega;
+
+  const FreeRun ok = run_free_element(0.99, 100'000);
+  ASSERT_FALSE(ok.diverged) << "diverged after " << ok.steps << " steps at 0.99 dt_stable";
+  ASSERT_EQ(ok.steps, 100'000);
+  if (c.xi == 0) {
+    EXPECT_LE(ok.e_max, ok.e0 * (1 + 1e-9));
+  } else {
+    EXPECT_LE(ok.last_max, ok.first_max);
+  }
+  const FreeRun bad = run_free_element(1.05, 100'000);
+  std::printf(
+      "  %s: 0.99 x: E_max / E_0 - 1 = %.1e, last/first 10 %% max = %.3e; 1.05 x: diverged "
+      "after %ld steps\n",
+      c.name, ok.e_max / ok.e0 - 1, ok.last_max / ok.first_max, bad.steps);
+  EXPECT_TRUE(bad.diverged);
+  EXPECT_NE(one_state.faults & ntn::kFaultDiverged, 0U);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Elements, FreeElement,
+    ::testing::Values(
+        ElementCase{"slender", kSlender, 1.0, {1, 0, 0}, {0, 0, 1}, 0.0, false},
+        ElementCase{"stocky", kStocky, 0.1, {1, 0, 0}, {0, 0, 1}, 0.0, false},
+        ElementCase{"slender_inclined", kSlender, 1.0, {1, 2, -0.5}, {0.3, -0.2, 1}, 0.0, false},
+        ElementCase{"stocky_inclined", kStocky, 0.1, {1, 2, -0.5}, {0.3, -0.2, 1}, 0.0, false},
+        ElementCase{"stocky_rotary_inertia", kStocky, 0.1, {1, 0, 0}, {0, 0, 1}, 0.0, true},
+        ElementCase{"slender_damped", kSlender, 1.0, {1, 0, 0}, {0, 0, 1}, 0.15, false},
+        ElementCase{"stocky_damped", kStocky, 0.1, {1, 0, 0}, {0, 0, 1}, 0.15, false},
+        ElementCase{
+            "stocky_inclined_damped", kStocky, 0.1, {1, 2, -0.5}, {0.3, -0.2, 1}, 0.5, false}),
+    [](const ::testing::TestParamInfo<ElementCase>& i) { return std::string(i.param.name); });
+
+}  // namespace
