@@ -90,4 +90,43 @@ TEST(Outputs, ReactionAndEndForcesSatisfyStatics) {
   EXPECT_NEAR(o[9] / kT, 1.0, 1e-8);
 }
 
+// Under a constant ground acceleration a_g (input in g, scaled), once relaxed the structure moves
+// with the ground: relative acceleration 0, absolute acceleration a_g at every node (exactly at
+// the support, where the relative acceleration is held at 0), and the support pushes the whole
+// mass along: reaction = total mass x a_g (sum over all DOFs of the internal forces is zero, so
+// the support's F - P balances -sum P = M a_g). Tolerance 1e-8 (relaxation converged to 1e-10).
+TEST(Outputs, AbsoluteAccelerationAndReactionUnderGroundAcceleration) {
+  constexpr ntn::Sizes S{.nodes = 5, .elements = 4, .inputs = 1, .outputs = 4};
+  static ntn::ModelSpec<S> sp;
+  static ntn::Model<S> mo;
+  static ntn::State<S> st;
+  static ntn::Scratch<S> sc;
+  const double ag = 0.2, g = 9.80665;  // input in g
+  sp = {};
+  ntn_test::straight_beam(sp, kL, ntn_test::kSteel, ntn_test::rectangle(0.05, 0.1));
+  sp.nodes[4].added = {50, 50, 50, 0, 0, 0};
+  sp.inputs[0] = {ntn::InputKind::kGroundAcceleration, 0, ntn::kUz, g};
+  sp.outputs[0] = {K::kAbsoluteAcceleration, 4, 0, 0, 0, ntn::kUz, 1.0};
+  sp.outputs[1] = {K::kAbsoluteAcceleration, 0, 0, 0, 0, ntn::kUz, 1.0};
+  sp.outputs[2] = {K::kAcceleration, 4, 0, 0, 0, ntn::kUz, 1.0};
+  sp.outputs[3] = {K::kReaction, 0, 0, 0, 0, ntn::kUz, 1.0};
+  sp.settings.alpha = 2 * 20.0;  // near critical for the first x-z mode (~20 rad/s with the mass)
+  sp.settings.dt = 0.9 * ntn::stable_time_step(ntn::view(sp)).dt_stable;
+  ntn_test::RelaxationResult r;
+  {
+    const ntn_test::EigenNoMalloc guard;
+    ASSERT_TRUE(ntn::init(sp, mo).ok());
+    st = {};
+    r = ntn_test::relax(mo, st, sc, 1e-10, 1'000'000, {ag});
+  }
+  ASSERT_TRUE(r.converged);
+  double total_mass = 0;
+  for (int n = 0; n < S.nodes; ++n)
+    total_mass += mo.mass[dof(n, ntn::kUz)];
+  EXPECT_NEAR(sc.outputs[0] / (ag * g), 1.0, 1e-8);
+  EXPECT_EQ(sc.outputs[1], ag * g);
+  EXPECT_NEAR(sc.outputs[2] / (ag * g), 0.0, 1e-8);
+  EXPECT_NEAR(sc.outputs[3] / (total_mass * ag * g), 1.0, 1e-8);
+}
+
 }  // namespace
