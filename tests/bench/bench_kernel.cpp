@@ -130,7 +130,7 @@ void stored_element_forces(const StoredBeams<S>& sb, const State<S>& s, Scratch<
 template <Sizes S>
 StepStatus step_stored(const Model<S>& m, const StoredBeams<S>& sb, State<S>& s, Scratch<S>& w,
                        const std::array<double, S.inputs>& in) {
-  const bool accepted = ntn::detail::accept_inputs(s, in);
+  const bool accepted = ntn::detail::accept_inputs(m, s, in);
   const double t = static_cast<double>(s.tick) * m.dt;
   ntn::detail::apply_loads(m, s, w, t);
   stored_element_forces(sb, s, w);

@@ -119,12 +119,27 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"negative_node", [](ntn::ModelSpec<kS>& s) { s.elements[2].node_i = -1; },
                 ntn::InitError::kBadReference, 2},
         BadCase{"load_node_out_of_range", [](ntn::ModelSpec<kS>& s) { s.loads[0].node = 99; },
-                ntn::InitError::kBadReference, -1},
+                ntn::InitError::kBadReference, 0},
         BadCase{"load_dof_out_of_range", [](ntn::ModelSpec<kS>& s) { s.loads[0].dof = 6; },
-                ntn::InitError::kBadReference, -1},
+                ntn::InitError::kBadReference, 0},
         BadCase{"load_time_function_out_of_range",
                 [](ntn::ModelSpec<kS>& s) { s.loads[0].time_function = 1; },
+                ntn::InitError::kBadReference, 0},
+        BadCase{"gravity_function_out_of_range",
+                [](ntn::ModelSpec<kS>& s) { s.settings.gravity_function = 3; },
                 ntn::InitError::kBadReference, -1},
+        BadCase{"time_function_past_its_points",
+                [](ntn::ModelSpec<kS>& s) {
+                  s.time_functions[0] = {1, 2};
+                },
+                ntn::InitError::kBadTimeFunction, 0},
+        BadCase{"time_function_without_points",
+                [](ntn::ModelSpec<kS>& s) {
+                  s.time_functions[0] = {0, 0};
+                },
+                ntn::InitError::kBadTimeFunction, 0},
+        BadCase{"time_points_not_increasing", [](ntn::ModelSpec<kS>& s) { s.time_points[1].t = 0; },
+                ntn::InitError::kBadTimeFunction, 0},
         BadCase{"zero_E", [](ntn::ModelSpec<kS>& s) { s.elements[4].E = 0; },
                 ntn::InitError::kBadProperty, 4},
         BadCase{"negative_G", [](ntn::ModelSpec<kS>& s) { s.elements[4].G = -1; },
@@ -169,7 +184,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(Status, EveryInitErrorHasItsOwnMessage) {
   std::set<std::string> seen;
-  for (int e = 0; e <= static_cast<int>(ntn::InitError::kTimeStepAboveStable); ++e) {
+  for (int e = 0; e <= static_cast<int>(ntn::InitError::kBadTimeFunction); ++e) {
     const std::string s = ntn::to_string(static_cast<ntn::InitError>(e));
     EXPECT_FALSE(s.empty());
     EXPECT_NE(s, "unknown");

@@ -22,20 +22,26 @@ inline bool finite(double x) {
 template <Sizes S>
 using Inputs = std::array<double, S.inputs>;
 
-// Non-finite inputs never reach the state: the last good value is held and counted (§8).
+// Bad inputs never reach the state (§8): a non-finite value or one outside the channel's
+// [min, max] is replaced by the channel's last good value, counted and flagged.
 template <Sizes S>
-bool accept_inputs(State<S>& s, const Inputs<S>& in) {
+bool accept_inputs(const Model<S>& m, State<S>& s, const Inputs<S>& in) {
   bool held = false;
   for (int i = 0; i < S.inputs; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    if (finite(in[k])) {
-      s.held_inputs[k] = in[k];
-    } else {
+    const double x = in[k];
+    if (!finite(x)) {
       held = true;
       ++s.inputs_held;
+      s.faults |= kFaultInputHeld;
+    } else if (!(x >= m.inputs[k].min && x <= m.inputs[k].max)) {
+      held = true;
+      ++s.inputs_out_of_range;
+      s.faults |= kFaultInputRange;
+    } else {
+      s.held_inputs[k] = x;
     }
   }
-  if (held) s.faults |= kFaultInputHeld;
   return !held;
 }
 
@@ -166,7 +172,7 @@ template <Sizes S>
   s.tick = 0;
   for (auto& h : s.held_inputs)
     h = 0.0;
-  const bool accepted = detail::accept_inputs(s, in);
+  const bool accepted = detail::accept_inputs(m, s, in);
   detail::apply_loads(m, s, w, 0.0);
   detail::element_forces(m, s, w);
   detail::accelerations(m, s, w);  // with C v_0
@@ -180,7 +186,7 @@ template <Sizes S>
 template <Sizes S>
 [[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w,
                               const std::array<double, S.inputs>& in) {
-  const bool accepted = detail::accept_inputs(s, in);  // hold non-finite inputs (§8)
+  const bool accepted = detail::accept_inputs(m, s, in);  // hold non-finite inputs (§8)
   const double t = static_cast<double>(s.tick) * m.dt;
   detail::apply_loads(m, s, w, t);              // P_n (§5)
   detail::element_forces(m, s, w);              // F_n (S 2)

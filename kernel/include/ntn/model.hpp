@@ -59,14 +59,67 @@ inline void assemble_lumped_mass(const SpecView& spec, std::span<double> out) {
   }
 }
 
+// Every index in the spec is in range, so step() can index without checks.
+template <Sizes S>
+[[nodiscard]] InitStatus check_references(const ModelSpec<S>& spec) {
+  auto node_ok = [](int n) { return n >= 0 && n < S.nodes; };
+  auto dof_ok = [](int d, int n) { return d >= 0 && d < n; };
+  auto function_ok = [](int f) { return f == kConstant || (f >= 0 && f < S.time_functions); };
+  for (int i = 0; i < S.elements; ++i) {
+    const ElementSpec& e = spec.elements[static_cast<std::size_t>(i)];
+    if (!node_ok(e.node_i) || !node_ok(e.node_j)) return {InitError::kBadReference, i};
+  }
+  for (int f = 0; f < S.time_functions; ++f) {
+    const TimeFunctionSpec& tf = spec.time_functions[static_cast<std::size_t>(f)];
+    if (tf.count < 1 || tf.first < 0 || tf.first + tf.count > S.time_points)
+      return {InitError::kBadTimeFunction, f};
+    for (int k = tf.first + 1; k < tf.first + tf.count; ++k) {
+      if (!(spec.time_points[static_cast<std::size_t>(k)].t >
+            spec.time_points[static_cast<std::size_t>(k - 1)].t))
+        return {InitError::kBadTimeFunction, f};
+    }
+  }
+  for (int i = 0; i < S.loads; ++i) {
+    const LoadSpec& l = spec.loads[static_cast<std::size_t>(i)];
+    if (!node_ok(l.node) || !dof_ok(l.dof, kDofsPerNode) || !function_ok(l.time_function))
+      return {InitError::kBadReference, i};
+  }
+  if (!function_ok(spec.settings.gravity_function)) return {InitError::kBadReference, -1};
+  for (int i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = spec.inputs[static_cast<std::size_t>(i)];
+    const bool ok = in.kind == InputKind::kGroundAcceleration
+                        ? dof_ok(in.dof, 3)
+                        : node_ok(in.node) && dof_ok(in.dof, kDofsPerNode);
+    if (!ok || !(in.min <= in.max)) return {InitError::kBadInput, i};
+  }
+  for (int i = 0; i < S.outputs; ++i) {
+    const OutputSpec& o = spec.outputs[static_cast<std::size_t>(i)];
+    bool ok = dof_ok(o.dof, kDofsPerNode);
+    switch (o.kind) {
+      case OutputKind::kElementForce:
+        ok = ok && o.element >= 0 && o.element < S.elements && (o.end == 0 || o.end == 1);
+        break;
+      case OutputKind::kDrift:
+        ok = ok && node_ok(o.node) && node_ok(o.node2);
+        break;
+      case OutputKind::kReaction:
+        break;
+      default:
+        ok = ok && node_ok(o.node);
+        break;
+    }
+    if (!ok) return {InitError::kBadOutput, i};
+  }
+  return {};
+}
+
 // Builds the constant model from its spec. No heap: `model` is caller-owned (usually static).
 template <Sizes S>
 [[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model) {
   static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
+  if (const InitStatus st = check_references(spec); !st.ok()) return st;
   for (int i = 0; i < S.elements; ++i) {
     const ElementSpec& e = spec.elements[static_cast<std::size_t>(i)];
-    if (e.node_i < 0 || e.node_i >= S.nodes || e.node_j < 0 || e.node_j >= S.nodes)
-      return {InitError::kBadReference, i};
     if (!beam_properties_valid(e)) return {InitError::kBadProperty, i};
     const BeamGeometry g = beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
                                          spec.nodes[static_cast<std::size_t>(e.node_j)], e);
@@ -101,11 +154,6 @@ template <Sizes S>
   model.outputs = spec.outputs;
   model.gravity = spec.settings.gravity;
   model.gravity_function = spec.settings.gravity_function;
-  for (const LoadSpec& l : spec.loads) {
-    if (l.node < 0 || l.node >= S.nodes || l.dof < 0 || l.dof >= kDofsPerNode ||
-        l.time_function >= S.time_functions)
-      return {InitError::kBadReference, -1};
-  }
 
   model.stable = stable_time_step(v);
   model.dt = spec.settings.dt;

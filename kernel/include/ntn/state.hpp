@@ -16,6 +16,7 @@ struct State {
   std::array<double, S.inputs> held_inputs{};  // last accepted value of each input channel
   std::int64_t tick = 0;                       // step counter: t_n = tick * dt, never summed
   std::uint64_t inputs_held = 0;               // non-finite inputs replaced by the held value
+  std::uint64_t inputs_out_of_range = 0;       // inputs outside [min, max], held likewise
   std::uint32_t faults = 0;                    // Fault bits, sticky
 };
 

@@ -14,6 +14,9 @@ enum class InitError : std::uint8_t {
   kMassless,             // a free DOF with no mass (`where` = global DOF index)
   kBadTimeStep,          // dt not positive
   kTimeStepAboveStable,  // dt above the stable step (`where` = governing element)
+  kBadInput,             // an input channel names a bad node, DOF or range (`where` = channel)
+  kBadOutput,            // an output channel names a bad node, DOF or element (`where` = channel)
+  kBadTimeFunction,      // a time function's points out of range or not increasing
 };
 
 struct [[nodiscard]] InitStatus {
@@ -40,13 +43,19 @@ constexpr const char* to_string(InitError e) {
       return "time step not positive";
     case InitError::kTimeStepAboveStable:
       return "time step above the stable step";
+    case InitError::kBadInput:
+      return "input channel with a bad node, DOF or range";
+    case InitError::kBadOutput:
+      return "output channel with a bad node, DOF or element";
+    case InitError::kBadTimeFunction:
+      return "time function points out of range or not increasing";
   }
   return "unknown";
 }
 
 enum class StepStatus : std::uint8_t {
   kOk,
-  kInputHeld,  // a non-finite input was replaced by its last good value (counted in State)
+  kInputHeld,  // a non-finite or out-of-range input was replaced by its last good value
   kDiverged,   // a velocity became non-finite: the state is no longer meaningful
 };
 
@@ -54,6 +63,7 @@ enum class StepStatus : std::uint8_t {
 enum Fault : std::uint32_t {
   kFaultInputHeld = 1U << 0,
   kFaultDiverged = 1U << 1,
+  kFaultInputRange = 1U << 2,
 };
 
 }  // namespace ntn

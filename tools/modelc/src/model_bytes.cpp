@@ -74,6 +74,7 @@ std::size_t state_size(const Sizes& s) {
   l.array<double>(s.inputs);  // held_inputs
   l.scalar<std::int64_t>();   // tick
   l.scalar<std::uint64_t>();  // inputs_held
+  l.scalar<std::uint64_t>();  // inputs_out_of_range
   l.scalar<std::uint32_t>();  // faults
   return l.size();
 }
@@ -85,6 +86,7 @@ std::size_t scratch_size(const Sizes& s) {
   l.array<double>(dofs);       // f
   l.array<double>(dofs);       // a
   l.array<double>(s.outputs);  // outputs
+  l.array<double>(3);          // ground
   l.scalar<double>();          // time
   return l.size();
 }
