@@ -207,6 +207,7 @@ ReadResult read_csv(const std::string& path, const std::string& column) {
     r.units = names[col].substr(b + 1, names[col].find(']', b) - b - 1);
   }
   std::vector<double> times;
+  std::vector<int> rows;  // file line of each row, for errors
   for (std::size_t k = 1; k < lines.size(); ++k) {
     if (lines[k].find_first_not_of(" \t") == std::string::npos) continue;
     std::vector<double> v;
@@ -217,17 +218,19 @@ ReadResult read_csv(const std::string& path, const std::string& column) {
                   "expected " + std::to_string(names.size()) + " values, found " +
                       std::to_string(v.size()));
     times.push_back(v[0]);
+    rows.push_back(static_cast<int>(k + 1));
     r.values.push_back(v[col]);
   }
   if (times.size() < 2) return fail(path, 2, 1, "a CSV record needs at least 2 rows");
-  r.dt = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
-  if (!(r.dt > 0)) return fail(path, 2, 1, "time must increase");
-  for (std::size_t k = 1; k < times.size(); ++k) {
-    const double step = times[k] - times[k - 1];
-    if (std::abs(step - r.dt) > 1e-6 * r.dt + 1e-12) {
-      return fail(path, static_cast<int>(k + 2), 1,
-                  "time is not uniformly spaced (step " + std::to_string(step) + " s, expected " +
-                      std::to_string(r.dt) + " s)");
+  // The first two rows set the spacing; every later row must keep it (to 1e-6 relative).
+  r.dt = times[1] - times[0];
+  if (!(r.dt > 0)) return fail(path, rows[1], 1, "time must increase");
+  for (std::size_t k = 2; k < times.size(); ++k) {
+    const double expected = times[0] + static_cast<double>(k) * r.dt;
+    if (std::abs(times[k] - expected) > 1e-6 * r.dt) {
+      return fail(path, rows[k], 1,
+                  "time is not uniformly spaced (t = " + std::to_string(times[k]) +
+                      " s, expected " + std::to_string(expected) + " s)");
     }
   }
   return {std::move(r), std::nullopt};

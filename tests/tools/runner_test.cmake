@@ -1,0 +1,43 @@
+# Runs ntn-run-frame3d twice on El Centro and checks what a user relies on.
+file(MAKE_DIRECTORY ${OUT})
+foreach(run a b)
+  execute_process(COMMAND ${RUNNER} --input ag_x=${RECORD} --out ${OUT}/${run}.csv
+                          --summary-json ${OUT}/${run}.json
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out_${run} ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "run ${run} exited ${rc}: ${err}")
+  endif()
+endforeach()
+foreach(expected "peak drift" "peak base shear" "real-time factor" "dt = " "output hash")
+  string(FIND "${out_a}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "summary lacks '${expected}':\n${out_a}")
+  endif()
+endforeach()
+string(REGEX MATCH "output hash ([0-9a-f]+)" _ "${out_a}")
+set(hash_a ${CMAKE_MATCH_1})
+string(REGEX MATCH "output hash ([0-9a-f]+)" _ "${out_b}")
+if(NOT hash_a STREQUAL CMAKE_MATCH_1)
+  message(FATAL_ERROR "two runs differ: ${hash_a} vs ${CMAKE_MATCH_1}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/a.csv ${OUT}/b.csv
+                RESULT_VARIABLE same)
+if(NOT same EQUAL 0)
+  message(FATAL_ERROR "two runs wrote different CSV files")
+endif()
+# 1559 samples x 0.02 s = 31.18 s at one row per 1 ms frame, plus the header row.
+file(STRINGS ${OUT}/a.csv rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 31181)
+  message(FATAL_ERROR "expected 31181 CSV lines, found ${n}")
+endif()
+list(GET rows 0 header)
+if(NOT header MATCHES "^time\\[s\\],roof_ux\\[m\\],")
+  message(FATAL_ERROR "unexpected CSV header: ${header}")
+endif()
+# A missing record is a clear error with exit code 2, not a crash.
+execute_process(COMMAND ${RUNNER} --input ag_x=${OUT}/missing.AT2 RESULT_VARIABLE rc
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "cannot open")
+  message(FATAL_ERROR "missing record: exit ${rc}, '${err}'")
+endif()
