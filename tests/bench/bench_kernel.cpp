@@ -280,12 +280,14 @@ void bm_step(benchmark::State& bs) {
   }
 }
 
-// The benchmark frames: ~10, ~100, ~1 000, ~10 000 and ~30 000 elements.
+// The benchmark frames: ~10, ~100, ~1 000, ~10 000, ~30 000 and ~100 000 elements.
 inline constexpr Grid kFrame12{.nx = 1, .ny = 1, .storeys = 1, .col_div = 1, .beam_div = 2};
 inline constexpr Grid kFrame104{.nx = 2, .ny = 1, .storeys = 4, .col_div = 2, .beam_div = 2};
 inline constexpr Grid kFrame975{.nx = 4, .ny = 4, .storeys = 5, .col_div = 3, .beam_div = 3};
 inline constexpr Grid kFrame9900{.nx = 8, .ny = 8, .storeys = 11, .col_div = 4, .beam_div = 4};
 inline constexpr Grid kFrame30008{.nx = 10, .ny = 10, .storeys = 22, .col_div = 4, .beam_div = 4};
+// Beyond the last-level cache for both formulations (32 MiB L3 on the reference machine).
+inline constexpr Grid kFrame99960{.nx = 16, .ny = 16, .storeys = 30, .col_div = 4, .beam_div = 4};
 
 template <Grid G>
 void register_frame() {
@@ -308,6 +310,7 @@ int main(int argc, char** argv) {
   register_frame<kFrame975>();
   register_frame<kFrame9900>();
   register_frame<kFrame30008>();
+  register_frame<kFrame99960>();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
