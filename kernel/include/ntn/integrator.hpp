@@ -154,9 +154,10 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
 template <Sizes S>
 bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
   bool ok = true;
+  const double dt = m.dt;  // a local: stores to s.v, s.u may alias m.dt, which blocks vectorizing
   for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-    s.v[j] += m.dt * w.a[j];
-    s.u[j] += m.dt * s.v[j];
+    s.v[j] += dt * w.a[j];
+    s.u[j] += dt * s.v[j];
     ok &= finite(s.v[j]);
   }
   return ok;
