@@ -2,6 +2,8 @@
 // and every init error with the index it reports.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <set>
 #include <string>
@@ -99,6 +101,11 @@ struct BadCase {
   ntn::InitError error;
   int where;
 };
+
+// Names the case in test listings (CTest shows gtest's parameter printout otherwise).
+inline void PrintTo(const BadCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class InitErrors : public ::testing::TestWithParam<BadCase> {};
 

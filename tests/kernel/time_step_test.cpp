@@ -4,6 +4,8 @@
 // is stable at 0.99 x the reported step and blows up at 1.05 x.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -189,6 +191,11 @@ struct ElementCase {
   double xi;  // fraction of critical damping of the highest mode
   bool rotary_inertia;
 };
+
+// Names the case in test listings (CTest shows gtest's parameter printout otherwise).
+inline void PrintTo(const ElementCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class FreeElement : public ::testing::TestWithParam<ElementCase> {};
 

@@ -4,6 +4,8 @@
 // they name); the table below is the specification.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -120,6 +122,11 @@ const Expected kExpected[] = {
   {"DtAboveStable", "dt_unstable.toml", 4, 6, "model.dt", "dt = 0.001 s is above the stable step "},
 };
 // clang-format on
+
+// Names the case in test listings (CTest shows gtest's parameter printout otherwise).
+inline void PrintTo(const Expected& c, std::ostream* os) {
+  *os << c.test;
+}
 
 class ModelError : public ::testing::TestWithParam<Expected> {};
 

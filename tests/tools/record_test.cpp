@@ -2,6 +2,8 @@
 // Fortran fields that run together, CSV, and an error with file:line:column for each bad file.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -91,6 +93,11 @@ struct BadFile {
   int column;
   const char* message;
 };
+
+// Names the case in test listings (CTest shows gtest's parameter printout otherwise).
+inline void PrintTo(const BadFile& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BadRecords : public ::testing::TestWithParam<BadFile> {};
 
