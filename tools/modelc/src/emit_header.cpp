@@ -137,8 +137,55 @@ const char* output_kind(OutputKind k) {
       return "ntn::OutputKind::kReaction";
     case OutputKind::kAbsoluteAcceleration:
       return "ntn::OutputKind::kAbsoluteAcceleration";
+    case OutputKind::kHingeForce:
+      return "ntn::OutputKind::kHingeForce";
+    case OutputKind::kHingeDisplacement:
+      return "ntn::OutputKind::kHingeDisplacement";
   }
   throw std::invalid_argument("emit_header: unknown output kind");
+}
+
+const char* behaviour(HingeBehaviour b) {
+  switch (b) {
+    case HingeBehaviour::kRigid:
+      return "ntn::HingeBehaviour::kRigid";
+    case HingeBehaviour::kFree:
+      return "ntn::HingeBehaviour::kFree";
+    case HingeBehaviour::kLinear:
+      return "ntn::HingeBehaviour::kLinear";
+    case HingeBehaviour::kCurve:
+      return "ntn::HingeBehaviour::kCurve";
+  }
+  throw std::invalid_argument("emit_header: unknown hinge behaviour");
+}
+
+const char* hinge_method(HingeMethod m) {
+  switch (m) {
+    case HingeMethod::kNtnExact:
+      return "ntn::HingeMethod::kNtnExact";
+    case HingeMethod::kNtnPaper:
+      return "ntn::HingeMethod::kNtnPaper";
+    case HingeMethod::kPenalty:
+      return "ntn::HingeMethod::kPenalty";
+  }
+  throw std::invalid_argument("emit_header: unknown hinge method");
+}
+
+const char* clamp_rule(ClampRule c) {
+  switch (c) {
+    case ClampRule::kMomentum:
+      return "ntn::ClampRule::kMomentum";
+    case ClampRule::kPaper:
+      return "ntn::ClampRule::kPaper";
+  }
+  throw std::invalid_argument("emit_header: unknown clamp rule");
+}
+
+std::string behaviours(const std::array<HingeBehaviour, kDofsPerNode>& a) {
+  std::string s = "{{";
+  for (std::size_t i = 0; i < a.size(); ++i)
+    s += (i ? ", " : "") + std::string(behaviour(a[i]));
+  return s + "}}";
 }
 
 }  // namespace
@@ -175,7 +222,9 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   o += "inline constexpr ntn::Sizes kSizes{.nodes = " + lit(z.nodes) +
        ", .elements = " + lit(z.elements) + ", .time_functions = " + lit(z.time_functions) +
        ", .time_points = " + lit(z.time_points) + ", .loads = " + lit(z.loads) +
-       ", .inputs = " + lit(z.inputs) + ", .outputs = " + lit(z.outputs) + "};\n\n";
+       ", .inputs = " + lit(z.inputs) + ", .outputs = " + lit(z.outputs) +
+       ", .hinges = " + lit(z.hinges) + ", .curves = " + lit(z.curves) +
+       ", .curve_points = " + lit(z.curve_points) + "};\n\n";
 
   o += "inline constexpr ntn::ModelSpec<kSizes> kSpec{\n";
   array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {
@@ -209,14 +258,32 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "outputs", m.outputs, [](const OutputSpec& q) {
     return "{.kind = " + std::string(output_kind(q.kind)) + ", .node = " + lit(q.node) +
            ", .node2 = " + lit(q.node2) + ", .element = " + lit(q.element) +
-           ", .end = " + lit(q.end) + ", .dof = " + lit(q.dof) + ", .scale = " + lit(q.scale) + "}";
+           ", .end = " + lit(q.end) + ", .dof = " + lit(q.dof) + ", .scale = " + lit(q.scale) +
+           ", .hinge = " + lit(q.hinge) + "}";
+  });
+  array_init(o, "hinges", m.hinges, [](const HingeSpec& h) {
+    return "{.node1 = " + lit(h.node1) + ", .node2 = " + lit(h.node2) +
+           ", .frame = " + lits(h.frame) + ", .eccentricity = " + lits(h.eccentricity) +
+           ", .behaviour = " + behaviours(h.behaviour) + ", .stiffness = " + lits(h.stiffness) +
+           ", .dashpot = " + lits(h.dashpot) + ", .curve = " + lits(h.curve) + "}";
+  });
+  array_init(o, "curves", m.curves, [](const CurveSpec& c) {
+    return "{.first = " + lit(c.first) + ", .count = " + lit(c.count) + "}";
+  });
+  array_init(o, "curve_points", m.curve_points, [](const CurvePoint& p) {
+    return "{.d = " + lit(p.d) + ", .force = " + lit(p.force) + "}";
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +
        ", .alpha = " + lit(s.alpha) + ", .gravity = " + lits(s.gravity) +
        ", .gravity_function = " + lit(s.gravity_function) +
        ", .rotary_inertia = " + lit(s.rotary_inertia) +
-       ", .allow_unstable = " + lit(s.allow_unstable) + "},\n};\n\n";
+       ", .allow_unstable = " + lit(s.allow_unstable) +
+       ",\n                  .hinge_method = " + hinge_method(s.hinge_method) +
+       ", .clamp = " + clamp_rule(s.clamp) + ", .penalty_stiffness = " + lit(s.penalty_stiffness) +
+       ", .penalty_rotational_stiffness = " + lit(s.penalty_rotational_stiffness) +
+       ", .limit_stiffness = " + lit(s.limit_stiffness) +
+       ", .limit_rotational_stiffness = " + lit(s.limit_rotational_stiffness) + "},\n};\n\n";
 
   std::vector<std::string> member_names;
   for (const MemberInfo& mi : m.members)

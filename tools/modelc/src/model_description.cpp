@@ -13,11 +13,15 @@ Sizes ModelDescription::sizes() const {
   s.loads = static_cast<int>(loads.size());
   s.inputs = static_cast<int>(inputs.size());
   s.outputs = static_cast<int>(outputs.size());
+  s.hinges = static_cast<int>(hinges.size());
+  s.curves = static_cast<int>(curves.size());
+  s.curve_points = static_cast<int>(curve_points.size());
   return s;
 }
 
 SpecView ModelDescription::view() const {
-  return {nodes, elements, time_points, time_functions, loads, inputs, outputs, settings};
+  return {nodes,   elements, time_points, time_functions, loads,   inputs,
+          outputs, hinges,   curves,      curve_points,   settings};
 }
 
 std::string ModelDescription::describe_element(int element) const {

@@ -36,6 +36,9 @@ struct ModelDescription {
   std::vector<LoadSpec> loads;
   std::vector<InputSpec> inputs;
   std::vector<OutputSpec> outputs;
+  std::vector<HingeSpec> hinges;
+  std::vector<CurveSpec> curves;
+  std::vector<CurvePoint> curve_points;
   Settings settings;
 
   std::vector<int> node_ids;  // user id per node index, kGeneratedNode for mesh nodes
