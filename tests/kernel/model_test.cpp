@@ -191,7 +191,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(Status, EveryInitErrorHasItsOwnMessage) {
   std::set<std::string> seen;
-  for (int e = 0; e <= static_cast<int>(ntn::InitError::kBadTimeFunction); ++e) {
+  for (int e = 0; e <= static_cast<int>(ntn::InitError::kMechanism); ++e) {
     const std::string s = ntn::to_string(static_cast<ntn::InitError>(e));
     EXPECT_FALSE(s.empty());
     EXPECT_NE(s, "unknown");

@@ -5,8 +5,11 @@
 #include <array>
 
 #include "ntn/beam.hpp"
+#include "ntn/constraint_forest.hpp"
+#include "ntn/hinge.hpp"
 #include "ntn/loads.hpp"
 #include "ntn/model.hpp"
+#include "ntn/ntn_paper.hpp"
 #include "ntn/state.hpp"
 #include "ntn/status.hpp"
 
@@ -96,12 +99,119 @@ void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   }
 }
 
+// Hinge springs and dashpots (linear, curve, and rigid directions under `penalty`): f_L from
+// d_L = B u and its rate from v_{n-1/2}, added to F_n as B^T f_L (DESIGN §7).
+template <Sizes S>
+void hinge_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  for (const HingeData& h : m.hinges) {
+    if (h.springs == 0) continue;
+    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+    const bool ground = h.node2 == kGround;
+    const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+    double d[6], d_dot[6], f[6];
+    hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
+    hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
+    hinge_spring_force(h, m.curve_points, d, d_dot, f);
+    hinge_scatter(h, f, &w.f[i1], ground ? nullptr : &w.f[i2]);
+  }
+}
+
 // a_n = (R_n - C v_{n-1/2}) / m per DOF, R_n = P_n - F_n (S 2-4); zero at supported DOFs.
+// With hinges, R_n goes to w.r first and is coupled: ntn_paper sums it over the rigid
+// directions (S 17-21); ntn_exact hands it up the constraint forest, then the roots and the
+// downward pass give the trees' accelerations (DESIGN §7.1).
 template <Sizes S>
 void accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-    w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+  if constexpr (S.hinges == 0) {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+      w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+    }
+  } else {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+      w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
+    }
+    if (m.hinge_method == HingeMethod::kNtnPaper) paper_forces(m.hinges, w.r.data());
+    if (m.hinge_method == HingeMethod::kNtnExact) forest_up(m.edges, m.num_edges, w.r.data());
+    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+      w.a[j] = w.r[j] * m.inv_mass[j];
+    }
+    if (m.hinge_method == HingeMethod::kNtnExact) {
+      forest_down(m.roots, m.num_roots, m.edges, m.num_edges, w.r.data(), w.a.data());
+    }
   }
+}
+
+// Hinge force on node 1 in the hinge frame, direction k: the constraint force of a rigid
+// direction (ntn_exact: lambda of the forest; ntn_paper: T (m_1 a_1 - R_1) from node 1's own
+// mass and force, which holds every hinge on node 1 together), else the spring force.
+template <Sizes S>
+double hinge_force(const Model<S>& m, const State<S>& s, const Scratch<S>& w, int hinge, int k) {
+  const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
+  const auto kk = static_cast<std::size_t>(k);
+  if ((h.rigid >> k) & 1U) {
+    double lambda[6];
+    if (m.hinge_method == HingeMethod::kNtnExact) {
+      const ForestEdge& e =
+          m.edges[static_cast<std::size_t>(m.hinge_edge[static_cast<std::size_t>(hinge)])];
+      forest_hinge_force(e, w.a.data(), w.r.data(), lambda);
+      return lambda[k];
+    }
+    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+    double g[6], l[6];
+    for (std::size_t c = 0; c < 6; ++c) {
+      const double own = (w.p[i1 + c] - w.f[i1 + c]) - m.damping[i1 + c] * s.v[i1 + c];
+      g[c] = m.mass[i1 + c] * w.a[i1 + c] - own;
+    }
+    detail::to_hinge(h, g + (k < 3 ? 0 : 3), l);
+    return l[k % 3];
+  }
+  if (!((h.springs >> k) & 1U)) return 0.0;
+  const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+  const bool ground = h.node2 == kGround;
+  const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+  double d[6], d_dot[6], f[6];
+  hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
+  hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
+  hinge_spring_force(h, m.curve_points, d, d_dot, f);
+  return f[kk];
+}
+
+template <Sizes S>
+double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k) {
+  const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
+  const bool ground = h.node2 == kGround;
+  double d[6];
+  hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+                 ground ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)], d);
+  return d[k];
+}
+
+// After the update: rigid branches are clamped (momentum-conserving, or S 33), then ntn_paper's
+// S 27-37 or ntn_exact's projection keep the rigid directions exact (DESIGN §7, §7.1).
+template <Sizes S>
+void hinge_constraints(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  const bool paper = m.hinge_method == HingeMethod::kNtnPaper;
+  if (!paper) {
+    if (m.clamp == ClampRule::kMomentum) {
+      momentum_clamp(m.hinges, m.mass, s.u.data(), s.v.data(), w.a.data(), m.inv_dt);
+    } else {
+      paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, false);
+    }
+  } else {
+    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, true);
+  }
+  if (m.hinge_method == HingeMethod::kNtnExact) {
+    forest_project(m.edges, m.num_edges, s.u.data(), s.v.data(), w.a.data(), m.inv_dt);
+  }
+}
+
+// Every force and the accelerations at the current state: P_n, F_n, hinge springs, a_n.
+template <Sizes S>
+void forces_and_accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
+  apply_loads(m, s, w, t);                            // P_n (§5)
+  element_forces(m, s, w);                            // F_n (S 2)
+  if constexpr (S.hinges > 0) hinge_forces(m, s, w);  // springs B^T f_L (§7)
+  accelerations(m, s, w);                             // a_n (S 3-4, S 17-26, §7.1)
 }
 
 // Output channels at t_n: u_n, v_n = v_{n-1/2} + dt/2 a_n, a_n, end forces from u_n.
@@ -121,6 +231,12 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         break;
       case OutputKind::kAcceleration:
         value = w.a[j];
+        break;
+      case OutputKind::kHingeForce:
+        if constexpr (S.hinges > 0) value = hinge_force(m, s, w, o.hinge, o.dof);
+        break;
+      case OutputKind::kHingeDisplacement:
+        if constexpr (S.hinges > 0) value = hinge_displacement(m, s, o.hinge, o.dof);
         break;
       case OutputKind::kAbsoluteAcceleration:
         value = o.dof < 3 ? w.a[j] + w.ground[static_cast<std::size_t>(o.dof)] : w.a[j];
@@ -174,9 +290,7 @@ template <Sizes S>
   for (auto& h : s.held_inputs)
     h = 0.0;
   const bool accepted = detail::accept_inputs(m, s, in);
-  detail::apply_loads(m, s, w, 0.0);
-  detail::element_forces(m, s, w);
-  detail::accelerations(m, s, w);  // with C v_0
+  detail::forces_and_accelerations(m, s, w, 0.0);  // with C v_0
   for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
     s.v[j] -= 0.5 * m.dt * w.a[j];
   }
@@ -189,11 +303,10 @@ template <Sizes S>
                               const std::array<double, S.inputs>& in) {
   const bool accepted = detail::accept_inputs(m, s, in);  // hold non-finite inputs (§8)
   const double t = static_cast<double>(s.tick) * m.dt;
-  detail::apply_loads(m, s, w, t);              // P_n (§5)
-  detail::element_forces(m, s, w);              // F_n (S 2)
-  detail::accelerations(m, s, w);               // a_n (S 3-4)
-  detail::sample_outputs(m, s, w, t);           // channels at t_n
-  const bool finite = detail::update(m, s, w);  // v_{n+1/2}, u_{n+1} (S 5-7)
+  detail::forces_and_accelerations(m, s, w, t);                    // P_n, F_n, hinge springs, a_n
+  detail::sample_outputs(m, s, w, t);                              // channels at t_n
+  const bool finite = detail::update(m, s, w);                     // v_{n+1/2}, u_{n+1} (S 5-7)
+  if constexpr (S.hinges > 0) detail::hinge_constraints(m, s, w);  // clamps, S 27-37, §7.1
   ++s.tick;
   if (!finite) {
     s.faults |= kFaultDiverged;

@@ -2,10 +2,13 @@
 #pragma once
 
 #include "ntn/beam.hpp"
+#include "ntn/constraint_forest.hpp"
+#include "ntn/hinge.hpp"
 #include "ntn/integrator.hpp"
 #include "ntn/loads.hpp"
 #include "ntn/model.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/ntn_paper.hpp"
 #include "ntn/state.hpp"
 #include "ntn/status.hpp"
 #include "ntn/time_step.hpp"

@@ -5,7 +5,10 @@
 #include <cstdint>
 
 #include "ntn/beam.hpp"
+#include "ntn/constraint_forest.hpp"
+#include "ntn/hinge.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/ntn_paper.hpp"
 #include "ntn/status.hpp"
 #include "ntn/time_step.hpp"
 
@@ -34,6 +37,23 @@ struct Model {
 
   double dt = 0;  // s, the fixed step
   StableStepReport stable;
+
+  // Hinges (DESIGN §7). Per-node arrays exist only in models with hinges.
+  static constexpr int kHingeNodes = S.hinges > 0 ? S.nodes : 0;
+  std::array<HingeData, S.hinges> hinges{};
+  std::array<CurvePoint, S.curve_points> curve_points{};
+  std::array<ForestEdge, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
+  std::array<ForestRoot, S.hinges> roots{};  // ntn_exact: trees not rooted at the ground
+  std::array<Mat6, S.hinges> mass_up{};      // ntn_exact: mass each edge hands its parent
+  std::array<std::int32_t, S.hinges> hinge_edge{};    // hinge -> its forest edge, or -1
+  std::array<std::int32_t, kHingeNodes> node_tree{};  // node -> its rigid tree, or -1
+  std::array<std::uint8_t, kHingeNodes> held{};       // mechanism DOFs held at zero (bits)
+  int num_edges = 0;
+  int num_roots = 0;
+  int held_dofs = 0;  // DOFs held at zero as mechanisms (no mass, no stiffness)
+  HingeMethod hinge_method = HingeMethod::kNtnExact;
+  ClampRule clamp = ClampRule::kMomentum;
+  double inv_dt = 0;  // 1/s
 };
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
@@ -85,6 +105,12 @@ template <Sizes S>
       return {InitError::kBadReference, i};
   }
   if (!function_ok(spec.settings.gravity_function)) return {InitError::kBadReference, -1};
+  for (int i = 0; i < S.hinges; ++i) {
+    HingeData h;
+    if (!make_hinge_data(spec.hinges[static_cast<std::size_t>(i)], spec.settings, S.nodes,
+                         spec.curves, spec.curve_points, h))
+      return {InitError::kBadHinge, i};
+  }
   for (int i = 0; i < S.inputs; ++i) {
     const InputSpec& in = spec.inputs[static_cast<std::size_t>(i)];
     const bool ok = in.kind == InputKind::kGroundAcceleration
@@ -103,6 +129,10 @@ template <Sizes S>
         ok = ok && node_ok(o.node) && node_ok(o.node2);
         break;
       case OutputKind::kReaction:
+        break;
+      case OutputKind::kHingeForce:
+      case OutputKind::kHingeDisplacement:
+        ok = ok && o.hinge >= 0 && o.hinge < S.hinges;
         break;
       default:
         ok = ok && node_ok(o.node);
@@ -134,16 +164,66 @@ template <Sizes S>
   const SpecView v = view(spec);
   model.num_supported = 0;
   assemble_lumped_mass(v, model.mass);
+
+  // Hinges: NTN coupling per method (DESIGN §7). `eff` is the mass the accelerations divide
+  // by: the lumped mass, or for ntn_paper the hinge-summed one (S 22-26); built in inv_mass.
+  model.hinge_method = spec.settings.hinge_method;
+  model.clamp = spec.settings.clamp;
+  std::array<double, Model<S>::kDofs>& eff = model.inv_mass;
+  eff = model.mass;
+  if constexpr (S.hinges > 0) {
+    for (int i = 0; i < S.hinges; ++i) {
+      (void)make_hinge_data(spec.hinges[static_cast<std::size_t>(i)], spec.settings, S.nodes,
+                            spec.curves, spec.curve_points,
+                            model.hinges[static_cast<std::size_t>(i)]);
+    }
+    model.curve_points = spec.curve_points;
+    model.num_edges = model.num_roots = model.held_dofs = 0;
+    for (auto& e : model.hinge_edge)
+      e = -1;
+    for (auto& t : model.node_tree)
+      t = -1;
+    for (auto& h : model.held)
+      h = 0;
+    if (model.hinge_method == HingeMethod::kNtnExact) {
+      const ForestBuild fb = build_forest(model.hinges, spec.nodes, model.mass, model.node_tree,
+                                          model.edges, model.roots, model.mass_up, model.held);
+      if (!fb.status.ok()) return fb.status;
+      model.num_edges = fb.edges, model.num_roots = fb.roots, model.held_dofs = fb.held_dofs;
+      for (int k = 0; k < fb.edges; ++k) {
+        const int h = model.edges[static_cast<std::size_t>(k)].hinge;
+        model.hinge_edge[static_cast<std::size_t>(h)] = k;
+      }
+    } else if (model.hinge_method == HingeMethod::kNtnPaper) {
+      paper_masses(model.hinges, eff);
+    }
+  }
+
   for (int n = 0; n < S.nodes; ++n) {
     const std::uint8_t fixed = spec.nodes[static_cast<std::size_t>(n)].fixed;
     model.fixed[static_cast<std::size_t>(n)] = fixed;
     if (fixed != 0) model.supported_nodes[static_cast<std::size_t>(model.num_supported++)] = n;
+    bool in_tree = false;
+    if constexpr (S.hinges > 0) in_tree = model.node_tree[static_cast<std::size_t>(n)] >= 0;
     for (int d = 0; d < kDofsPerNode; ++d) {
       const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
-      const bool held = (fixed >> d) & 1U;
-      if (!held && !(model.mass[j] > 0)) return {InitError::kMassless, n * kDofsPerNode + d};
-      model.inv_mass[j] = held ? 0.0 : 1.0 / model.mass[j];
       model.damping[j] = spec.settings.alpha * model.mass[j];
+      if (((fixed >> d) & 1U) || in_tree) {  // a tree's accelerations come from the forest
+        eff[j] = 0.0;
+      } else if (!(eff[j] > 0)) {
+        // No mass: without hinges the node has no element either, which the model compiler
+        // refuses; with hinges it is a mechanism (DESIGN §7.1), held at zero. A spring on it
+        // makes the stable step zero, which is refused below.
+        if constexpr (S.hinges == 0) {
+          return {InitError::kMassless, n * kDofsPerNode + d};
+        } else {
+          model.held[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1U << d);
+          ++model.held_dofs;
+          eff[j] = 0.0;
+        }
+      } else {
+        eff[j] = 1.0 / eff[j];
+      }
     }
   }
 
@@ -155,11 +235,15 @@ template <Sizes S>
   model.gravity = spec.settings.gravity;
   model.gravity_function = spec.settings.gravity_function;
 
-  model.stable = stable_time_step(v);
+  model.stable = stable_time_step(v, model.mass);
   model.dt = spec.settings.dt;
   if (!(model.dt > 0)) return {InitError::kBadTimeStep, -1};
-  if (model.dt > model.stable.dt_stable && !spec.settings.allow_unstable)
-    return {InitError::kTimeStepAboveStable, model.stable.governing_element};
+  model.inv_dt = 1.0 / model.dt;
+  if (model.dt > model.stable.dt_stable && !spec.settings.allow_unstable) {
+    const bool hinge = model.stable.governing_hinge >= 0;
+    return {InitError::kTimeStepAboveStable,
+            hinge ? model.stable.governing_hinge : model.stable.governing_element};
+  }
   return {};
 }
 

@@ -21,6 +21,9 @@ struct Sizes {
   int loads = 0;
   int inputs = 0;
   int outputs = 0;
+  int hinges = 0;        // NTN hinges, member-end releases and supports with a frame (DESIGN §7)
+  int curves = 0;        // force-deformation curves of `curve` hinge directions
+  int curve_points = 0;  // all curve points, concatenated
 };
 
 struct NodeSpec {
@@ -82,6 +85,55 @@ enum class OutputKind : std::uint8_t {
   kDrift,                 // (u[node2] - u[node]) / height in DOF `dof`: inter-storey drift ratio
   kReaction,              // sum over supported DOFs `dof` of (F - P): support reaction, N or N m
   kAbsoluteAcceleration,  // node DOF, a_n plus the ground acceleration: what an accelerometer reads
+  kHingeForce,            // hinge `hinge`, local direction `dof`: force on node 1 in the hinge
+                          // frame (constraint force if rigid, spring force otherwise), N or N m
+  kHingeDisplacement,     // hinge `hinge`, local direction `dof`: relative displacement d_L
+};
+
+// NTN hinges (DESIGN §7). Node 1 is the member end ("slave"), node 2 the joint ("master") or
+// the ground (a support with its own frame). Local directions: ux, uy, uz, rx, ry, rz of the
+// hinge frame.
+inline constexpr int kGround = -1;
+
+enum class HingeBehaviour : std::uint8_t {
+  kRigid,   // no relative motion (NTN coupling, or a penalty spring with the `penalty` method)
+  kFree,    // no force
+  kLinear,  // spring `stiffness` and optional dashpot `dashpot`
+  kCurve,   // piecewise-linear force(deformation) `curve`; segments at least as stiff as the
+            // limit stiffness are rigid branches (a gap or a stop)
+};
+
+enum class HingeMethod : std::uint8_t {
+  kNtnExact,  // the constraint forest of DESIGN §7.1 (default)
+  kNtnPaper,  // the seed's algorithm literally (S 17-37); aligned, zero eccentricity
+  kPenalty,   // rigid directions as stiff springs K = B^T K_p B
+};
+
+enum class ClampRule : std::uint8_t {
+  kMomentum,  // project a pair onto its rigid branch keeping its mass-weighted centre
+  kPaper,     // scale both local displacements by d_lim / d (S 33)
+};
+
+struct HingeSpec {
+  int node1 = 0;
+  int node2 = 0;                                           // or kGround
+  std::array<double, 9> frame{1, 0, 0, 0, 1, 0, 0, 0, 1};  // rows: hinge axes x, y, z in global
+  std::array<double, 3> eccentricity{};                    // m, e = x2 - x1 in global axes
+  std::array<HingeBehaviour, kDofsPerNode> behaviour{};    // default: rigid in all six
+  std::array<double, kDofsPerNode> stiffness{};            // N/m or N m/rad (kLinear)
+  std::array<double, kDofsPerNode> dashpot{};              // N s/m or N m s/rad (kLinear)
+  std::array<int, kDofsPerNode> curve{};                   // index into curves (kCurve)
+};
+
+// Points [first, first + count) of a force-deformation curve, deformation strictly increasing.
+struct CurveSpec {
+  int first = 0;
+  int count = 0;
+};
+
+struct CurvePoint {
+  double d = 0;      // m or rad, relative displacement in the hinge frame
+  double force = 0;  // N or N m, force on node 1 in the hinge frame
 };
 
 struct OutputSpec {
@@ -92,6 +144,7 @@ struct OutputSpec {
   int end = 0;       // kElementForce: 0 = start (node_i), 1 = end (node_j)
   int dof = 0;       // DOF or force component
   double scale = 1;  // output = SI value x scale; a drift stores 1/height here
+  int hinge = 0;     // kHingeForce, kHingeDisplacement
 };
 
 struct Settings {
@@ -102,6 +155,12 @@ struct Settings {
   int gravity_function = kConstant;
   bool rotary_inertia = false;  // add rho I l / 2 to the bending rotation masses (DESIGN §4)
   bool allow_unstable = false;  // accept dt above the stable step (failure testing only)
+  HingeMethod hinge_method = HingeMethod::kNtnExact;
+  ClampRule clamp = ClampRule::kMomentum;
+  double penalty_stiffness = 0;             // N/m, rigid translations with kPenalty
+  double penalty_rotational_stiffness = 0;  // N m/rad, rigid rotations with kPenalty
+  double limit_stiffness = 0;               // N/m: curve slopes at least this are rigid branches
+  double limit_rotational_stiffness = 0;    // N m/rad, the same for rotations
 };
 
 // Everything a model is, at compile-time sizes.
@@ -115,6 +174,9 @@ struct ModelSpec {
   std::array<LoadSpec, S.loads> loads{};
   std::array<InputSpec, S.inputs> inputs{};
   std::array<OutputSpec, S.outputs> outputs{};
+  std::array<HingeSpec, S.hinges> hinges{};
+  std::array<CurveSpec, S.curves> curves{};
+  std::array<CurvePoint, S.curve_points> curve_points{};
   Settings settings{};
 };
 
@@ -128,13 +190,17 @@ struct SpecView {
   std::span<const LoadSpec> loads;
   std::span<const InputSpec> inputs;
   std::span<const OutputSpec> outputs;
+  std::span<const HingeSpec> hinges;
+  std::span<const CurveSpec> curves;
+  std::span<const CurvePoint> curve_points;
   Settings settings;
 };
 
 template <Sizes S>
 constexpr SpecView view(const ModelSpec<S>& spec) {
-  return {spec.nodes, spec.elements, spec.time_points, spec.time_functions,
-          spec.loads, spec.inputs,   spec.outputs,     spec.settings};
+  return {spec.nodes,  spec.elements,     spec.time_points, spec.time_functions,
+          spec.loads,  spec.inputs,       spec.outputs,     spec.hinges,
+          spec.curves, spec.curve_points, spec.settings};
 }
 
 }  // namespace ntn

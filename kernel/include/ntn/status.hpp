@@ -17,6 +17,9 @@ enum class InitError : std::uint8_t {
   kBadInput,             // an input channel names a bad node, DOF or range (`where` = channel)
   kBadOutput,            // an output channel names a bad node, DOF or element (`where` = channel)
   kBadTimeFunction,      // a time function's points out of range or not increasing
+  kBadHinge,             // a hinge with a bad node, frame, curve or stiffness (`where` = hinge)
+  kRigidCycle,           // rigid hinge directions form a cycle (`where` = the closing hinge)
+  kMechanism,            // an effective mass that cannot be inverted (`where` = hinge or node)
 };
 
 struct [[nodiscard]] InitStatus {
@@ -49,6 +52,12 @@ constexpr const char* to_string(InitError e) {
       return "output channel with a bad node, DOF or element";
     case InitError::kBadTimeFunction:
       return "time function points out of range or not increasing";
+    case InitError::kBadHinge:
+      return "hinge with a bad node, frame, curve or stiffness";
+    case InitError::kRigidCycle:
+      return "rigid hinge directions form a cycle";
+    case InitError::kMechanism:
+      return "effective mass of a rigid tree cannot be inverted";
   }
   return "unknown";
 }

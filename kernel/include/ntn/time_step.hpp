@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ntn/beam.hpp"
+#include "ntn/hinge.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
@@ -49,6 +50,10 @@ struct StableStepReport {
   int governing_element = -1;  // element that sets omega_max
   double dt_cfl = 0;           // s, the seed's estimate min_e l / sqrt(E / rho) (S 9-10)
   int cfl_element = -1;        // element that sets dt_cfl
+  double dt_elements = 0;      // s, the elements' bound alone
+  double dt_hinges = 1e300;    // s, the hinges' two-node springs alone (1e300: none)
+  int governing_hinge = -1;    // hinge that sets dt_stable, or -1 when an element does
+  int hinge_direction = -1;    // its local direction 0..5
 };
 
 inline StableStepReport stable_time_step(const SpecView& spec) {
@@ -67,6 +72,50 @@ inline StableStepReport stable_time_step(const SpecView& spec) {
     }
   }
   r.dt_stable = damped_stable_step(r.omega_max, spec.settings.alpha);
+  r.dt_elements = r.dt_stable;
+  return r;
+}
+
+// The same with the hinges' springs (DESIGN §6): each spring direction (linear, curve, or a
+// rigid direction under `penalty`) of hinge stiffness k and dashpot c is a two-node oscillator
+// with omega^2 = k w, w = b^T M^-1 b over both nodes (w = 1/m1 + 1/m2 for an aligned, centric
+// hinge), and step 2/omega (sqrt(1 + xi^2) - xi), xi = c w / (2 omega); a pure dashpot needs
+// dt < 2 / (c w). Rigid NTN directions add no stiffness. `mass` is the lumped mass per DOF.
+// This is the seed's per-spring estimate, not a strict bound where springs and elements are
+// of similar stiffness; dt = "auto" keeps 10 % of margin.
+inline StableStepReport stable_time_step(const SpecView& spec, std::span<const double> mass) {
+  StableStepReport r = stable_time_step(spec);
+  const int nodes = static_cast<int>(spec.nodes.size());
+  for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
+    HingeData h;
+    if (!make_hinge_data(spec.hinges[i], spec.settings, nodes, spec.curves, spec.curve_points, h))
+      continue;
+    const double* m1 = mass.data() + kDofsPerNode * h.node1;
+    const double* m2 = h.node2 == kGround ? nullptr : mass.data() + kDofsPerNode * h.node2;
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (!((h.springs >> k) & 1U)) continue;
+      const double w = hinge_inverse_mass(h, k, m1, m2);
+      const double omega = std::sqrt(h.stiffness[k] * w);
+      const double eta = h.dashpot[k] * w;
+      double dt = 1e300;
+      if (omega > 0) {
+        const double xi = eta / (2.0 * omega);
+        dt = 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
+      } else if (eta > 0) {
+        dt = 2.0 / eta;
+      }
+      if (!(dt >= 0)) dt = 0;  // an infinite frequency (a spring on a massless DOF)
+      if (dt < r.dt_hinges) {
+        r.dt_hinges = dt, r.governing_hinge = static_cast<int>(i);
+        r.hinge_direction = static_cast<int>(k);
+      }
+    }
+  }
+  if (r.dt_hinges < r.dt_elements) {
+    r.dt_stable = r.dt_hinges;
+  } else {
+    r.governing_hinge = -1, r.hinge_direction = -1;
+  }
   return r;
 }
 

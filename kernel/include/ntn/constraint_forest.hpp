@@ -1,0 +1,413 @@
+// ntn_exact: the constraint forest of DESIGN §7.1. Rigid hinge directions join nodes into trees,
+// rooted at the ground (a hinge to the ground), at a supported node, or at the node with the
+// most rigid connections. Every matrix is constant (linear kinematics) and built once at init;
+// a step is an upward pass (leaves to root: each child hands its parent a force), the roots'
+// accelerations, and a downward pass (root to leaves: each child's acceleration from its
+// parent's), then a projection that keeps the rigid directions exact to rounding.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "ntn/hinge.hpp"
+#include "ntn/model_spec.hpp"
+#include "ntn/status.hpp"
+
+namespace ntn {
+
+// A 6x6 matrix (row-major) that knows which of its four 3x3 blocks are zero, so that the step
+// skips them: an aligned pinned hinge costs a few 3x3 products, not 6x6 ones.
+struct Mat6 {
+  std::array<double, 36> a{};
+  std::uint8_t blocks = 0;  // bit 2 * row_block + col_block: that block has a nonzero entry
+};
+
+// y += m x, rows in order, columns in order within each nonzero block (fixed summation order).
+inline void mat6_madd(const Mat6& m, const double* x, double* y) {
+  for (int br = 0; br < 2; ++br) {
+    for (int bc = 0; bc < 2; ++bc) {
+      if (!((m.blocks >> (2 * br + bc)) & 1U)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const double* row = &m.a[static_cast<std::size_t>((3 * br + i) * 6 + 3 * bc)];
+        const double* xs = x + 3 * bc;
+        y[3 * br + i] += row[0] * xs[0] + row[1] * xs[1] + row[2] * xs[2];
+      }
+    }
+  }
+}
+
+struct ForestEdge {
+  std::int32_t child = 0;
+  std::int32_t parent = kGround;
+  std::int32_t hinge = 0;
+  std::int32_t sign = 1;  // +1: the child is the hinge's node 1; -1: its node 2
+  Mat6 up;                // r_parent += up r_child                         (upward pass)
+  Mat6 down_a;            // a_child = down_a a_parent + down_r r_child     (downward pass)
+  Mat6 down_r;
+  Mat6 proj_p;  // u_child += proj_p u_parent - proj_c u_child    (projection)
+  Mat6 proj_c;
+  Mat6 force_a;  // lambda = force_a a_child - force_r r_child     (hinge force, rigid rows)
+  Mat6 force_r;
+};
+
+struct ForestRoot {
+  std::int32_t node = 0;
+  Mat6 inv_mass;  // inverse effective mass; zero rows and columns at held DOFs
+};
+
+namespace detail {
+
+using M6 = Eigen::Matrix<double, 6, 6>;
+
+inline Mat6 to_mat6(const M6& m) {
+  Mat6 r;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      const double x = m(i, j);
+      r.a[static_cast<std::size_t>(6 * i + j)] = x;
+      if (x != 0.0) r.blocks |= static_cast<std::uint8_t>(1U << (2 * (i / 3) + j / 3));
+    }
+  }
+  return r;
+}
+
+inline M6 to_m6(const Mat6& m) {
+  M6 r;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j)
+      r(i, j) = m.a[static_cast<std::size_t>(6 * i + j)];
+  }
+  return r;
+}
+
+// Inverse on the DOFs in `keep` (bit mask), zero elsewhere. False if that block is not SPD.
+inline bool masked_inverse(const M6& m, std::uint8_t keep, M6& out) {
+  int idx[6], n = 0;
+  for (int i = 0; i < 6; ++i) {
+    if ((keep >> i) & 1U) idx[n++] = i;
+  }
+  out.setZero();
+  if (n == 0) return true;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> sub(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j)
+      sub(i, j) = m(idx[i], idx[j]);
+  }
+  const Eigen::LLT<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>> llt(sub);
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> inv =
+      llt.solve(Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>::Identity(n, n));
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j)
+      out(idx[i], idx[j]) = inv(i, j);
+  }
+  return true;
+}
+
+inline M6 frame6(const HingeData& h) {
+  M6 t = M6::Zero();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      t(r, c) = t(r + 3, c + 3) = h.frame[static_cast<std::size_t>(3 * r + c)];
+    }
+  }
+  return t;
+}
+
+// X = [I E; 0 I] with E phi = phi x e: the motion of a rigid link at a point offset by e.
+inline M6 link(const std::array<double, 3>& e, double sign) {
+  M6 x = M6::Identity();
+  const double ex = sign * e[0], ey = sign * e[1], ez = sign * e[2];
+  // phi x e = (phi_y e_z - phi_z e_y, phi_z e_x - phi_x e_z, phi_x e_y - phi_y e_x)
+  x(0, 4) = ez, x(0, 5) = -ey;
+  x(1, 3) = -ez, x(1, 5) = ex;
+  x(2, 3) = ey, x(2, 4) = -ex;
+  return x;
+}
+
+inline M6 own_mass(std::span<const double> mass, int node) {
+  M6 m = M6::Zero();
+  for (int d = 0; d < 6; ++d)
+    m(d, d) = mass[static_cast<std::size_t>(6 * node + d)];
+  return m;
+}
+
+}  // namespace detail
+
+struct ForestBuild {
+  InitStatus status;
+  int edges = 0;
+  int roots = 0;
+  int held_dofs = 0;  // mechanism DOFs held at zero (DESIGN §7.1)
+};
+
+// Builds the forest of the hinges' rigid directions. `node_tree` (per node) receives the tree
+// index or -1; `held` (per node) the DOFs held at zero as mechanisms; `mass_up` is workspace of
+// one matrix per edge. Cycles of rigid connections, and trees that reach the ground twice (two
+// supports, or a support and a hinge to the ground), are refused (kRigidCycle, `where` = the
+// hinge that closes the cycle).
+inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<const NodeSpec> nodes,
+                                std::span<const double> mass, std::span<std::int32_t> node_tree,
+                                std::span<ForestEdge> edges, std::span<ForestRoot> roots,
+                                std::span<Mat6> mass_up, std::span<std::uint8_t> held) {
+  using detail::M6;
+  ForestBuild out;
+  for (auto& t : node_tree)
+    t = -1;
+  for (auto& h : held)
+    h = 0;
+  const int nh = static_cast<int>(hinges.size());
+  auto rigid = [&](int h) { return hinges[static_cast<std::size_t>(h)].rigid != 0; };
+  auto tree_of = [&](int n) { return n == kGround ? -2 : node_tree[static_cast<std::size_t>(n)]; };
+
+  // 1. Trees: grow each from an unassigned rigid hinge until no hinge touches it. Until the
+  // edges are ordered, edges[h].hinge holds hinge h's tree (-1: none yet).
+  int trees = 0;
+  for (int h = 0; h < nh; ++h)
+    edges[static_cast<std::size_t>(h)].hinge = -1;
+  for (int seed = 0; seed < nh; ++seed) {
+    if (!rigid(seed) || edges[static_cast<std::size_t>(seed)].hinge >= 0) continue;
+    const int t = trees++;
+    node_tree[static_cast<std::size_t>(hinges[static_cast<std::size_t>(seed)].node1)] = t;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int h = 0; h < nh; ++h) {
+        if (!rigid(h) || edges[static_cast<std::size_t>(h)].hinge >= 0) continue;
+        const HingeData& hd = hinges[static_cast<std::size_t>(h)];
+        if (tree_of(hd.node1) != t && tree_of(hd.node2) != t) continue;
+        edges[static_cast<std::size_t>(h)].hinge = t;
+        node_tree[static_cast<std::size_t>(hd.node1)] = t;
+        if (hd.node2 != kGround) node_tree[static_cast<std::size_t>(hd.node2)] = t;
+        grew = true;
+      }
+    }
+  }
+
+  // 2. Per tree: a tree has one edge fewer than vertices (the ground counts as one vertex, and
+  // a supported node is joined to it); pick the root and place the tree's edges breadth-first,
+  // parents before children. Placements are stashed in `mass_up` (workspace until step 3) and
+  // a placed hinge is marked with tree id -(t + 2).
+  int written = 0;
+  auto stash = [&](int k) -> Mat6& { return mass_up[static_cast<std::size_t>(k)]; };
+  for (int t = 0; t < trees; ++t) {
+    int vertices = 0, tree_edges = 0, grounds = 0, supported = 0, last_edge = -1;
+    for (std::size_t n = 0; n < node_tree.size(); ++n) {
+      if (node_tree[n] != t) continue;
+      ++vertices;
+      if (nodes[n].fixed != 0) ++supported;
+    }
+    for (int h = 0; h < nh; ++h) {
+      if (edges[static_cast<std::size_t>(h)].hinge != t) continue;
+      ++tree_edges, last_edge = h;
+      if (hinges[static_cast<std::size_t>(h)].node2 == kGround) ++grounds;
+    }
+    if (grounds + supported > 0) ++vertices;   // the ground
+    if (tree_edges + supported >= vertices) {  // each support is an edge to the ground
+      out.status = {InitError::kRigidCycle, last_edge};
+      return out;
+    }
+    // Root: the ground, else the supported node, else the node with the most rigid hinges
+    // (a joint), then the heaviest, then the lowest index.
+    int root = kGround;
+    if (grounds == 0) {
+      int best_degree = -1;
+      double best_mass = -1;
+      for (std::size_t n = 0; n < node_tree.size(); ++n) {
+        if (node_tree[n] != t) continue;
+        if (supported > 0) {
+          if (nodes[n].fixed != 0) root = static_cast<int>(n);
+          continue;
+        }
+        int degree = 0;
+        for (int h = 0; h < nh; ++h) {
+          const HingeData& hd = hinges[static_cast<std::size_t>(h)];
+          if (edges[static_cast<std::size_t>(h)].hinge == t &&
+              (hd.node1 == static_cast<int>(n) || hd.node2 == static_cast<int>(n)))
+            ++degree;
+        }
+        const double m = mass[6 * n] + mass[6 * n + 1] + mass[6 * n + 2];
+        if (degree > best_degree || (degree == best_degree && m > best_mass)) {
+          root = static_cast<int>(n), best_degree = degree, best_mass = m;
+        }
+      }
+      roots[static_cast<std::size_t>(out.roots++)].node = root;
+    }
+    auto place_children_of = [&](int parent) {
+      for (int h = 0; h < nh; ++h) {
+        if (edges[static_cast<std::size_t>(h)].hinge != t) continue;
+        const HingeData& hd = hinges[static_cast<std::size_t>(h)];
+        int child = -1, sign = 1;
+        if (hd.node2 == parent) {
+          child = hd.node1, sign = 1;
+        } else if (parent != kGround && hd.node1 == parent) {
+          child = hd.node2, sign = -1;
+        }
+        if (child < 0) continue;
+        edges[static_cast<std::size_t>(h)].hinge = -(t + 2);
+        Mat6& slot = stash(written++);
+        slot.a[0] = h, slot.a[1] = child, slot.a[2] = parent, slot.a[3] = sign;
+      }
+    };
+    int level_begin = written;
+    place_children_of(root);
+    while (level_begin < written) {
+      const int level_end = written;
+      for (int k = level_begin; k < level_end; ++k) {
+        place_children_of(static_cast<int>(stash(k).a[1]));
+      }
+      level_begin = level_end;
+    }
+  }
+  // Unstash the placements into the edges (hinge indices were tree marks until now).
+  for (int k = 0; k < written; ++k) {
+    const Mat6& slot = mass_up[static_cast<std::size_t>(k)];
+    ForestEdge& e = edges[static_cast<std::size_t>(k)];
+    e = ForestEdge{};
+    e.hinge = static_cast<std::int32_t>(slot.a[0]);
+    e.child = static_cast<std::int32_t>(slot.a[1]);
+    e.parent = static_cast<std::int32_t>(slot.a[2]);
+    e.sign = static_cast<std::int32_t>(slot.a[3]);
+  }
+  out.edges = written;
+
+  // 3. Matrices, leaves first: each child's effective mass is its own plus what its children
+  // hand up (DESIGN §7.1).
+  for (int k = written - 1; k >= 0; --k) {
+    ForestEdge& e = edges[static_cast<std::size_t>(k)];
+    const HingeData& h = hinges[static_cast<std::size_t>(e.hinge)];
+    M6 mc = detail::own_mass(mass, e.child);
+    for (int j = k + 1; j < written; ++j) {
+      if (edges[static_cast<std::size_t>(j)].parent == e.child)
+        mc += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
+    }
+    const M6 t6 = detail::frame6(h);
+    const M6 x = detail::link(h.eccentricity, static_cast<double>(e.sign));
+    const M6 y = t6 * x;
+    M6 xinv = M6::Identity();
+    xinv.topRightCorner<3, 3>() = -x.topRightCorner<3, 3>();
+    const M6 yinv = xinv * t6.transpose();
+    const M6 mq = yinv.transpose() * mc * yinv;
+
+    std::uint8_t rigid_mask = h.rigid, free_mask = 0;
+    for (int d = 0; d < 6; ++d) {
+      if ((rigid_mask >> d) & 1U) continue;
+      if (mq(d, d) > 0) {
+        free_mask |= static_cast<std::uint8_t>(1U << d);
+      } else {
+        ++out.held_dofs;  // a free direction without mass: a mechanism, held (q_d = 0)
+      }
+    }
+    M6 g = M6::Zero();
+    for (int d = 0; d < 6; ++d)
+      g(d, d) = (rigid_mask >> d) & 1U ? 1.0 : 0.0;
+    M6 ainv;
+    if (!detail::masked_inverse(mq, free_mask, ainv)) {
+      out.status = {InitError::kMechanism, e.hinge};
+      return out;
+    }
+    const M6 id = M6::Identity();
+    const M6 s = g * (mq - mq * ainv * mq) * g;
+    mass_up[static_cast<std::size_t>(k)] = detail::to_mat6(t6.transpose() * s * t6);
+    e.up = detail::to_mat6(t6.transpose() * g * (id - mq * ainv) * yinv.transpose());
+    e.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * t6);
+    e.down_r = detail::to_mat6(yinv * ainv * yinv.transpose());
+    e.proj_p = detail::to_mat6(yinv * g * t6);
+    e.proj_c = detail::to_mat6(yinv * g * y);
+    e.force_a = detail::to_mat6(g * mq * y);
+    e.force_r = detail::to_mat6(g * yinv.transpose());
+    if (e.parent == kGround) e.down_a = Mat6{}, e.proj_p = Mat6{};
+  }
+
+  // 4. Roots: inverse effective mass on the DOFs that are neither supported nor massless.
+  for (int r = 0; r < out.roots; ++r) {
+    ForestRoot& root = roots[static_cast<std::size_t>(r)];
+    M6 m = detail::own_mass(mass, root.node);
+    for (int j = 0; j < written; ++j) {
+      if (edges[static_cast<std::size_t>(j)].parent == root.node)
+        m += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
+    }
+    std::uint8_t keep = 0;
+    const std::uint8_t fixed = nodes[static_cast<std::size_t>(root.node)].fixed;
+    for (int d = 0; d < 6; ++d) {
+      if ((fixed >> d) & 1U) continue;
+      if (m(d, d) > 0) {
+        keep |= static_cast<std::uint8_t>(1U << d);
+      } else {
+        held[static_cast<std::size_t>(root.node)] |= static_cast<std::uint8_t>(1U << d);
+        ++out.held_dofs;
+      }
+    }
+    M6 inv;
+    if (!detail::masked_inverse(m, keep, inv)) {
+      out.status = {InitError::kMechanism, root.node};
+      return out;
+    }
+    root.inv_mass = detail::to_mat6(inv);
+  }
+  return out;
+}
+
+// Upward pass, leaves to root: each child hands its parent T^T G (G^T R_q - ...) (DESIGN §7.1).
+inline void forest_up(std::span<const ForestEdge> edges, int count, double* r) {
+  for (int k = count - 1; k >= 0; --k) {
+    const ForestEdge& e = edges[static_cast<std::size_t>(k)];
+    if (e.parent == kGround) continue;
+    mat6_madd(e.up, r + 6 * e.child, r + 6 * e.parent);
+  }
+}
+
+// Roots, then the downward pass: a_root = M_root^-1 R_root; a_c = Y^-1 q (DESIGN §7.1).
+inline void forest_down(std::span<const ForestRoot> roots, int root_count,
+                        std::span<const ForestEdge> edges, int count, const double* r, double* a) {
+  for (int k = 0; k < root_count; ++k) {
+    const ForestRoot& root = roots[static_cast<std::size_t>(k)];
+    double* ar = a + 6 * root.node;
+    for (int d = 0; d < 6; ++d)
+      ar[d] = 0;
+    mat6_madd(root.inv_mass, r + 6 * root.node, ar);
+  }
+  for (int k = 0; k < count; ++k) {
+    const ForestEdge& e = edges[static_cast<std::size_t>(k)];
+    double* ac = a + 6 * e.child;
+    for (int d = 0; d < 6; ++d)
+      ac[d] = 0;
+    if (e.parent != kGround) mat6_madd(e.down_a, a + 6 * e.parent, ac);
+    mat6_madd(e.down_r, r + 6 * e.child, ac);
+  }
+}
+
+// Projection, root to leaves: the child's rigid components of q are set from its parent's
+// (generalizes S 30-31), and v, a of the changed DOFs follow (S 35-37): a change du of u_{n+1}
+// changes v_{n+1/2} by du / dt and a_n by du / dt^2.
+inline void forest_project(std::span<const ForestEdge> edges, int count, double* u, double* v,
+                           double* a, double inv_dt) {
+  for (int k = 0; k < count; ++k) {
+    const ForestEdge& e = edges[static_cast<std::size_t>(k)];
+    double du[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
+    double* uc = u + 6 * e.child;
+    if (e.parent != kGround) mat6_madd(e.proj_p, u + 6 * e.parent, du);
+    mat6_madd(e.proj_c, uc, back);
+    for (int d = 0; d < 6; ++d) {
+      const double delta = du[d] - back[d];
+      uc[d] += delta;
+      v[6 * e.child + d] += delta * inv_dt;
+      a[6 * e.child + d] += delta * inv_dt * inv_dt;
+    }
+  }
+}
+
+// Hinge force in the rigid directions, on node 1 in the hinge frame:
+// lambda = G^T (M_q q - R_q) for the child, negated when the child is node 2.
+inline void forest_hinge_force(const ForestEdge& e, const double* a, const double* r,
+                               double* lambda) {
+  double fa[6] = {0, 0, 0, 0, 0, 0}, fr[6] = {0, 0, 0, 0, 0, 0};
+  mat6_madd(e.force_a, a + 6 * e.child, fa);
+  mat6_madd(e.force_r, r + 6 * e.child, fr);
+  for (int d = 0; d < 6; ++d)
+    lambda[d] = static_cast<double>(e.sign) * (fa[d] - fr[d]);
+}
+
+}  // namespace ntn

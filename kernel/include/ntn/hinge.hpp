@@ -1,0 +1,254 @@
+// NTN hinges (DESIGN §7, seed S 11-16): hinge geometry, relative displacement d_L = B u,
+// spring and dashpot forces B^T f_L, force-deformation curves with rigid branches.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "ntn/model_spec.hpp"
+
+namespace ntn {
+
+// Where a curve stops being a spring: outside [lower, upper] the curve is a rigid branch.
+struct CurveBranches {
+  double lower = -1e300;  // m or rad; -1e300: no rigid branch below
+  double upper = 1e300;   // m or rad; +1e300: no rigid branch above
+  double max_slope = 0;   // N/m or N m/rad, steepest non-rigid segment (for the stable step)
+  bool valid = false;     // at least one non-rigid segment, rigid branches only at the ends
+};
+
+// Splits a curve into its spring part and its rigid end branches: segments whose slope is at
+// least k_lim are rigid (seed Fig. 2). Rigid segments between spring segments are not valid.
+inline CurveBranches curve_branches(std::span<const CurvePoint> points, const CurveSpec& c,
+                                    double k_lim) {
+  CurveBranches b;
+  if (c.count < 2) return b;
+  const CurvePoint* p = points.data() + c.first;
+  int first = -1, last = -1;  // first and last non-rigid segment
+  for (int s = 0; s + 1 < c.count; ++s) {
+    const double dd = p[s + 1].d - p[s].d;
+    if (!(dd > 0)) return b;
+    const double slope = (p[s + 1].force - p[s].force) / dd;
+    if (slope < k_lim) {
+      if (first < 0) first = s;
+      if (last >= 0 && last != s - 1) return b;  // a rigid segment between spring segments
+      last = s;
+      if (slope > b.max_slope) b.max_slope = slope;
+    }
+  }
+  if (first < 0) return b;
+  if (first > 0) b.lower = p[first].d;
+  if (last < c.count - 2) b.upper = p[last + 1].d;
+  b.valid = true;
+  return b;
+}
+
+// Force of a curve at deformation d inside its spring part; the end segments extrapolate.
+inline double curve_force(const CurvePoint* p, int count, double d) {
+  int s = 0;
+  while (s + 2 < count && d > p[s + 1].d)
+    ++s;
+  const double t = (d - p[s].d) / (p[s + 1].d - p[s].d);
+  return p[s].force + t * (p[s + 1].force - p[s].force);
+}
+
+// What step() needs of a hinge: its nodes, frame, eccentricity and per-direction behaviour.
+struct HingeData {
+  std::int32_t node1 = 0;
+  std::int32_t node2 = kGround;
+  std::array<double, 9> frame{};         // T_R, rows = hinge axes in global
+  std::array<double, 3> eccentricity{};  // m, e = x2 - x1
+  std::array<HingeBehaviour, kDofsPerNode> behaviour{};
+  std::array<double, kDofsPerNode> stiffness{};          // N/m or N m/rad: linear k, or penalty k_p
+  std::array<double, kDofsPerNode> dashpot{};            // N s/m or N m s/rad
+  std::array<std::int32_t, kDofsPerNode> curve_first{};  // first point of the curve
+  std::array<std::int32_t, kDofsPerNode> curve_count{};
+  std::array<double, kDofsPerNode> branch_lower{};  // rigid branch starts (curve directions)
+  std::array<double, kDofsPerNode> branch_upper{};
+  std::uint8_t springs = 0;   // bit d: direction d carries a spring force (linear, curve, penalty)
+  std::uint8_t rigid = 0;     // bit d: direction d is held by NTN coupling (ntn_exact, ntn_paper)
+  std::uint8_t branches = 0;  // bit d: direction d is a curve with a rigid branch
+};
+
+// Relative displacement in the hinge frame (DESIGN §7):
+// d_L = T [u2 - u1 - phi1 x e ; phi2 - phi1]; the ground has u2 = phi2 = 0.
+inline void hinge_relative(const HingeData& h, const double* x1, const double* x2, double* d) {
+  const auto& R = h.frame;
+  const auto& e = h.eccentricity;
+  // the motion of node 1's rigid link at node 2's point: u1 + phi1 x e
+  const double w[3] = {x1[0] + (x1[4] * e[2] - x1[5] * e[1]), x1[1] + (x1[5] * e[0] - x1[3] * e[2]),
+                       x1[2] + (x1[3] * e[1] - x1[4] * e[0])};
+  double g[6];
+  for (int k = 0; k < 3; ++k) {
+    g[k] = (x2 != nullptr ? x2[k] : 0.0) - w[k];
+    g[k + 3] = (x2 != nullptr ? x2[k + 3] : 0.0) - x1[k + 3];
+  }
+  for (int r = 0; r < 3; ++r) {
+    d[r] = R[static_cast<std::size_t>(3 * r)] * g[0] +
+           R[static_cast<std::size_t>(3 * r + 1)] * g[1] +
+           R[static_cast<std::size_t>(3 * r + 2)] * g[2];
+    d[r + 3] = R[static_cast<std::size_t>(3 * r)] * g[3] +
+               R[static_cast<std::size_t>(3 * r + 1)] * g[4] +
+               R[static_cast<std::size_t>(3 * r + 2)] * g[5];
+  }
+}
+
+// Adds the internal force B^T f_L of a hinge force f_L (force on node 1, hinge frame) to the
+// nodes' internal force vectors: node 1 gets -[F ; e x F + M], node 2 gets [F ; M] with
+// F = T^T f_t, M = T^T f_r (so the force acting on node 1 is +F, on node 2 -F).
+inline void hinge_scatter(const HingeData& h, const double* f_local, double* f1, double* f2) {
+  const auto& R = h.frame;
+  const auto& e = h.eccentricity;
+  double F[3], M[3];
+  for (int c = 0; c < 3; ++c) {
+    F[c] = R[static_cast<std::size_t>(c)] * f_local[0] +
+           R[static_cast<std::size_t>(3 + c)] * f_local[1] +
+           R[static_cast<std::size_t>(6 + c)] * f_local[2];
+    M[c] = R[static_cast<std::size_t>(c)] * f_local[3] +
+           R[static_cast<std::size_t>(3 + c)] * f_local[4] +
+           R[static_cast<std::size_t>(6 + c)] * f_local[5];
+  }
+  const double exF[3] = {e[1] * F[2] - e[2] * F[1], e[2] * F[0] - e[0] * F[2],
+                         e[0] * F[1] - e[1] * F[0]};
+  for (int c = 0; c < 3; ++c) {
+    f1[c] -= F[c];
+    f1[c + 3] -= exF[c] + M[c];
+  }
+  if (f2 != nullptr) {
+    for (int c = 0; c < 3; ++c) {
+      f2[c] += F[c];
+      f2[c + 3] += M[c];
+    }
+  }
+}
+
+// Spring and dashpot force on node 1 in the hinge frame, for the directions in `springs`:
+// f = k d + c d_dot (linear, penalty), f = F(d) (curve: its spring part; on a rigid branch the
+// force at the branch start). d_dot from the half-step velocities (explicit, like C v_{n-1/2}).
+inline void hinge_spring_force(const HingeData& h, std::span<const CurvePoint> points,
+                               const double* d, const double* d_dot, double* f) {
+  for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+    f[k] = 0;
+    if (!((h.springs >> k) & 1U)) continue;
+    if (h.behaviour[k] == HingeBehaviour::kCurve) {
+      double x = d[k];
+      if (x < h.branch_lower[k]) x = h.branch_lower[k];
+      if (x > h.branch_upper[k]) x = h.branch_upper[k];
+      f[k] = curve_force(points.data() + h.curve_first[k], h.curve_count[k], x);
+    } else {
+      f[k] = h.stiffness[k] * d[k] + h.dashpot[k] * d_dot[k];
+    }
+  }
+}
+
+// Resolves a hinge spec for a method: which directions are NTN-coupled (`rigid`), which carry
+// a spring force (`springs`), and where curves have rigid branches. False for a bad spec:
+// node out of range, a frame that is not orthonormal and right-handed (to 1e-9), a bad curve,
+// a negative stiffness or dashpot, an eccentric ground hinge.
+inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int node_count,
+                            std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
+                            HingeData& h) {
+  h = HingeData{};
+  h.node1 = spec.node1, h.node2 = spec.node2;
+  h.frame = spec.frame;
+  h.eccentricity = spec.eccentricity;
+  h.behaviour = spec.behaviour;
+  if (spec.node1 < 0 || spec.node1 >= node_count) return false;
+  if (spec.node2 != kGround && (spec.node2 < 0 || spec.node2 >= node_count)) return false;
+  if (spec.node2 == spec.node1) return false;
+  if (spec.node2 == kGround &&
+      (spec.eccentricity[0] != 0 || spec.eccentricity[1] != 0 || spec.eccentricity[2] != 0))
+    return false;
+  const auto& R = spec.frame;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      double dot = 0;
+      for (int c = 0; c < 3; ++c)
+        dot += R[static_cast<std::size_t>(3 * a + c)] * R[static_cast<std::size_t>(3 * b + c)];
+      const double want = a == b ? 1.0 : 0.0;
+      if (!(dot - want < 1e-9 && want - dot < 1e-9)) return false;
+    }
+  }
+  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+                     R[2] * (R[3] * R[7] - R[4] * R[6]);
+  if (!(det > 0)) return false;
+
+  const bool penalty = settings.hinge_method == HingeMethod::kPenalty;
+  for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+    const auto bit = static_cast<std::uint8_t>(1U << k);
+    h.branch_lower[k] = -1e300, h.branch_upper[k] = 1e300;
+    switch (spec.behaviour[k]) {
+      case HingeBehaviour::kRigid:
+        if (penalty) {
+          h.stiffness[k] =
+              k < 3 ? settings.penalty_stiffness : settings.penalty_rotational_stiffness;
+          if (!(h.stiffness[k] > 0)) return false;
+          h.springs |= bit;
+        } else {
+          h.rigid |= bit;
+        }
+        break;
+      case HingeBehaviour::kFree:
+        break;
+      case HingeBehaviour::kLinear:
+        h.stiffness[k] = spec.stiffness[k];
+        h.dashpot[k] = spec.dashpot[k];
+        if (!(h.stiffness[k] >= 0) || !(h.dashpot[k] >= 0)) return false;
+        h.springs |= bit;
+        break;
+      case HingeBehaviour::kCurve: {
+        const int c = spec.curve[k];
+        if (c < 0 || c >= static_cast<int>(curves.size())) return false;
+        const CurveSpec& cs = curves[static_cast<std::size_t>(c)];
+        if (cs.first < 0 || cs.count < 2 || cs.first + cs.count > static_cast<int>(points.size()))
+          return false;
+        const double k_lim = k < 3 ? settings.limit_stiffness : settings.limit_rotational_stiffness;
+        const CurveBranches b = curve_branches(points, cs, k_lim > 0 ? k_lim : 1e300);
+        if (!b.valid) return false;
+        h.curve_first[k] = cs.first, h.curve_count[k] = cs.count;
+        h.stiffness[k] = b.max_slope;  // for the stable step
+        h.branch_lower[k] = b.lower, h.branch_upper[k] = b.upper;
+        if (b.lower > -1e300 || b.upper < 1e300) h.branches |= bit;
+        h.springs |= bit;
+        break;
+      }
+    }
+  }
+  return true;
+}
+
+// The generalized direction b of hinge direction k (d_k = b1 . x1 + b2 . x2): for a
+// translation b1 = -[t ; e x t], b2 = [t ; 0]; for a rotation b1 = -[0 ; t], b2 = [0 ; t],
+// t = row k of the frame.
+inline void hinge_direction(const HingeData& h, std::size_t k, double* b1, double* b2) {
+  const std::size_t row = k % 3;
+  const double t[3] = {h.frame[3 * row], h.frame[3 * row + 1], h.frame[3 * row + 2]};
+  for (int c = 0; c < 6; ++c)
+    b1[c] = 0, b2[c] = 0;
+  if (k < 3) {
+    const auto& e = h.eccentricity;
+    const double ext[3] = {e[1] * t[2] - e[2] * t[1], e[2] * t[0] - e[0] * t[2],
+                           e[0] * t[1] - e[1] * t[0]};
+    for (int c = 0; c < 3; ++c)
+      b1[c] = -t[c], b1[c + 3] = -ext[c], b2[c] = t[c];
+  } else {
+    for (int c = 0; c < 3; ++c)
+      b1[c + 3] = -t[c], b2[c + 3] = t[c];
+  }
+}
+
+// b^T M^-1 b over both nodes for direction k with diagonal masses (0 where a mass is zero and b
+// is not: returns +inf then, an infinitely fast mode).
+inline double hinge_inverse_mass(const HingeData& h, std::size_t k, const double* m1,
+                                 const double* m2) {
+  double b1[6], b2[6], w = 0;
+  hinge_direction(h, k, b1, b2);
+  for (int c = 0; c < 6; ++c) {
+    if (b1[c] != 0) w += b1[c] * b1[c] / m1[c];
+    if (m2 != nullptr && b2[c] != 0) w += b2[c] * b2[c] / m2[c];
+  }
+  return w;
+}
+
+}  // namespace ntn

@@ -1,0 +1,226 @@
+// ntn_paper: the seed's NTN modification taken literally (S 17-37), hinge by hinge in index
+// order, and the rigid-branch clamps shared with the other methods (S 32-33, DESIGN §7.1).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "ntn/hinge.hpp"
+#include "ntn/model_spec.hpp"
+
+namespace ntn {
+
+namespace detail {
+
+// Local components (hinge frame) of the translation or rotation block of one node vector.
+inline void to_hinge(const HingeData& h, const double* g, double* l) {
+  const auto& R = h.frame;
+  for (int r = 0; r < 3; ++r) {
+    l[r] = R[static_cast<std::size_t>(3 * r)] * g[0] +
+           R[static_cast<std::size_t>(3 * r + 1)] * g[1] +
+           R[static_cast<std::size_t>(3 * r + 2)] * g[2];
+  }
+}
+
+inline void from_hinge(const HingeData& h, const double* l, double* g) {
+  const auto& R = h.frame;
+  for (int c = 0; c < 3; ++c) {
+    g[c] = R[static_cast<std::size_t>(c)] * l[0] + R[static_cast<std::size_t>(3 + c)] * l[1] +
+           R[static_cast<std::size_t>(6 + c)] * l[2];
+  }
+}
+
+// Diagonal of T_R diag(m) T_R^T (S 23, then diagonalized) for one 3-DOF block.
+inline void mass_to_hinge(const HingeData& h, const double* m, double* l) {
+  const auto& R = h.frame;
+  for (int r = 0; r < 3; ++r) {
+    l[r] = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double t = R[static_cast<std::size_t>(3 * r + c)];
+      l[r] += t * t * m[c];
+    }
+  }
+}
+
+// Diagonal of T_R^T diag(l) T_R (S 26, diagonalized).
+inline void mass_from_hinge(const HingeData& h, const double* l, double* m) {
+  const auto& R = h.frame;
+  for (int c = 0; c < 3; ++c) {
+    m[c] = 0;
+    for (int r = 0; r < 3; ++r) {
+      const double t = R[static_cast<std::size_t>(3 * r + c)];
+      m[c] += t * t * l[r];
+    }
+  }
+}
+
+// A node is "rigidly supported" in hinge direction k (S 30-31) when every global DOF that the
+// direction touches is held; the ground is supported in every direction.
+inline bool supported_in(const HingeData& h, int node, std::span<const std::uint8_t> fixed,
+                         std::size_t k) {
+  if (node == kGround) return true;
+  const std::size_t row = k % 3, block = k < 3 ? 0 : 3;
+  for (std::size_t c = 0; c < 3; ++c) {
+    if (h.frame[3 * row + c] != 0 && !((fixed[static_cast<std::size_t>(node)] >> (block + c)) & 1U))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace detail
+
+// S 22-26, at init: for every hinge in index order, the hinge-frame masses of its two nodes
+// (diagonalized) are summed in the rigid directions and taken back to global axes (diagonalized).
+// `mass` (per DOF) is modified in place; the ground takes no part.
+inline void paper_masses(std::span<const HingeData> hinges, std::span<double> mass) {
+  for (const HingeData& h : hinges) {
+    if (h.node2 == kGround || h.rigid == 0) continue;
+    double* m[2] = {mass.data() + 6 * h.node1, mass.data() + 6 * h.node2};
+    for (int block = 0; block < 6; block += 3) {
+      double l[2][3], dum[2][3];
+      for (int j = 0; j < 2; ++j) {
+        detail::mass_to_hinge(h, m[j] + block, l[j]);  // S 23
+        for (int r = 0; r < 3; ++r)
+          dum[j][r] = l[j][r];  // S 24
+      }
+      for (int r = 0; r < 3; ++r) {  // S 25
+        if (!((h.rigid >> (block + r)) & 1U)) continue;
+        l[0][r] += dum[1][r];
+        l[1][r] += dum[0][r];
+      }
+      for (int j = 0; j < 2; ++j)
+        detail::mass_from_hinge(h, l[j], m[j] + block);  // S 26
+    }
+  }
+}
+
+// S 17-21, every step: for every hinge, the hinge-frame forces of its two nodes (copies taken
+// before the modification) are summed in the rigid directions and taken back.
+inline void paper_forces(std::span<const HingeData> hinges, double* r) {
+  for (const HingeData& h : hinges) {
+    if (h.node2 == kGround || h.rigid == 0) continue;
+    double* g[2] = {r + 6 * h.node1, r + 6 * h.node2};
+    for (int block = 0; block < 6; block += 3) {
+      double l[2][3], dum[2][3];
+      for (int j = 0; j < 2; ++j) {
+        detail::to_hinge(h, g[j] + block, l[j]);  // S 18
+        for (int k = 0; k < 3; ++k)
+          dum[j][k] = l[j][k];  // S 19
+      }
+      for (int k = 0; k < 3; ++k) {  // S 20
+        if (!((h.rigid >> (block + k)) & 1U)) continue;
+        l[0][k] += dum[1][k];
+        l[1][k] += dum[0][k];
+      }
+      for (int j = 0; j < 2; ++j)
+        detail::from_hinge(h, l[j], g[j] + block);  // S 21
+    }
+  }
+}
+
+// Applies a change of u_{n+1} to v_{n+1/2} and a_n (S 35-37 written as increments).
+inline void apply_correction(double* u, double* v, double* a, const double* du, double inv_dt) {
+  for (int d = 0; d < 6; ++d) {
+    u[d] += du[d];
+    v[d] += du[d] * inv_dt;
+    a[d] += du[d] * inv_dt * inv_dt;
+  }
+}
+
+// S 27-37, after the update: displacements in the hinge frame (S 28); supported hinges copy the
+// supported node's rigid components (S 30-31); rigid branches of curves scale both nodes by
+// d_lim / d (S 32-33); back to global (S 34); v and a of the changed DOFs follow (S 35-37).
+// With `couple` false only the clamps run (clamp = "paper" with ntn_exact or penalty).
+inline void paper_after_update(std::span<const HingeData> hinges,
+                               std::span<const std::uint8_t> fixed, double* u, double* v, double* a,
+                               double inv_dt, bool couple = true) {
+  for (const HingeData& h : hinges) {
+    if ((h.rigid == 0 || !couple) && h.branches == 0) continue;
+    double* g1 = u + 6 * h.node1;
+    double* g2 = h.node2 == kGround ? nullptr : u + 6 * h.node2;
+    double l[2][6] = {}, dum[2][6] = {};
+    for (int block = 0; block < 6; block += 3) {
+      detail::to_hinge(h, g1 + block, l[0] + block);
+      if (g2 != nullptr) detail::to_hinge(h, g2 + block, l[1] + block);
+    }
+    for (int k = 0; k < 6; ++k)
+      dum[0][k] = l[0][k], dum[1][k] = l[1][k];  // S 29
+    for (std::size_t k = 0; k < 6 && couple; ++k) {
+      if (!((h.rigid >> k) & 1U)) continue;
+      if (detail::supported_in(h, h.node2, fixed, k)) {
+        l[0][k] = dum[1][k];  // S 30
+      } else if (detail::supported_in(h, h.node1, fixed, k)) {
+        l[1][k] = dum[0][k];  // S 31
+      }
+    }
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (!((h.branches >> k) & 1U)) continue;
+      const double d = l[1][k] - l[0][k];  // S 32
+      const double lim = d > h.branch_upper[k]   ? h.branch_upper[k]
+                         : d < h.branch_lower[k] ? h.branch_lower[k]
+                                                 : d;
+      if (lim == d || d == 0) continue;
+      l[0][k] *= lim / d;  // S 33
+      l[1][k] *= lim / d;
+    }
+    double n1[6], n2[6], du[6];
+    for (int block = 0; block < 6; block += 3) {
+      detail::from_hinge(h, l[0] + block, n1 + block);  // S 34
+      detail::from_hinge(h, l[1] + block, n2 + block);
+    }
+    // Only the components the modification touched change, so rounding of the round trip
+    // through the hinge frame does not move untouched DOFs.
+    for (int j = 0; j < 2; ++j) {
+      double* g = j == 0 ? g1 : g2;
+      if (g == nullptr) continue;
+      const double* n = j == 0 ? n1 : n2;
+      bool changed = false;
+      for (int k = 0; k < 6; ++k)
+        changed |= l[j][k] != dum[j][k];
+      if (!changed) continue;
+      for (int c = 0; c < 6; ++c)
+        du[c] = n[c] - g[c];
+      const int node = j == 0 ? h.node1 : h.node2;
+      apply_correction(g, v + 6 * node, a + 6 * node, du, inv_dt);  // S 35-37
+    }
+  }
+}
+
+// Rigid branches with the momentum-conserving clamp (DESIGN §7.1, default for ntn_exact and
+// penalty): when d passes a branch start d_lim, the pair moves along that hinge direction so
+// that d = d_lim, each node by its share of the inverse mass, which keeps the pair's
+// mass-weighted centre; then S 35-37.
+inline void momentum_clamp(std::span<const HingeData> hinges, std::span<const double> mass,
+                           double* u, double* v, double* a, double inv_dt) {
+  for (const HingeData& h : hinges) {
+    if (h.branches == 0) continue;
+    double* x1 = u + 6 * h.node1;
+    double* x2 = h.node2 == kGround ? nullptr : u + 6 * h.node2;
+    double d[6];
+    hinge_relative(h, x1, x2, d);
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (!((h.branches >> k) & 1U)) continue;
+      const double excess = d[k] > h.branch_upper[k]   ? d[k] - h.branch_upper[k]
+                            : d[k] < h.branch_lower[k] ? d[k] - h.branch_lower[k]
+                                                       : 0.0;
+      if (excess == 0) continue;
+      double b1[6], b2[6];
+      hinge_direction(h, k, b1, b2);
+      const double* m1 = mass.data() + 6 * h.node1;
+      const double* m2 = x2 == nullptr ? nullptr : mass.data() + 6 * h.node2;
+      const double w = hinge_inverse_mass(h, k, m1, m2);
+      // x_j -= excess M_j^-1 b_j / w moves d by -excess exactly (linear in x).
+      double du1[6], du2[6];
+      for (int c = 0; c < 6; ++c) {
+        du1[c] = b1[c] != 0 ? -excess * b1[c] / (m1[c] * w) : 0.0;
+        du2[c] = (m2 != nullptr && b2[c] != 0) ? -excess * b2[c] / (m2[c] * w) : 0.0;
+      }
+      apply_correction(x1, v + 6 * h.node1, a + 6 * h.node1, du1, inv_dt);
+      if (x2 != nullptr) apply_correction(x2, v + 6 * h.node2, a + 6 * h.node2, du2, inv_dt);
+      hinge_relative(h, x1, x2, d);
+    }
+  }
+}
+
+}  // namespace ntn
