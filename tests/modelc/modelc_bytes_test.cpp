@@ -21,17 +21,26 @@ void expect_exact() {
 
 TEST(ModelBytes, EqualsSizeofExactly) {
   // Sizes: nodes, elements, time functions, time points, loads, inputs, outputs.
-  expect_exact<ntn::Sizes{2, 1, 0, 0, 0, 0, 0}>();     // every optional array empty
-  expect_exact<ntn::Sizes{21, 20, 0, 0, 1, 0, 3}>();   // cantilever
-  expect_exact<ntn::Sizes{96, 104, 0, 0, 0, 1, 7}>();  // frame3d
-  expect_exact<ntn::Sizes{3, 2, 1, 1, 1, 1, 1}>();     // odd counts: padding
+  expect_exact<ntn::Sizes{2, 1, 0, 0, 0, 0, 0}>();    // every optional array empty
+  expect_exact<ntn::Sizes{21, 20, 0, 0, 1, 0, 3}>();  // cantilever
+  expect_exact<ntn::Sizes{3, 2, 1, 1, 1, 1, 1}>();    // odd counts: padding
   expect_exact<ntn::Sizes{5, 4, 3, 7, 3, 2, 5}>();
   expect_exact<ntn::Sizes{7, 9, 2, 3, 0, 3, 0}>();
   expect_exact<ntn::Sizes{10001, 10000, 0, 0, 0, 0, 0}>();  // 10 000 elements
 }
 
-// The marginal cost of one more element or node, as ntn-model prints it.
-TEST(ModelBytes, PerElementAndPerNode) {
+TEST(ModelBytes, EqualsSizeofExactlyWithHinges) {
+  // ... then hinges, curves, curve points.
+  expect_exact<ntn::Sizes{108, 104, 0, 0, 0, 1, 9, 12, 0, 0}>();  // frame3d, pinned beams
+  expect_exact<ntn::Sizes{3, 2, 0, 0, 0, 0, 0, 1, 0, 0}>();       // one hinge
+  expect_exact<ntn::Sizes{9, 7, 1, 2, 1, 1, 5, 5, 1, 4}>();       // hinged_beam-like
+  expect_exact<ntn::Sizes{5, 4, 0, 0, 0, 0, 1, 3, 2, 7}>();       // odd counts: padding
+  expect_exact<ntn::Sizes{7, 3, 0, 0, 0, 0, 0, 0, 1, 2}>();       // curves without hinges
+  expect_exact<ntn::Sizes{1001, 1000, 0, 0, 0, 0, 0, 500, 0, 0}>();
+}
+
+// The marginal cost of one more element, node or hinge, as ntn-model prints it.
+TEST(ModelBytes, PerElementNodeAndHinge) {
   constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 9, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(e) - ntn::modelc::model_bytes(a),
             ntn::modelc::memory_footprint(a).per_element);
@@ -40,6 +49,16 @@ TEST(ModelBytes, PerElementAndPerNode) {
   constexpr ntn::Sizes n{16, 8, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(n) - ntn::modelc::model_bytes(a),
             8 * ntn::modelc::memory_footprint(a).per_node);
+  // Two more hinges keep the 4-byte hinge -> edge array a multiple of 8.
+  constexpr ntn::Sizes h2{8, 8, 0, 0, 0, 0, 0, 2, 0, 0}, h4{8, 8, 0, 0, 0, 0, 0, 4, 0, 0};
+  const auto f = ntn::modelc::memory_footprint(h2);
+  EXPECT_EQ(ntn::modelc::model_bytes(h4) - ntn::modelc::model_bytes(h2), 2 * f.per_hinge);
+  EXPECT_EQ(f.per_hinge, sizeof(ntn::HingeData) + sizeof(ntn::ForestEdge) +
+                             sizeof(ntn::ForestRoot) + sizeof(ntn::Mat6) + sizeof(std::int32_t));
+  // Eight more nodes in a model with hinges: the per-node arrays plus the hinge ones.
+  constexpr ntn::Sizes hn{16, 8, 0, 0, 0, 0, 0, 2, 0, 0};
+  EXPECT_EQ(ntn::modelc::model_bytes(hn) - ntn::modelc::model_bytes(h2),
+            8 * (f.per_node + f.per_node_with_hinges));
 }
 
 }  // namespace

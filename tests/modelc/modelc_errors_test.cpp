@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -43,7 +44,7 @@ const Expected kExpected[] = {
   {"UnknownKeySection", "unknown_key.toml", 26, 1, "sections[0].Wy", "unknown key 'Wy'"},
   {"UnknownKeyNode", "unknown_key.toml", 31, 1, "nodes[0].label", "unknown key 'label' (this table takes: id, xyz)"},
   {"UnknownKeyMember", "unknown_key.toml", 42, 1, "members[0].hinge", "unknown key 'hinge'"},
-  {"UnknownKeySupport", "unknown_key.toml", 47, 1, "supports[0].spring", "unknown key 'spring' (this table takes: node, fix)"},
+  {"UnknownKeySupport", "unknown_key.toml", 47, 1, "supports[0].spring", "unknown key 'spring' (this table takes: node, fix, axes)"},
   {"UnknownKeyPointMass", "unknown_key.toml", 52, 1, "point_masses[0].weight", "unknown key 'weight'"},
   {"UnknownKeyTimeFunction", "unknown_key.toml", 57, 1, "time_functions[0].kind", "unknown key 'kind' (this table takes: id, points)"},
   {"UnknownKeyLoad", "unknown_key.toml", 63, 1, "loads[0].factor", "unknown key 'factor'"},
@@ -120,6 +121,64 @@ const Expected kExpected[] = {
   {"NoMembers", "no_members.toml", 1, 1, "members", "the model has no members, so it has no mass"},
   {"MasslessFreeDof", "massless_dof.toml", 27, 6, "nodes[2].id", "node 3 has no mass in its free DOFs rx, ry, rz"},
   {"DtAboveStable", "dt_unstable.toml", 4, 6, "model.dt", "dt = 0.001 s is above the stable step "},
+  // Hinges (DESIGN §7): settings, values, axes, curves, references.
+  {"HingeMethodChoice", "hinge_settings.toml", 4, 16, "model.hinge_method", "must be one of \"ntn_exact\", \"ntn_paper\", \"penalty\" (got \"exact\")"},
+  {"ClampChoice", "hinge_settings.toml", 5, 9, "model.clamp", "must be one of \"momentum\", \"paper\" (got \"S33\")"},
+  {"PenaltyStiffnessPositive", "hinge_settings.toml", 6, 21, "model.penalty_stiffness", "must be positive (got 0)"},
+  {"PenaltyRotationalPositive", "hinge_settings.toml", 7, 32, "model.penalty_rotational_stiffness", "must be positive (got -1e+09)"},
+  {"LimitStiffnessPositive", "hinge_settings.toml", 8, 19, "model.limit_stiffness", "must be positive (got 0)"},
+  {"LimitRotationalNumber", "hinge_settings.toml", 9, 30, "model.limit_rotational_stiffness", "expected a number, got a string"},
+  {"ReleasedTwice", "hinge_values.toml", 39, 24, "members[0].release_start[1]", "\"ry\" is released twice"},
+  {"ReleaseEmpty", "hinge_values.toml", 40, 15, "members[0].release_end", "expected at least one DOF name to release"},
+  {"ReleaseWrongType", "hinge_values.toml", 47, 17, "members[1].release_start", "must be an array of DOF names (released: free) or a table of behaviours per direction, got an integer"},
+  {"ReleaseUnknownDirection", "hinge_values.toml", 48, 30, "members[1].release_end.twist", "unknown key 'twist' (this table takes: ux, uy, uz, rx, ry, rz)"},
+  {"ReleaseBadDofName", "hinge_values.toml", 55, 18, "members[2].release_start[0]", "must be one of \"ux\", \"uy\", \"uz\", \"rx\", \"ry\", \"rz\" (got \"rw\")"},
+  {"BehaviourBadString", "hinge_values.toml", 64, 6, "hinges[0].ux", "must be \"rigid\", \"free\", { linear = k, dashpot = c } or { curve = \"id\" } (got \"stiff\")"},
+  {"BehaviourWrongType", "hinge_values.toml", 65, 6, "hinges[0].uy", "or { curve = \"id\" }, got an integer"},
+  {"BehaviourLinearAndCurve", "hinge_values.toml", 66, 32, "hinges[0].uz.curve", "cannot be given together with 'linear'"},
+  {"BehaviourDashpotWithCurve", "hinge_values.toml", 67, 31, "hinges[0].rx.dashpot", "only applies with 'linear'"},
+  {"BehaviourNegativeLinear", "hinge_values.toml", 68, 17, "hinges[0].ry.linear", "must not be negative (got -1)"},
+  {"BehaviourMissingLinear", "hinge_values.toml", 69, 6, "hinges[0].rz.linear", "missing required key 'linear' (or give curve = \"id\")"},
+  {"HingeNodeNotGround", "hinge_values.toml", 73, 13, "hinges[1].nodes[1]", "must be a node id or \"ground\" (got \"earth\")"},
+  {"BehaviourUnknownKey", "hinge_values.toml", 74, 22, "hinges[1].ux.spring", "unknown key 'spring' (this table takes: linear, dashpot, curve)"},
+  {"HingeNodesCount", "hinge_values.toml", 78, 9, "hinges[2].nodes", "expected [node 1, node 2] (node 2 may be \"ground\"), got 1 value"},
+  {"HingeFrameBad", "hinge_values.toml", 79, 9, "hinges[2].frame", "must be \"global\" or { member = \"id\" } (or give axes), got \"local\""},
+  {"HingeFrameAndAxes", "hinge_values.toml", 85, 8, "hinges[3].axes", "cannot be given together with 'frame'"},
+  {"HingeEccentricType", "hinge_values.toml", 86, 13, "hinges[3].eccentric", "expected a boolean, got a string"},
+  {"HingeOutputDirection", "hinge_values.toml", 92, 13, "outputs[0].direction", "must be one of \"ux\", \"uy\", \"uz\", \"rx\", \"ry\", \"rz\" (got \"x\")"},
+  {"HingeOutputMissingHinge", "hinge_values.toml", 94, 1, "outputs[1].hinge", "missing required key 'hinge'"},
+  {"AxesLeftHanded", "hinge_axes.toml", 59, 8, "hinges[0].axes", "axes must be right-handed (z = x cross y); these have det = -1"},
+  {"AxesNotOrthonormal", "hinge_axes.toml", 64, 8, "hinges[1].axes", "axes must be orthonormal to 1e-9 (rows x, y, z of unit length, at right angles): the largest entry of |R R^T - I| is 0.19"},
+  {"SupportAxesRows", "hinge_axes.toml", 72, 8, "supports[1].axes", "expected 3 values, got 2"},
+  {"SupportAxesNumber", "hinge_axes.toml", 77, 54, "supports[2].axes[2][2]", "expected a number, got a string"},
+  {"CurveNotIncreasing", "curve_points.toml", 39, 37, "curves[0].points[2]", "d = 0.001 does not come after the previous point's d = 0.001: deformations must increase strictly"},
+  {"CurveOnePoint", "curve_points.toml", 43, 10, "curves[1].points", "expected an array of at least 2 [d, force] points, got 1 point"},
+  {"CurveNotArray", "curve_points.toml", 47, 10, "curves[2].points", "expected an array of at least 2 [d, force] points, got an integer"},
+  {"CurvePointLength", "curve_points.toml", 51, 23, "curves[3].points[1]", "expected 2 values, got 1"},
+  {"DuplicateCurve", "hinge_refs.toml", 57, 6, "curves[1].id", "duplicate curve id 'c1' (first defined at line 53)"},
+  {"UnknownCurve", "hinge_refs.toml", 63, 16, "hinges[0].ux.curve", "unknown curve 'nope'"},
+  {"HingeUnknownNode", "hinge_refs.toml", 67, 9, "hinges[1].nodes", "unknown node 99"},
+  {"HingeUnknownFrameMember", "hinge_refs.toml", 72, 20, "hinges[2].frame.member", "unknown member 'ZZ'"},
+  {"DuplicateHinge", "hinge_refs.toml", 75, 6, "hinges[3].id", "duplicate hinge id 'H1' (first defined at line 61)"},
+  {"HingeIdIsReleaseName", "hinge_refs.toml", 80, 6, "hinges[4].id", "hinge id 'A.end' is also the name of the member-end release at members[1].release_end: choose another id"},
+  {"UnknownHingeOutput", "hinge_refs.toml", 87, 9, "outputs[0].hinge", "unknown hinge 'H9' (hinges are named by their id, <member>.start and <member>.end for releases, support.<node id> for supports with axes)"},
+  // Hinge geometry and methods.
+  {"HingeNotCoincident", "hinge_geometry.toml", 63, 9, "hinges[0].nodes", "nodes 3 and 2 do not coincide (they are 0.001 m apart): set eccentric = true"},
+  {"HingeSameNode", "hinge_geometry.toml", 68, 9, "hinges[1].nodes", "a hinge joins two different nodes; both are node 2"},
+  {"HingeGroundEccentric", "hinge_geometry.toml", 73, 13, "hinges[2].eccentric", "a hinge to the ground cannot be eccentric"},
+  {"EccentricWithPaper", "hinge_eccentric_paper.toml", 51, 13, "hinges[0].eccentric", "an eccentric hinge (e = (-0.3, 0, 0) m) needs hinge_method = \"ntn_exact\" or \"penalty\": the seed's algorithm (\"ntn_paper\", S 17-37) has no eccentricity"},
+  // Rigid cycles: at the hinge that closes them, naming the nodes.
+  {"RigidCycleRing", "hinge_cycle.toml", 84, 9, "hinges[2].nodes", "hinge H3 closes a cycle of rigid connections: node 2 - node 3 - node 4 - node 2."},
+  {"RigidCycleSupported", "hinge_cycle.toml", 89, 9, "hinges[3].nodes", "hinge H4 closes a cycle of rigid connections: node 1 - ground - node 1."},
+  {"RigidCycleSupportAxes", "hinge_cycle.toml", 104, 8, "supports[1].axes", "support with axes support.7 closes a cycle of rigid connections: node 7 - ground - node 7."},
+  // Curves against the limit stiffness.
+  {"CurveAllRigid", "curve_rigid.toml", 72, 6, "hinges[0].ux", "curve 'stop' has no segment softer than the limit stiffness 1e+12 N/m: all of it is a rigid branch"},
+  {"CurveRigidInside", "curve_rigid.toml", 77, 6, "hinges[1].uy", "curve 'middle' has a rigid segment (points 1 to 2, slope at least the limit stiffness 1e+12 N/m) between softer ones"},
+  {"CurveStartsOnBranch", "curve_rigid.toml", 78, 6, "hinges[1].uz", "curve 'offset' has its spring part from d = 0.0011 to +inf, which does not contain d = 0"},
+  // Effective mass (config/README.md, "Mass and mechanisms").
+  {"MasslessSpring", "hinge_massless_spring.toml", 28, 6, "nodes[2].id", "node 3 has no effective mass in rz (global axes), but a hinge spring, dashpot or curve acts there"},
+  {"PenaltyMassless", "hinge_penalty_massless.toml", 29, 6, "nodes[2].id", "node 3 has no effective mass in ux, uy, uz, rx, ry, rz (global axes), but a hinge spring, dashpot or curve acts there: an explicit step cannot integrate a massless spring (its frequency is infinite). Give the node a point mass (with inertia for rotations), or make those hinge directions rigid or free. With hinge_method = \"penalty\" a rigid direction is a stiff spring: penalty needs mass on both nodes; give the joint a point mass or use ntn_exact"},
+  {"DtAboveHingeStable", "dt_unstable_hinge.toml", 5, 6, "model.dt", "dt = 1e-05 s is above the stable step "},
 };
 // clang-format on
 
@@ -201,6 +260,24 @@ TEST(ModelErrors, DtAboveStableNamesGoverningElementAndStableStep) {
                 .name,
             "C1");
   EXPECT_NE(msg.find("set by member C1, element 1 of 4 (model element 1)"), std::string::npos)
+      << msg;
+}
+
+// A stiff rotational spring between two 1 m members governs the stable step: by DESIGN §6 a
+// two-node spring has omega^2 = k (1/m1 + 1/m2), here both m = rho A l^3 / 78 (the HRZ bending
+// inertia of an element end about local z = global z, no rotary inertia), and no damping, so
+// dt = 2 / omega. The message must quote that step (%.6g) and name the hinge and direction.
+TEST(ModelErrors, DtAboveStableNamesGoverningHinge) {
+  const auto r = load_model(bad("dt_unstable_hinge.toml"));
+  ASSERT_EQ(r.errors.size(), 1U);
+  const double m = 7850.0 * 1.0e-2 * 1.0 / 78.0;  // kg m^2: rho A l^3 / 78, l = 1 m
+  const double omega = std::sqrt(1.0e12 * (1.0 / m + 1.0 / m));
+  char stable[64];
+  std::snprintf(stable, sizeof stable, "%.6g s", 2.0 / omega);
+  const std::string& msg = r.errors[0].message;
+  EXPECT_NE(msg.find(std::string("above the stable step ") + stable +
+                     " set by hinge H1, direction rz (a two-node spring"),
+            std::string::npos)
       << msg;
 }
 

@@ -1,10 +1,12 @@
 // The headers that ntn_add_model generated at build time for config/frame3d.toml (through the
-// generic NTN_MODEL_HEADER / NTN_MODEL_NS a main uses) and config/cantilever.toml: they compile
-// as constexpr, hold exactly what load_model reads from the same files, and initialize the
+// generic NTN_MODEL_HEADER / NTN_MODEL_NS a main uses), config/cantilever.toml and
+// config/hinged_beam.toml: they compile as constexpr, hold exactly what load_model reads from
+// the same files (hinges, curves and hinge settings included, bit for bit), and initialize the
 // kernel.
 #include <gtest/gtest.h>
 
 #include "cantilever_model.hpp"
+#include "hinged_beam_model.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "spec_compare.hpp"
@@ -14,12 +16,27 @@ namespace {
 
 namespace frame = NTN_MODEL_NS;
 namespace cant = ntn::models::cantilever;
+namespace hb = ntn::models::hinged_beam;
 
 // Sizes straight from the files: frame3d has 18 nodes, 26 members of 4 divisions (3 interior
-// nodes each), 1 input and 7 outputs; the cantilever 2 nodes and 1 member of 20 divisions.
-static_assert(frame::kSizes.nodes == 18 + 26 * 3);
+// nodes each), 6 beams pinned at both ends (a node and a hinge per released end), 1 input and
+// 9 outputs; the cantilever 2 nodes and 1 member of 20 divisions; hinged_beam 8 nodes, 3
+// members of 4 and 1 of 2 divisions, one released end, 3 explicit hinges and a support with
+// axes, one curve of 4 points.
+static_assert(frame::kSizes.nodes == 18 + 26 * 3 + 6 * 2);
 static_assert(frame::kSizes.elements == 26 * 4);
-static_assert(frame::kSizes.inputs == 1 && frame::kSizes.outputs == 7);
+static_assert(frame::kSizes.inputs == 1 && frame::kSizes.outputs == 9);
+static_assert(frame::kSizes.hinges == 12 && frame::kSizes.curves == 0);
+static_assert(frame::kHingeNames[0] == "BY_A1A2_1.start" &&
+              frame::kHingeNames[1] == "BY_A1A2_1.end");
+static_assert(frame::kSpec.hinges[0].behaviour[ntn::kRy] == ntn::HingeBehaviour::kFree);
+static_assert(frame::kSpec.hinges[0].behaviour[ntn::kRx] == ntn::HingeBehaviour::kRigid);
+static_assert(hb::kSizes.nodes == 8 + 3 * 3 + 1 + 1 && hb::kSizes.elements == 3 * 4 + 2);
+static_assert(hb::kSizes.hinges == 5 && hb::kSizes.curves == 1 && hb::kSizes.curve_points == 4);
+static_assert(hb::kHingeNames[0] == "H_spring" && hb::kHingeNames[3] == "P1.end" &&
+              hb::kHingeNames[4] == "support.7");
+static_assert(hb::kSpec.hinges[4].node2 == ntn::kGround);
+static_assert(hb::kSpec.settings.limit_stiffness == 1.0e12);
 static_assert(frame::kSizes.loads == 0 && frame::kSizes.time_functions == 0);
 static_assert(cant::kSizes.nodes == 21 && cant::kSizes.elements == 20);
 static_assert(cant::kSizes.loads == 1 && cant::kSizes.inputs == 0 && cant::kSizes.outputs == 3);
@@ -30,6 +47,7 @@ static_assert(frame::kSpec.settings.dt > 0 && frame::kDtAuto);
 
 ntn::Model<frame::kSizes> g_frame;
 ntn::Model<cant::kSizes> g_cant;
+ntn::Model<hb::kSizes> g_hinged;
 
 template <ntn::Sizes S, std::size_t M>
 void check(const ntn::ModelSpec<S>& spec, std::string_view source,
@@ -58,6 +76,18 @@ void check(const ntn::ModelSpec<S>& spec, std::string_view source,
 TEST(GeneratedHeader, Frame3dMatchesFileAndInitializes) {
   check(frame::kSpec, frame::kSourceFile, frame::kInputNames, frame::kOutputNames,
         frame::kOutputUnits, frame::kMemberNames, g_frame);
+}
+
+TEST(GeneratedHeader, HingedBeamMatchesFileAndInitializes) {
+  check(hb::kSpec, hb::kSourceFile, hb::kInputNames, hb::kOutputNames, hb::kOutputUnits,
+        hb::kMemberNames, g_hinged);
+  const auto r = ntn::modelc::load_model(std::string(hb::kSourceFile));
+  ASSERT_TRUE(r.ok());
+  std::vector<std::string> hinge_names;
+  for (const auto& h : r.model->hinge_info)
+    hinge_names.push_back(h.name);
+  ntn::test::expect_same_names(hb::kHingeNames, hinge_names);
+  EXPECT_EQ(g_hinged.stable.governing_hinge, r.model->stable.governing_hinge);
 }
 
 TEST(GeneratedHeader, CantileverMatchesFileAndInitializes) {

@@ -87,12 +87,15 @@ TEST(ModelLoad, DefaultModelsLoad) {
   ASSERT_TRUE(frame.ok()) << ntn::modelc::format_all(frame.errors);
   const ModelDescription& f = *frame.model;
   // 3 levels x 6 grid points given; 26 members (12 columns, 14 beams) x 4 divisions each add
-  // 3 interior nodes.
-  EXPECT_EQ(f.nodes.size(), 18U + 26U * 3U);
+  // 3 interior nodes; the 6 beams along y are pinned at both ends: a node and a hinge per end.
+  EXPECT_EQ(f.nodes.size(), 18U + 26U * 3U + 6U * 2U);
   EXPECT_EQ(f.elements.size(), 26U * 4U);
   EXPECT_EQ(f.members.size(), 26U);
+  EXPECT_EQ(f.hinges.size(), 12U);
+  EXPECT_EQ(f.hinge_count(ntn::modelc::HingeOrigin::kRelease), 12);
+  EXPECT_TRUE(f.mechanisms.empty());  // every joint has columns: mass in all DOFs
   EXPECT_EQ(f.inputs.size(), 1U);
-  EXPECT_EQ(f.outputs.size(), 7U);
+  EXPECT_EQ(f.outputs.size(), 9U);
   EXPECT_EQ(f.loads.size(), 0U);
   EXPECT_EQ(f.input_names.at(0), "ag_x");
   EXPECT_EQ(f.inputs[0].scale, 9.80665);  // in g
@@ -446,9 +449,11 @@ TEST(ModelInfo, ReportsFigures) {
   const std::string per_node = "per node " + std::to_string(6 * 8 * 8 + 1 + 4) + " B";
   const std::string per_element = "per element " + std::to_string(sizeof(ntn::BeamData)) + " B";
   for (const std::string& s :
-       {std::string("nodes        96"), std::string("elements     104 in 26 members"),
-        std::string("stable dt"), std::string("set by member"), std::string("CFL (seed)"),
-        std::string("substeps"), per_element, per_node}) {
+       {std::string("nodes        108"), std::string("elements     104 in 26 members"),
+        std::string("hinges       12: 0 explicit, 12 member-end releases, 0 supports with axes"),
+        std::string("ntn_exact / penalty = "), std::string("stable dt"),
+        std::string("set by member"), std::string("CFL (seed)"), std::string("substeps"),
+        per_element, per_node}) {
     EXPECT_NE(t.find(s), std::string::npos) << s << "\n" << t;
   }
 }

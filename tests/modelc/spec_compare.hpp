@@ -28,6 +28,9 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   ASSERT_EQ(z.loads, S.loads);
   ASSERT_EQ(z.inputs, S.inputs);
   ASSERT_EQ(z.outputs, S.outputs);
+  ASSERT_EQ(z.hinges, S.hinges);
+  ASSERT_EQ(z.curves, S.curves);
+  ASSERT_EQ(z.curve_points, S.curve_points);
   for (std::size_t i = 0; i < h.nodes.size(); ++i) {
     const NodeSpec &a = h.nodes[i], &b = d.nodes[i];
     expect_bits(a.x, b.x, "node x", i), expect_bits(a.y, b.y, "node y", i);
@@ -80,7 +83,31 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
     EXPECT_EQ(a.element, b.element);
     EXPECT_EQ(a.end, b.end);
     EXPECT_EQ(a.dof, b.dof);
+    EXPECT_EQ(a.hinge, b.hinge);
     expect_bits(a.scale, b.scale, "output scale", i);
+  }
+  for (std::size_t i = 0; i < h.hinges.size(); ++i) {
+    const HingeSpec &a = h.hinges[i], &b = d.hinges[i];
+    EXPECT_EQ(a.node1, b.node1) << i;
+    EXPECT_EQ(a.node2, b.node2) << i;
+    for (std::size_t k = 0; k < 9; ++k)
+      expect_bits(a.frame[k], b.frame[k], "hinge frame", i);
+    for (std::size_t k = 0; k < 3; ++k)
+      expect_bits(a.eccentricity[k], b.eccentricity[k], "hinge eccentricity", i);
+    for (std::size_t k = 0; k < 6; ++k) {
+      EXPECT_EQ(a.behaviour[k], b.behaviour[k]) << i << " direction " << k;
+      expect_bits(a.stiffness[k], b.stiffness[k], "hinge stiffness", i);
+      expect_bits(a.dashpot[k], b.dashpot[k], "hinge dashpot", i);
+      EXPECT_EQ(a.curve[k], b.curve[k]) << i << " direction " << k;
+    }
+  }
+  for (std::size_t i = 0; i < h.curves.size(); ++i) {
+    EXPECT_EQ(h.curves[i].first, d.curves[i].first);
+    EXPECT_EQ(h.curves[i].count, d.curves[i].count);
+  }
+  for (std::size_t i = 0; i < h.curve_points.size(); ++i) {
+    expect_bits(h.curve_points[i].d, d.curve_points[i].d, "curve d", i);
+    expect_bits(h.curve_points[i].force, d.curve_points[i].force, "curve force", i);
   }
   const Settings &a = h.settings, &b = d.settings;
   expect_bits(a.dt, b.dt, "dt", 0);
@@ -91,6 +118,14 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   EXPECT_EQ(a.gravity_function, b.gravity_function);
   EXPECT_EQ(a.rotary_inertia, b.rotary_inertia);
   EXPECT_EQ(a.allow_unstable, b.allow_unstable);
+  EXPECT_EQ(a.hinge_method, b.hinge_method);
+  EXPECT_EQ(a.clamp, b.clamp);
+  expect_bits(a.penalty_stiffness, b.penalty_stiffness, "penalty_stiffness", 0);
+  expect_bits(a.penalty_rotational_stiffness, b.penalty_rotational_stiffness,
+              "penalty_rotational_stiffness", 0);
+  expect_bits(a.limit_stiffness, b.limit_stiffness, "limit_stiffness", 0);
+  expect_bits(a.limit_rotational_stiffness, b.limit_rotational_stiffness,
+              "limit_rotational_stiffness", 0);
 }
 
 template <std::size_t N>

@@ -1,6 +1,7 @@
 // ntn-model: validates and inspects a model file.
 //   ntn-model check MODEL.toml   errors as file:line:column (exit 1), or "ok" (exit 0)
-//   ntn-model info MODEL.toml    sizes, masses, time step, CFL, memory
+//   ntn-model info MODEL.toml    sizes, masses, hinges, time step (and with penalty), CFL, memory
+// Notes (mechanisms: DOFs without mass or stiffness, held at zero) go to stderr with exit 0.
 // Exit 2 on a usage error.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%zu error%s\n", r.errors.size(), r.errors.size() == 1 ? "" : "s");
     return 1;
   }
+  // Notes (mechanisms held at zero) go to stderr, like a compiler's; `info` lists them too.
+  std::fputs(ntn::modelc::format_all(r.notes).c_str(), stderr);
   if (check->parsed()) {
     std::printf("%s: ok (%zu nodes, %zu elements, dt = %.6g s)\n", path.c_str(),
                 r.model->nodes.size(), r.model->elements.size(), r.model->settings.dt);

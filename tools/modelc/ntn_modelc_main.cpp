@@ -1,6 +1,7 @@
 // ntn-modelc MODEL.toml -o OUT.hpp [--name NAME]: validates a model file and writes its
 // constexpr header. Exit 0 on success, 1 when the model has errors (printed to stderr as
-// file:line:column: error: ...), 2 on a usage error.
+// file:line:column: error: ...), 2 on a usage error. Notes (file:line:column: note: ...) go to
+// stderr and do not change the exit code.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
                  r.errors.size() == 1 ? "" : "s", model_path.c_str());
     return 1;
   }
+  std::fputs(ntn::modelc::format_all(r.notes).c_str(), stderr);  // mechanisms: not errors
   try {
     const std::string text = ntn::modelc::emit_header(*r.model, ns_name);
     const std::filesystem::path out(out_path);

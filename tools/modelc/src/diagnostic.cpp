@@ -3,7 +3,8 @@
 namespace ntn::modelc {
 
 std::string Diagnostic::format() const {
-  std::string s = file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error: ";
+  std::string s = file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                  (severity == Severity::kNote ? ": note: " : ": error: ");
   if (!key.empty()) s += "key '" + key + "': ";
   s += message;
   return s;

@@ -301,7 +301,12 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
        names(m.output_units) + ";\n";
   o += "inline constexpr std::array<std::string_view, " + std::to_string(member_names.size()) +
        "> kMemberNames" + names(member_names) + ";  // by ElementSpec::member\n";
-  o += "// User node id per node; -1 for nodes made by meshing a member.\n";
+  std::vector<std::string> hinge_names;
+  for (const HingeInfo& h : m.hinge_info)
+    hinge_names.push_back(h.name);
+  o += "inline constexpr std::array<std::string_view, kSizes.hinges> kHingeNames" +
+       names(hinge_names) + ";  // by hinge index\n";
+  o += "// User node id per node; -1 for nodes made by meshing a member or at a released end.\n";
   o += "inline constexpr std::array<int, kSizes.nodes> kNodeIds{{";
   for (std::size_t i = 0; i < m.node_ids.size(); ++i) {
     o += (i ? (i % 20 == 0 ? ",\n    " : ", ") : "") + std::to_string(m.node_ids[i]);

@@ -19,8 +19,10 @@
 #include <utility>
 
 #include "ntn/beam.hpp"
+#include "ntn/hinge.hpp"
 #include "ntn/model.hpp"
 #include "ntn/modelc/emit_header.hpp"
+#include "ntn/modelc/hinge_checks.hpp"
 #include "ntn/time_step.hpp"
 
 namespace ntn::modelc {
@@ -34,6 +36,11 @@ const std::vector<std::string_view> kDofNames = {"ux", "uy", "uz", "rx", "ry", "
 const std::vector<std::string_view> kDirections3 = {"x", "y", "z"};
 const std::vector<std::string_view> kReactionDirections = {"x", "y", "z", "rx", "ry", "rz"};
 const std::vector<std::string_view> kComponents = {"N", "Vy", "Vz", "T", "My", "Mz"};
+const std::vector<std::string_view> kHingeMethods = {"ntn_exact", "ntn_paper", "penalty"};
+const std::vector<std::string_view> kClampRules = {"momentum", "paper"};
+constexpr double kCoincident = 1e-9;    // m: hinge nodes closer than this coincide
+constexpr double kOrthonormal = 1e-9;   // hinge axes: |R R^T - I| and |det R - 1| at most this
+constexpr double kPenaltyFactor = 1e4;  // default penalty stiffness / largest element stiffness
 
 std::string num(double v) {
   char buf[40];
@@ -108,6 +115,12 @@ class Loader {
   void error_at_start(const std::string& key, std::string message) {
     errors_.push_back({file_, 1, 1, key, std::move(message)});
   }
+  void note(const Where& w, std::string message) {
+    notes_.push_back({file_, std::max(1, static_cast<int>(w.region.begin.line)),
+                      std::max(1, static_cast<int>(w.region.begin.column)), w.key,
+                      std::move(message), Severity::kNote});
+  }
+  std::vector<Diagnostic> take_notes() { return std::move(notes_); }
   bool failed() const { return !errors_.empty(); }
   std::vector<Diagnostic> take_errors() {
     std::stable_sort(errors_.begin(), errors_.end(), [](const Diagnostic& a, const Diagnostic& b) {
@@ -219,6 +232,7 @@ class Loader {
  private:
   std::string file_;
   std::vector<Diagnostic> errors_;
+  std::vector<Diagnostic> notes_;
 };
 
 enum class Need { kRequired, kOptional };
@@ -349,6 +363,20 @@ struct UserNode {
   double x = 0, y = 0, z = 0;
 };
 
+// One local direction of a hinge or release as the file gives it.
+struct BehaviourIn {
+  HingeBehaviour kind = HingeBehaviour::kRigid;
+  double k = 0, c = 0;        // kLinear
+  std::optional<IdAt> curve;  // kCurve
+  Where at;                   // the value that set it (for curve errors)
+};
+using Behaviours = std::array<BehaviourIn, kDofsPerNode>;
+
+struct Release {
+  Behaviours dirs;
+  Where at;  // the release_start / release_end value
+};
+
 struct Member {
   IdAt id;
   std::vector<long long> nodes;
@@ -358,12 +386,36 @@ struct Member {
   std::optional<std::array<double, 3>> orientation;
   Where orientation_at;
   double roll_deg = 0;
+  std::optional<Release> release[2];  // start, end
 };
 
 struct Support {
   long long node = 0;
   Where at;
   std::uint8_t fixed = 0;
+  std::optional<std::array<double, 9>> axes;  // a support with its own frame: a ground hinge
+  Where axes_at;
+};
+
+struct Curve {
+  IdAt id;
+  std::vector<CurvePoint> points;
+  Where points_at;
+};
+
+enum class FrameKind { kGlobal, kMember, kAxes };
+
+struct HingeIn {
+  IdAt id;
+  long long node1 = 0;
+  std::optional<long long> node2;  // none: the ground
+  Where nodes_at;
+  FrameKind frame = FrameKind::kGlobal;
+  IdAt frame_member;
+  std::array<double, 9> axes{};
+  bool eccentric = false;
+  Where eccentric_at;
+  Behaviours dirs;
 };
 
 struct PointMass {
@@ -394,7 +446,7 @@ struct Input {
   double scale = 1, min = -1e300, max = 1e300;
 };
 
-enum class OutKind { kNode, kElementForce, kDrift, kReaction };
+enum class OutKind { kNode, kElementForce, kDrift, kReaction, kHinge };
 
 struct Output {
   IdAt name;
@@ -406,6 +458,7 @@ struct Output {
   Where dof_at;
   IdAt member;
   int end = 0;
+  IdAt hinge;  // kHinge
 };
 
 struct ModelTable {
@@ -419,6 +472,11 @@ struct ModelTable {
   std::optional<IdAt> gravity_function;
   double alpha = 0;
   double damping_ratio = 0, damping_frequency = 0;
+  HingeMethod hinge_method = HingeMethod::kNtnExact;
+  ClampRule clamp = ClampRule::kMomentum;
+  std::optional<double> penalty_stiffness, penalty_rotational_stiffness;
+  std::optional<double> limit_stiffness, limit_rotational_stiffness;
+  Where hinge_method_at;
 };
 
 struct Parsed {
@@ -433,6 +491,8 @@ struct Parsed {
   std::vector<Load> loads;
   std::vector<Input> inputs;
   std::vector<Output> outputs;
+  std::vector<Curve> curves;
+  std::vector<HingeIn> hinges;
 };
 
 std::optional<IdAt> read_id(Table& t, std::string_view k, Need need = Need::kRequired) {
@@ -476,7 +536,8 @@ void read_model(Loader& L, const toml::table& root, ModelTable& m) {
   }
   Table t(L, *mt, "model",
           {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
-           "allow_unstable", "damping"});
+           "allow_unstable", "damping", "hinge_method", "clamp", "penalty_stiffness",
+           "penalty_rotational_stiffness", "limit_stiffness", "limit_rotational_stiffness"});
   t.check_unknown();
   if (auto name = t.string("name", Need::kRequired)) {
     if (is_cpp_identifier(*name)) {
@@ -509,6 +570,16 @@ void read_model(Loader& L, const toml::table& root, ModelTable& m) {
   if (auto b = t.boolean("allow_unstable", Need::kOptional)) m.allow_unstable = *b;
   if (auto g = t.numbers("gravity", Need::kOptional, 3)) m.gravity = {(*g)[0], (*g)[1], (*g)[2]};
   m.gravity_function = read_id(t, "gravity_function", Need::kOptional);
+  if (auto hm = t.choice("hinge_method", Need::kOptional, kHingeMethods)) {
+    m.hinge_method = static_cast<HingeMethod>(*hm);
+  }
+  m.hinge_method_at = t.where("hinge_method");
+  if (auto c = t.choice("clamp", Need::kOptional, kClampRules))
+    m.clamp = static_cast<ClampRule>(*c);
+  m.penalty_stiffness = t.positive("penalty_stiffness", Need::kOptional);
+  m.penalty_rotational_stiffness = t.positive("penalty_rotational_stiffness", Need::kOptional);
+  m.limit_stiffness = t.positive("limit_stiffness", Need::kOptional);
+  m.limit_rotational_stiffness = t.positive("limit_rotational_stiffness", Need::kOptional);
 
   if (const toml::node* d = t.get("damping", Need::kOptional)) {
     const auto* dt = d->as_table();
@@ -536,11 +607,162 @@ void read_model(Loader& L, const toml::table& root, ModelTable& m) {
   }
 }
 
+static_assert(static_cast<int>(HingeMethod::kNtnExact) == 0 &&
+              static_cast<int>(HingeMethod::kNtnPaper) == 1 &&
+              static_cast<int>(HingeMethod::kPenalty) == 2);  // the order of kHingeMethods
+static_assert(static_cast<int>(ClampRule::kMomentum) == 0 &&
+              static_cast<int>(ClampRule::kPaper) == 1);  // the order of kClampRules
+
+// One hinge direction: "rigid", "free", { linear = k, dashpot = c } or { curve = "id" }.
+std::optional<BehaviourIn> read_behaviour(Loader& L, const toml::node& n, const std::string& key) {
+  BehaviourIn b;
+  b.at = {n.source(), key};
+  const std::string what =
+      "must be \"rigid\", \"free\", { linear = k, dashpot = c } or { curve = \"id\" }";
+  if (const auto* s = n.as_string()) {
+    if (s->get() == "rigid" || s->get() == "free") {
+      b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
+      return b;
+    }
+    L.error(n.source(), key, what + " (got \"" + s->get() + "\")");
+    return std::nullopt;
+  }
+  const auto* t = n.as_table();
+  if (t == nullptr) {
+    L.error(n.source(), key, what + ", got " + type_name(n));
+    return std::nullopt;
+  }
+  Table tb(L, *t, key, {"linear", "dashpot", "curve"});
+  tb.check_unknown();
+  if (tb.conflict("linear", "curve")) return std::nullopt;
+  if (tb.has("curve")) {
+    if (tb.has("dashpot")) {
+      L.error(tb.where("dashpot"), "only applies with 'linear'");
+      return std::nullopt;
+    }
+    auto c = read_id(tb, "curve");
+    if (!c) return std::nullopt;
+    b.kind = HingeBehaviour::kCurve;
+    b.curve = *c;
+    return b;
+  }
+  const toml::node* k = tb.get("linear", Need::kRequired, " (or give curve = \"id\")");
+  if (k == nullptr) return std::nullopt;
+  const auto kv = L.non_negative(*k, tb.key("linear"));
+  const auto cv = tb.non_negative("dashpot", Need::kOptional);
+  if (!kv || (!cv && tb.has("dashpot"))) return std::nullopt;
+  b.kind = HingeBehaviour::kLinear;
+  b.k = *kv;
+  b.c = cv.value_or(0.0);
+  return b;
+}
+
+// release_start / release_end: an array of DOF names (those free, the rest rigid), or a table
+// of behaviours per direction (those not named rigid).
+std::optional<Release> read_release(Loader& L, const toml::node& n, const std::string& key) {
+  Release r;
+  r.at = {n.source(), key};
+  for (BehaviourIn& d : r.dirs)
+    d.at = r.at;
+  if (const auto* a = n.as_array()) {
+    if (a->empty()) {
+      L.error(n.source(), key,
+              "expected at least one DOF name to release (" + quoted_list(kDofNames) + ")");
+      return std::nullopt;
+    }
+    bool ok = true;
+    unsigned seen = 0;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string ik = key + "[" + std::to_string(i) + "]";
+      const auto d = L.choice((*a)[i], ik, kDofNames);
+      if (!d) {
+        ok = false;
+      } else if ((seen >> *d) & 1U) {
+        L.error(
+            (*a)[i].source(), ik,
+            "\"" + std::string(kDofNames[static_cast<std::size_t>(*d)]) + "\" is released twice");
+        ok = false;
+      } else {
+        seen |= 1U << *d;
+        r.dirs[static_cast<std::size_t>(*d)].kind = HingeBehaviour::kFree;
+        r.dirs[static_cast<std::size_t>(*d)].at = {(*a)[i].source(), ik};
+      }
+    }
+    if (!ok) return std::nullopt;
+    return r;
+  }
+  if (const auto* t = n.as_table()) {
+    Table tb(L, *t, key, kDofNames);
+    tb.check_unknown();
+    if (t->empty()) {
+      L.error(n.source(), key, "expected at least one direction (" + plain_list(kDofNames) + ")");
+      return std::nullopt;
+    }
+    bool ok = true;
+    for (std::size_t d = 0; d < kDofNames.size(); ++d) {
+      const toml::node* v = tb.get(kDofNames[d], Need::kOptional);
+      if (v == nullptr) continue;
+      auto b = read_behaviour(L, *v, tb.key(kDofNames[d]));
+      if (b) {
+        r.dirs[d] = *b;
+      } else {
+        ok = false;
+      }
+    }
+    if (!ok) return std::nullopt;
+    return r;
+  }
+  L.error(n.source(), key,
+          "must be an array of DOF names (released: free) or a table of behaviours per "
+          "direction, got " +
+              type_name(n));
+  return std::nullopt;
+}
+
+// Hinge axes: rows x, y, z in global axes, orthonormal and right-handed to 1e-9.
+std::optional<std::array<double, 9>> read_axes(Loader& L, const toml::node& n,
+                                               const std::string& key) {
+  auto rows =
+      L.array_of<std::vector<double>>(n, key, 3, [&L](const toml::node& e, const std::string& ek) {
+        return L.array_of<double>(
+            e, ek, 3, [&L](const toml::node& x, const std::string& xk) { return L.number(x, xk); });
+      });
+  if (!rows) return std::nullopt;
+  std::array<double, 9> R{};
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t c = 0; c < 3; ++c)
+      R[3 * r + c] = (*rows)[r][c];
+  double worst = 0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    for (std::size_t b = 0; b < 3; ++b) {
+      const double dot =
+          R[3 * a] * R[3 * b] + R[3 * a + 1] * R[3 * b + 1] + R[3 * a + 2] * R[3 * b + 2];
+      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
+    }
+  }
+  if (!(worst < kOrthonormal)) {
+    L.error(n.source(), key,
+            "axes must be orthonormal to 1e-9 (rows x, y, z of unit length, at right angles): "
+            "the largest entry of |R R^T - I| is " +
+                num(worst));
+    return std::nullopt;
+  }
+  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+                     R[2] * (R[3] * R[7] - R[4] * R[6]);
+  if (!(det > 0)) {
+    L.error(n.source(), key,
+            "axes must be right-handed (z = x cross y); these have det = " + num(det) +
+                ": turn the z row round");
+    return std::nullopt;
+  }
+  return R;
+}
+
 void read_tables(Loader& L, const toml::table& root, Parsed& p) {
   {
     Table top(L, root, "",
               {"model", "materials", "sections", "nodes", "members", "supports", "point_masses",
-               "time_functions", "loads", "inputs", "outputs"});
+               "time_functions", "loads", "inputs", "outputs", "curves", "hinges"});
     top.check_unknown();
   }
   read_model(L, root, p.model);
@@ -615,9 +837,16 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
 
   for_each_table(L, root, "members", [&](const toml::table& tt, const std::string& path) {
     Table t(L, tt, path,
-            {"id", "nodes", "material", "section", "divisions", "orientation", "roll"});
+            {"id", "nodes", "material", "section", "divisions", "orientation", "roll",
+             "release_start", "release_end"});
     t.check_unknown();
     Member m;
+    for (std::size_t e = 0; e < 2; ++e) {
+      const std::string_view k = e == 0 ? "release_start" : "release_end";
+      if (const toml::node* r = t.get(k, Need::kOptional)) {
+        m.release[e] = read_release(L, *r, t.key(k));
+      }
+    }
     auto id = read_id(t, "id");
     auto nodes = t.node_ids("nodes", Need::kRequired, 2);
     auto mat = read_id(t, "material");
@@ -651,9 +880,14 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
   });
 
   for_each_table(L, root, "supports", [&](const toml::table& tt, const std::string& path) {
-    Table t(L, tt, path, {"node", "fix"});
+    Table t(L, tt, path, {"node", "fix", "axes"});
     t.check_unknown();
     auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    std::optional<std::array<double, 9>> axes;
+    if (const toml::node* ax = t.get("axes", Need::kOptional)) {
+      axes = read_axes(L, *ax, t.key("axes"));
+      if (!axes) return;
+    }
     const toml::node* fix = t.get("fix", Need::kRequired);
     std::optional<std::uint8_t> bits;
     if (fix != nullptr) {
@@ -685,7 +919,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       }
     }
     if (!node || !bits) return;
-    p.supports.push_back({*node, t.where("node"), *bits});
+    p.supports.push_back({*node, t.where("node"), *bits, axes, t.where("axes")});
   });
 
   for_each_table(L, root, "point_masses", [&](const toml::table& tt, const std::string& path) {
@@ -820,9 +1054,10 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
 
   for_each_table(L, root, "outputs", [&](const toml::table& tt, const std::string& path) {
     Output o;
-    const std::vector<std::string_view> kinds = {"displacement",         "velocity", "acceleration",
-                                                 "element_force",        "drift",    "reaction",
-                                                 "absolute_acceleration"};
+    const std::vector<std::string_view> kinds = {
+        "displacement",          "velocity",    "acceleration",
+        "element_force",         "drift",       "reaction",
+        "absolute_acceleration", "hinge_force", "hinge_displacement"};
     Table head(L, tt, path, {});
     auto name = read_id(head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
@@ -861,6 +1096,16 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       if (nodes) o.nodes = *nodes, o.nodes_at = t.where("nodes");
       if (dir) o.dof = *dir;
       ok = ok && nodes && dir;
+    } else if (*kind >= 7) {
+      Table t(L, tt, path, {"name", "kind", "hinge", "direction"});
+      t.check_unknown();
+      o.kind = OutKind::kHinge;
+      o.node_kind = *kind == 7 ? OutputKind::kHingeForce : OutputKind::kHingeDisplacement;
+      auto hinge = read_id(t, "hinge");
+      auto dir = t.choice("direction", Need::kRequired, kDofNames);
+      if (hinge) o.hinge = *hinge;
+      if (dir) o.dof = *dir;
+      ok = ok && hinge && dir;
     } else {
       Table t(L, tt, path, {"name", "kind", "direction"});
       t.check_unknown();
@@ -872,6 +1117,132 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     if (!ok) return;
     o.name = *name;
     p.outputs.push_back(o);
+  });
+
+  for_each_table(L, root, "curves", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path, {"id", "points"});
+    t.check_unknown();
+    auto id = read_id(t, "id");
+    const toml::node* pts = t.get("points", Need::kRequired);
+    if (pts == nullptr) return;
+    const std::string pkey = t.key("points");
+    const auto* a = pts->as_array();
+    if (a == nullptr || a->size() < 2) {
+      L.error(pts->source(), pkey,
+              "expected an array of at least 2 [d, force] points, got " +
+                  (a ? std::to_string(a->size()) + (a->size() == 1 ? " point" : " points")
+                     : type_name(*pts)));
+      return;
+    }
+    Curve c;
+    bool ok = true;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string k = pkey + "[" + std::to_string(i) + "]";
+      auto df = L.array_of<double>((*a)[i], k, 2, [&L](const toml::node& e, const std::string& ek) {
+        return L.number(e, ek);
+      });
+      if (!df) {
+        ok = false;
+        continue;
+      }
+      if (!c.points.empty() && !((*df)[0] > c.points.back().d)) {
+        L.error((*a)[i].source(), k,
+                "d = " + num((*df)[0]) + " does not come after the previous point's d = " +
+                    num(c.points.back().d) + ": deformations must increase strictly");
+        ok = false;
+      }
+      c.points.push_back({(*df)[0], (*df)[1]});
+    }
+    if (!id || !ok) return;
+    c.id = *id;
+    c.points_at = t.where("points");
+    p.curves.push_back(c);
+  });
+
+  for_each_table(L, root, "hinges", [&](const toml::table& tt, const std::string& path) {
+    Table t(L, tt, path,
+            {"id", "nodes", "frame", "axes", "eccentric", "ux", "uy", "uz", "rx", "ry", "rz"});
+    t.check_unknown();
+    HingeIn h;
+    auto id = read_id(t, "id");
+    bool ok = id.has_value();
+    if (const toml::node* nn = t.get("nodes", Need::kRequired)) {
+      const std::string nkey = t.key("nodes");
+      h.nodes_at = t.where("nodes");
+      const auto* a = nn->as_array();
+      if (a == nullptr || a->size() != 2) {
+        L.error(nn->source(), nkey,
+                "expected [node 1, node 2] (node 2 may be \"ground\"), got " +
+                    (a ? std::to_string(a->size()) + (a->size() == 1 ? " value" : " values")
+                       : type_name(*nn)));
+        ok = false;
+      } else {
+        auto n1 = L.integer((*a)[0], nkey + "[0]", 0, kMaxNodeId);
+        if (n1) h.node1 = *n1;
+        ok = ok && n1;
+        const toml::node& second = (*a)[1];
+        if (const auto* s = second.as_string()) {
+          if (s->get() != "ground") {
+            L.error(second.source(), nkey + "[1]",
+                    "must be a node id or \"ground\" (got \"" + s->get() + "\")");
+            ok = false;
+          }
+        } else {
+          auto n2 = L.integer(second, nkey + "[1]", 0, kMaxNodeId);
+          if (n2) h.node2 = *n2;
+          ok = ok && n2;
+        }
+      }
+    } else {
+      ok = false;
+    }
+    if (t.conflict("frame", "axes")) {
+      ok = false;
+    } else if (const toml::node* f = t.get("frame", Need::kOptional)) {
+      const std::string fkey = t.key("frame");
+      const std::string what = "must be \"global\" or { member = \"id\" } (or give axes)";
+      if (const auto* s = f->as_string()) {
+        if (s->get() != "global") {
+          L.error(f->source(), fkey, what + ", got \"" + s->get() + "\"");
+          ok = false;
+        }
+      } else if (const auto* ft = f->as_table()) {
+        Table fr(L, *ft, fkey, {"member"});
+        fr.check_unknown();
+        auto m = read_id(fr, "member");
+        if (m) {
+          h.frame = FrameKind::kMember;
+          h.frame_member = *m;
+        }
+        ok = ok && m;
+      } else {
+        L.error(f->source(), fkey, what + ", got " + type_name(*f));
+        ok = false;
+      }
+    } else if (const toml::node* ax = t.get("axes", Need::kOptional)) {
+      auto R = read_axes(L, *ax, t.key("axes"));
+      if (R) {
+        h.frame = FrameKind::kAxes;
+        h.axes = *R;
+      }
+      ok = ok && R;
+    }
+    if (auto e = t.boolean("eccentric", Need::kOptional)) h.eccentric = *e;
+    h.eccentric_at = t.where("eccentric");
+    for (std::size_t d = 0; d < kDofNames.size(); ++d) {
+      h.dirs[d].at = t.where("nodes");
+      const toml::node* v = t.get(kDofNames[d], Need::kOptional);
+      if (v == nullptr) continue;
+      auto b = read_behaviour(L, *v, t.key(kDofNames[d]));
+      if (b) {
+        h.dirs[d] = *b;
+      } else {
+        ok = false;
+      }
+    }
+    if (!ok) return;
+    h.id = *id;
+    p.hinges.push_back(h);
   });
 }
 
@@ -909,6 +1280,12 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
   s.gravity = p.model.gravity;
   s.rotary_inertia = p.model.rotary_inertia;
   s.allow_unstable = p.model.allow_unstable;
+  s.hinge_method = p.model.hinge_method;
+  s.clamp = p.model.clamp;
+  d.penalty_stiffness_given = p.model.penalty_stiffness.has_value();
+  d.penalty_rotational_stiffness_given = p.model.penalty_rotational_stiffness.has_value();
+  d.limit_stiffness_given = p.model.limit_stiffness.has_value();
+  d.limit_rotational_stiffness_given = p.model.limit_rotational_stiffness.has_value();
 
   const auto materials = index_by_id(
       L, p.materials, [](const Material& m) -> const IdAt& { return m.id; }, "material id");
@@ -923,6 +1300,10 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
       L, p.inputs, [](const Input& x) -> const IdAt& { return x.name; }, "input name");
   index_by_id(
       L, p.outputs, [](const Output& x) -> const IdAt& { return x.name; }, "output name");
+  const auto curve_index = index_by_id(
+      L, p.curves, [](const Curve& x) -> const IdAt& { return x.id; }, "curve id");
+  std::map<std::string, int> hinge_index = index_by_id(
+      L, p.hinges, [](const HingeIn& x) -> const IdAt& { return x.id; }, "hinge id");
   std::map<long long, int> node_index;
   for (std::size_t i = 0; i < p.nodes.size(); ++i) {
     const UserNode& n = p.nodes[i];
@@ -959,6 +1340,24 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
   if (p.model.gravity_function) {
     s.gravity_function = ref(functions, *p.model.gravity_function, "time function");
   }
+
+  // Force-deformation curves, concatenated like time functions.
+  for (const Curve& c : p.curves) {
+    d.curves.push_back(
+        {static_cast<int>(d.curve_points.size()), static_cast<int>(c.points.size())});
+    d.curve_points.insert(d.curve_points.end(), c.points.begin(), c.points.end());
+    d.curve_ids.push_back(c.id.id);
+  }
+
+  // Hinges are collected with where they came from (for later errors), and added in order:
+  // explicit, member-end releases, supports with axes.
+  struct PendingHinge {
+    HingeSpec spec;
+    HingeInfo info;
+    const Behaviours* dirs = nullptr;  // nullptr: behaviours already set (supports)
+    Where at;                          // the key that made the hinge
+  };
+  std::vector<PendingHinge> releases;
 
   // User nodes first, in file order; generated nodes follow, member by member.
   for (const UserNode& n : p.nodes) {
@@ -1063,7 +1462,144 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
       d.element_member.push_back(static_cast<int>(mi));
       prev = next;
     }
+    // Member-end releases: a node at the end, coincident with the joint, takes the end element;
+    // a hinge in the member's local axes (the end element's rotation) joins it to the joint.
+    for (int end = 0; end < 2; ++end) {
+      if (!m.release[end]) continue;
+      const int joint = end == 0 ? a : b;
+      const int el_index =
+          end == 0 ? info.first_element : info.first_element + info.element_count - 1;
+      NodeSpec rn;
+      rn.x = d.nodes[static_cast<std::size_t>(joint)].x;
+      rn.y = d.nodes[static_cast<std::size_t>(joint)].y;
+      rn.z = d.nodes[static_cast<std::size_t>(joint)].z;
+      const int rnode = static_cast<int>(d.nodes.size());
+      d.nodes.push_back(rn);
+      d.node_ids.push_back(kGeneratedNode);
+      ElementSpec& el = d.elements[static_cast<std::size_t>(el_index)];
+      (end == 0 ? el.node_i : el.node_j) = rnode;
+      PendingHinge ph;
+      ph.spec.node1 = rnode;
+      ph.spec.node2 = joint;
+      ph.spec.frame = beam_geometry(d.nodes[static_cast<std::size_t>(el.node_i)],
+                                    d.nodes[static_cast<std::size_t>(el.node_j)], el)
+                          .rotation;
+      ph.info = {m.id.id + (end == 0 ? ".start" : ".end"), HingeOrigin::kRelease,
+                 static_cast<int>(d.members.size()), end};
+      ph.dirs = &m.release[end]->dirs;
+      ph.at = m.release[end]->at;
+      releases.push_back(ph);
+      (end == 0 ? info.start_release_node : info.end_release_node) = rnode;
+    }
     d.members.push_back(info);
+  }
+
+  // Hinges. Directions: a curve reference resolves to its index.
+  std::vector<Where> hinge_at;                          // per hinge: the key that made it
+  std::vector<std::array<Where, kDofsPerNode>> dir_at;  // per hinge and direction
+  auto set_dirs = [&](HingeSpec& hs, const Behaviours& dirs) {
+    bool ok = true;
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      const BehaviourIn& b = dirs[k];
+      hs.behaviour[k] = b.kind;
+      if (b.kind == HingeBehaviour::kLinear) hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
+      if (b.kind == HingeBehaviour::kCurve) {
+        hs.curve[k] = ref(curve_index, *b.curve, "curve");
+        ok = ok && hs.curve[k] >= 0;
+      }
+    }
+    return ok;
+  };
+  auto add_hinge = [&](const HingeSpec& hs, const HingeInfo& info, const Where& at,
+                       const Behaviours* dirs) {
+    if (info.origin != HingeOrigin::kExplicit) {
+      const auto [it, inserted] = hinge_index.emplace(info.name, static_cast<int>(d.hinges.size()));
+      if (!inserted && it->second < static_cast<int>(p.hinges.size())) {
+        L.error(p.hinges[static_cast<std::size_t>(it->second)].id.at,
+                "hinge id '" + info.name + "' is also the name of the " +
+                    (info.origin == HingeOrigin::kRelease ? "member-end release"
+                                                          : "support with axes") +
+                    " at " + at.key + ": choose another id");
+      }
+    }
+    std::array<Where, kDofsPerNode> w;
+    for (std::size_t k = 0; k < kDofsPerNode; ++k)
+      w[k] = dirs != nullptr ? (*dirs)[k].at : at;
+    d.hinges.push_back(hs);
+    d.hinge_info.push_back(info);
+    hinge_at.push_back(at);
+    dir_at.push_back(w);
+  };
+
+  for (const HingeIn& h : p.hinges) {
+    HingeSpec hs;
+    bool ok = true;
+    hs.node1 = node_ref(h.node1, h.nodes_at);
+    hs.node2 = h.node2 ? node_ref(*h.node2, h.nodes_at) : kGround;
+    ok = hs.node1 >= 0 && (hs.node2 >= 0 || !h.node2);
+    if (ok && hs.node1 == hs.node2) {
+      L.error(h.nodes_at,
+              "a hinge joins two different nodes; both are node " + std::to_string(h.node1));
+      ok = false;
+    }
+    if (h.frame == FrameKind::kAxes) {
+      hs.frame = h.axes;
+    } else if (h.frame == FrameKind::kMember) {
+      if (ref(members, h.frame_member, "member") < 0) {
+        ok = false;
+      } else {
+        // Geometry errors leave a member without elements (already reported).
+        const auto it = std::find_if(d.members.begin(), d.members.end(), [&](const MemberInfo& mi) {
+          return mi.name == h.frame_member.id;
+        });
+        if (it == d.members.end()) {
+          ok = false;
+        } else {
+          const ElementSpec& el = d.elements[static_cast<std::size_t>(it->first_element)];
+          hs.frame = beam_geometry(d.nodes[static_cast<std::size_t>(el.node_i)],
+                                   d.nodes[static_cast<std::size_t>(el.node_j)], el)
+                         .rotation;
+        }
+      }
+    }
+    if (ok && hs.node2 == kGround && h.eccentric) {
+      L.error(h.eccentric_at,
+              "a hinge to the ground cannot be eccentric (the ground has no position): leave out "
+              "eccentric");
+      ok = false;
+    } else if (ok && hs.node2 != kGround) {
+      const NodeSpec& n1 = d.nodes[static_cast<std::size_t>(hs.node1)];
+      const NodeSpec& n2 = d.nodes[static_cast<std::size_t>(hs.node2)];
+      const std::array<double, 3> e{n2.x - n1.x, n2.y - n1.y, n2.z - n1.z};
+      const double dist = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      if (!h.eccentric && dist > kCoincident) {
+        L.error(h.nodes_at, "nodes " + std::to_string(h.node1) + " and " +
+                                std::to_string(*h.node2) + " do not coincide (they are " +
+                                num(dist) +
+                                " m apart): set eccentric = true for an eccentric hinge (e = x2 - "
+                                "x1), or give the nodes the same position");
+        ok = false;
+      } else if (h.eccentric) {
+        hs.eccentricity = e;
+        if (dist > 0 && s.hinge_method == HingeMethod::kNtnPaper) {
+          L.error(h.eccentric_at, "an eccentric hinge (e = (" + num(e[0]) + ", " + num(e[1]) +
+                                      ", " + num(e[2]) +
+                                      ") m) needs hinge_method = \"ntn_exact\" or \"penalty\": "
+                                      "the seed's algorithm (\"ntn_paper\", S 17-37) has no "
+                                      "eccentricity");
+          ok = false;
+        }
+      }
+    }
+    ok = set_dirs(hs, h.dirs) && ok;
+    if (!ok) continue;
+    add_hinge(hs, {h.id.id, HingeOrigin::kExplicit, -1, 0}, h.nodes_at, &h.dirs);
+  }
+  for (PendingHinge& ph : releases) {
+    if (!set_dirs(ph.spec, *ph.dirs)) continue;
+    MemberInfo& mi = d.members[static_cast<std::size_t>(ph.info.member)];
+    (ph.info.end == 0 ? mi.start_hinge : mi.end_hinge) = static_cast<int>(d.hinges.size());
+    add_hinge(ph.spec, ph.info, ph.at, ph.dirs);
   }
 
   // Supports.
@@ -1078,6 +1614,20 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
                          std::to_string(
                              line_of(p.supports[static_cast<std::size_t>(it->second)].at.region)) +
                          ")");
+      continue;
+    }
+    if (sp.axes) {
+      // A support with its own frame is a hinge to the ground: rigid in the fixed local
+      // directions, free in the others (DESIGN §7.1); the node's own support bits stay 0.
+      HingeSpec hs;
+      hs.node1 = n;
+      hs.node2 = kGround;
+      hs.frame = *sp.axes;
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        hs.behaviour[k] = ((sp.fixed >> k) & 1U) ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
+      }
+      add_hinge(hs, {"support." + std::to_string(sp.node), HingeOrigin::kSupport, -1, 0},
+                sp.axes_at, nullptr);
       continue;
     }
     d.nodes[static_cast<std::size_t>(n)].fixed = sp.fixed;
@@ -1169,6 +1719,24 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
         units = "-";
         break;
       }
+      case OutKind::kHinge: {
+        os.kind = o.node_kind;
+        const auto it = hinge_index.find(o.hinge.id);
+        if (it == hinge_index.end()) {
+          L.error(o.hinge.at, "unknown hinge '" + o.hinge.id +
+                                  "' (hinges are named by their id, <member>.start and "
+                                  "<member>.end for releases, support.<node id> for supports "
+                                  "with axes)");
+          continue;
+        }
+        os.hinge = it->second;
+        if (o.node_kind == OutputKind::kHingeForce) {
+          units = o.dof < 3 ? "N" : "N m";
+        } else {
+          units = o.dof < 3 ? "m" : "rad";
+        }
+        break;
+      }
       case OutKind::kReaction: {
         os.kind = OutputKind::kReaction;
         const bool held = std::any_of(d.nodes.begin(), d.nodes.end(), [&](const NodeSpec& n) {
@@ -1191,10 +1759,33 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
 
   if (L.failed()) return std::nullopt;
 
-  // Pass 3: mass, from the kernel's lumped mass.
+  // Pass 3: rigid cycles (topology only), then mass from the kernel's lumped mass, curves
+  // against the limit stiffness, effective mass, and the time step.
+  auto node_name = [&](int n) { return n == kGround ? std::string("ground") : d.describe_node(n); };
+  for (const RigidCycle& c : rigid_cycles(d.view())) {
+    std::string path;
+    for (int n : c.nodes)
+      path += node_name(n) + " - ";
+    path += node_name(c.nodes.front());
+    L.error(hinge_at[static_cast<std::size_t>(c.hinge)],
+            d.describe_hinge(c.hinge) + " closes a cycle of rigid connections: " + path +
+                ". A node can hang from one chain of rigid hinge directions only, and a "
+                "supported node counts as joined to the ground: make a direction of one of "
+                "these hinges free or a spring, or leave one out");
+  }
+  if (L.failed()) return std::nullopt;
+
   std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * d.nodes.size());
   assemble_lumped_mass(d.view(), mass);
-  for (std::size_t i = 0; i < p.nodes.size(); ++i) {  // generated nodes always have mass
+  std::vector<bool> hinged(d.nodes.size(), false);
+  for (const HingeSpec& h : d.hinges) {
+    hinged[static_cast<std::size_t>(h.node1)] = true;
+    if (h.node2 != kGround) hinged[static_cast<std::size_t>(h.node2)] = true;
+  }
+  // A node no hinge touches gets its mass from elements and point masses only; generated
+  // nodes always have elements.
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+    if (hinged[i]) continue;
     std::string missing;
     for (int k = 0; k < kDofsPerNode; ++k) {
       const bool held = ((d.nodes[i].fixed >> k) & 1U) != 0;
@@ -1212,16 +1803,143 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
   }
   if (L.failed()) return std::nullopt;
 
-  // Time step (DESIGN §6): the element eigenvalue bound, with damping.
-  d.stable = stable_time_step(d.view());
+  // Penalty and limit stiffness: given, or kPenaltyFactor x the stiffest element term (axial
+  // EA/l; bending 4EI/l with the larger I). The limit default does not follow a given penalty
+  // stiffness, so that which curve segments are rigid never depends on the method.
+  double axial = 0, bending = 0;
+  for (const ElementSpec& e : d.elements) {
+    const double l = beam_geometry(d.nodes[static_cast<std::size_t>(e.node_i)],
+                                   d.nodes[static_cast<std::size_t>(e.node_j)], e)
+                         .length;
+    axial = std::max(axial, e.E * e.A / l);
+    bending = std::max(bending, 4.0 * e.E * std::max(e.Iy, e.Iz) / l);
+  }
+  s.penalty_stiffness = p.model.penalty_stiffness.value_or(kPenaltyFactor * axial);
+  s.penalty_rotational_stiffness =
+      p.model.penalty_rotational_stiffness.value_or(kPenaltyFactor * bending);
+  s.limit_stiffness = p.model.limit_stiffness.value_or(kPenaltyFactor * axial);
+  s.limit_rotational_stiffness =
+      p.model.limit_rotational_stiffness.value_or(kPenaltyFactor * bending);
+
+  // Curves in use: a spring part (segments softer than the limit stiffness) that contains
+  // d = 0, where every run starts, with rigid branches (slope >= limit) only at the ends.
+  for (std::size_t hi = 0; hi < d.hinges.size(); ++hi) {
+    const HingeSpec& h = d.hinges[hi];
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (h.behaviour[k] != HingeBehaviour::kCurve) continue;
+      const int ci = h.curve[k];
+      const CurveSpec& cs = d.curves[static_cast<std::size_t>(ci)];
+      const CurvePoint* pt = d.curve_points.data() + cs.first;
+      const double k_lim = k < 3 ? s.limit_stiffness : s.limit_rotational_stiffness;
+      const std::string units = k < 3 ? " N/m" : " N m/rad";
+      const std::string name = "curve '" + d.curve_ids[static_cast<std::size_t>(ci)] + "'";
+      const Where& at = dir_at[hi][k];
+      int first = -1, last = -1, inner = -1;
+      for (int g = 0; g + 1 < cs.count; ++g) {
+        const double slope = (pt[g + 1].force - pt[g].force) / (pt[g + 1].d - pt[g].d);
+        if (slope >= k_lim) continue;
+        if (last >= 0 && last != g - 1 && inner < 0) inner = last + 1;
+        if (first < 0) first = g;
+        last = g;
+      }
+      if (first < 0) {
+        L.error(at, name + " has no segment softer than the limit stiffness " + num(k_lim) + units +
+                        ": all of it is a rigid branch. A direction without play is \"rigid\"; "
+                        "for a spring or a gap, add softer segments or raise the limit stiffness");
+        continue;
+      }
+      if (inner >= 0) {
+        L.error(at, name + " has a rigid segment (points " + std::to_string(inner) + " to " +
+                        std::to_string(inner + 1) + ", slope at least the limit stiffness " +
+                        num(k_lim) + units +
+                        ") between softer ones: rigid branches may only end a curve");
+        continue;
+      }
+      const double lower = first > 0 ? pt[first].d : -1e300;
+      const double upper = last < cs.count - 2 ? pt[last + 1].d : 1e300;
+      if (lower > 0 || upper < 0) {
+        auto end = [](double v) { return v <= -1e300 ? "-inf" : v >= 1e300 ? "+inf" : num(v); };
+        L.error(at, name + " has its spring part from d = " + end(lower) + " to " + end(upper) +
+                        ", which does not contain d = 0 where every run starts: a hinge cannot "
+                        "start on a rigid branch");
+      }
+    }
+  }
+  if (L.failed()) return std::nullopt;
+
+  // The kernel must accept every hinge as the compiler built it (same rules, one place to look
+  // when they part).
+  for (std::size_t hi = 0; hi < d.hinges.size(); ++hi) {
+    HingeData hd;
+    if (!make_hinge_data(d.hinges[hi], s, static_cast<int>(d.nodes.size()), d.curves,
+                         d.curve_points, hd)) {
+      L.error(hinge_at[hi], "internal error: the kernel refuses " +
+                                d.describe_hinge(static_cast<int>(hi)) +
+                                " (ntn::make_hinge_data); please report this model");
+    }
+  }
+  if (L.failed()) return std::nullopt;
+
+  // Effective mass with the hinge constraints (config/README.md, "Mass and mechanisms").
+  auto node_at = [&](int n) -> Where {
+    const auto i = static_cast<std::size_t>(n);
+    if (i < p.nodes.size()) return p.nodes[i].at;
+    return {toml::source_region{}, ""};
+  };
+  auto dof_list = [](std::uint8_t bits) {
+    std::string out;
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (((bits >> k) & 1U) == 0) continue;
+      out += (out.empty() ? "" : ", ") + std::string(kDofNames[k]);
+    }
+    return out;
+  };
+  const MassCheck mc = hinge_mass_check(d.view(), mass);
+  for (const MassProblem& mp : mc.springs) {
+    std::string msg = d.describe_node(mp.node) + " has no effective mass in " + dof_list(mp.dofs) +
+                      " (global axes), but a hinge spring, dashpot or curve acts there: an "
+                      "explicit step cannot integrate a massless spring (its frequency is "
+                      "infinite). Give the node a point mass (with inertia for rotations), or make "
+                      "those hinge directions rigid or free";
+    if (mp.penalty) {
+      msg +=
+          ". With hinge_method = \"penalty\" a rigid direction is a stiff spring: penalty "
+          "needs mass on both nodes; give the joint a point mass or use ntn_exact";
+    }
+    L.error(node_at(mp.node), msg);
+  }
+  if (L.failed()) return std::nullopt;
+  d.mechanisms = mc.mechanisms;
+  for (const Mechanism& m : d.mechanisms) {
+    L.note(node_at(m.node), d.describe_node(m.node) +
+                                " has no effective mass and no stiffness in " + dof_list(m.dofs) +
+                                " (global axes): a mechanism (DESIGN §7.1); the kernel holds "
+                                "these DOFs at zero");
+  }
+
+  // Time step (DESIGN §6): the element eigenvalue bound and the hinges' two-node springs, with
+  // damping, for the model's hinge method.
+  d.stable = stable_time_step(d.view(), mass);
+  auto governing = [&](const StableStepReport& r) {
+    if (r.governing_hinge >= 0) {
+      return d.describe_hinge(r.governing_hinge) + ", direction " +
+             std::string(kDofNames[static_cast<std::size_t>(r.hinge_direction)]) +
+             " (a two-node spring, DESIGN §6)";
+    }
+    return d.describe_element(r.governing_element);
+  };
+  if (!(d.stable.dt_stable > 0)) {
+    L.error(p.model.dt_at, "the stable step is zero (set by " + governing(d.stable) +
+                               "): a spring acts on a DOF without mass");
+    return std::nullopt;
+  }
   if (d.dt_auto) {
     s.dt = auto_time_step(d.stable.dt_stable, s.frame_period);
   } else {
     s.dt = d.dt_requested;
     if (s.dt > d.stable.dt_stable && !s.allow_unstable) {
       L.error(p.model.dt_at, "dt = " + num(s.dt) + " s is above the stable step " +
-                                 num(d.stable.dt_stable) + " s set by " +
-                                 d.describe_element(d.stable.governing_element) +
+                                 num(d.stable.dt_stable) + " s set by " + governing(d.stable) +
                                  "; use dt = \"auto\" or a smaller dt");
     }
   }
@@ -1235,7 +1953,11 @@ LoadResult load_parsed(Loader& L, const toml::table& root, const std::string& fi
   LoadResult r;
   if (!L.failed()) r.model = build(L, p, file);
   r.errors = L.take_errors();
-  if (!r.errors.empty()) r.model.reset();
+  if (!r.errors.empty()) {
+    r.model.reset();
+  } else {
+    r.notes = L.take_notes();
+  }
   return r;
 }
 

@@ -10,6 +10,8 @@
 #include <cstdint>
 
 #include "ntn/beam.hpp"
+#include "ntn/constraint_forest.hpp"
+#include "ntn/hinge.hpp"
 #include "ntn/time_step.hpp"
 
 namespace ntn::modelc {
@@ -63,6 +65,21 @@ std::size_t model_size(const Sizes& s) {
   l.scalar<int>();                                                       // gravity_function
   l.scalar<double>();                                                    // dt
   l.scalar<StableStepReport>();                                          // stable
+  const int hinge_nodes = s.hinges > 0 ? s.nodes : 0;                    // kHingeNodes
+  l.array<HingeData>(s.hinges);                                          // hinges
+  l.array<CurvePoint>(s.curve_points);                                   // curve_points
+  l.array<ForestEdge>(s.hinges);                                         // edges
+  l.array<ForestRoot>(s.hinges);                                         // roots
+  l.array<Mat6>(s.hinges);                                               // mass_up
+  l.array<std::int32_t>(s.hinges);                                       // hinge_edge
+  l.array<std::int32_t>(hinge_nodes);                                    // node_tree
+  l.array<std::uint8_t>(hinge_nodes);                                    // held
+  l.scalar<int>();                                                       // num_edges
+  l.scalar<int>();                                                       // num_roots
+  l.scalar<int>();                                                       // held_dofs
+  l.scalar<HingeMethod>();                                               // hinge_method
+  l.scalar<ClampRule>();                                                 // clamp
+  l.scalar<double>();                                                    // inv_dt
   return l.size();
 }
 
@@ -82,12 +99,13 @@ std::size_t state_size(const Sizes& s) {
 std::size_t scratch_size(const Sizes& s) {
   const int dofs = kDofsPerNode * s.nodes;
   Layout l;
-  l.array<double>(dofs);       // p
-  l.array<double>(dofs);       // f
-  l.array<double>(dofs);       // a
-  l.array<double>(s.outputs);  // outputs
-  l.array<double>(3);          // ground
-  l.scalar<double>();          // time
+  l.array<double>(dofs);                     // p
+  l.array<double>(dofs);                     // f
+  l.array<double>(dofs);                     // a
+  l.array<double>(s.hinges > 0 ? dofs : 0);  // r (models with hinges)
+  l.array<double>(s.outputs);                // outputs
+  l.array<double>(3);                        // ground
+  l.scalar<double>();                        // time
   return l.size();
 }
 
@@ -103,6 +121,14 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per node: 6 DOFs x 8 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
   // Scratch: p, f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 8 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
+  // Per hinge: its data and its forest slots (edge, root, mass handed up, hinge -> edge).
+  f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestRoot) + sizeof(Mat6) +
+                sizeof(std::int32_t);
+  // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
+  // held) and the coupled force of its 6 DOFs (Scratch::r).
+  f.per_node_with_hinges =
+      sizeof(std::int32_t) + sizeof(std::uint8_t) + kDofsPerNode * sizeof(double);
+  f.per_curve_point = sizeof(CurvePoint);
   return f;
 }
 

@@ -42,8 +42,33 @@ std::string ModelDescription::describe_node(int node) const {
       return "interior node " + std::to_string(node - m.first_interior_node + 1) + " of member " +
              m.name + " (model node " + std::to_string(node) + ")";
     }
+    if (node == m.start_release_node || node == m.end_release_node) {
+      return std::string(node == m.start_release_node ? "start" : "end") + " of member " + m.name +
+             " (released, model node " + std::to_string(node) + ")";
+    }
   }
   return "model node " + std::to_string(node);
+}
+
+std::string ModelDescription::describe_hinge(int hinge) const {
+  if (hinge < 0 || hinge >= static_cast<int>(hinge_info.size())) return "no hinge";
+  const HingeInfo& h = hinge_info[static_cast<std::size_t>(hinge)];
+  switch (h.origin) {
+    case HingeOrigin::kRelease:
+      return "member-end release " + h.name;
+    case HingeOrigin::kSupport:
+      return "support with axes " + h.name;
+    case HingeOrigin::kExplicit:
+      break;
+  }
+  return "hinge " + h.name;
+}
+
+int ModelDescription::hinge_count(HingeOrigin origin) const {
+  int n = 0;
+  for (const HingeInfo& h : hinge_info)
+    n += h.origin == origin ? 1 : 0;
+  return n;
 }
 
 }  // namespace ntn::modelc

@@ -28,7 +28,29 @@ std::string bytes(std::size_t b) {
   return s;
 }
 
+const char* const kDofName[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+
+const char* method_name(HingeMethod h) {
+  switch (h) {
+    case HingeMethod::kNtnExact:
+      return "ntn_exact (constraint forest, DESIGN 7.1)";
+    case HingeMethod::kNtnPaper:
+      return "ntn_paper (the seed's S 17-37)";
+    case HingeMethod::kPenalty:
+      return "penalty (rigid directions as stiff springs)";
+  }
+  return "?";
+}
+
 }  // namespace
+
+StableStepReport stable_step_with(const ModelDescription& m, HingeMethod method) {
+  SpecView v = m.view();
+  v.settings.hinge_method = method;
+  std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * m.nodes.size());
+  assemble_lumped_mass(v, mass);
+  return stable_time_step(v, mass);
+}
 
 MassTotals mass_totals(const ModelDescription& m) {
   MassTotals t;
@@ -103,6 +125,27 @@ std::string info_text(const ModelDescription& m) {
                         f("%g", s.gravity[2]) + ") m/s^2");
   }
 
+  if (z.hinges > 0) {
+    line("hinges",
+         std::to_string(z.hinges) + ": " + std::to_string(m.hinge_count(HingeOrigin::kExplicit)) +
+             " explicit, " + std::to_string(m.hinge_count(HingeOrigin::kRelease)) +
+             " member-end releases, " + std::to_string(m.hinge_count(HingeOrigin::kSupport)) +
+             " supports with axes; " + std::to_string(z.curves) + " curves (" +
+             std::to_string(z.curve_points) + " points)");
+    line("method", std::string(method_name(s.hinge_method)) + ", clamp " +
+                       (s.clamp == ClampRule::kMomentum ? "momentum" : "paper (S 33)"));
+    const char* def = " (default: 1e4 x largest EA/l)";
+    const char* def_rot = " (default: 1e4 x largest 4EI/l)";
+    line("", "penalty k " + f("%.4g", s.penalty_stiffness) + " N/m" +
+                 (m.penalty_stiffness_given ? "" : def) + ", " +
+                 f("%.4g", s.penalty_rotational_stiffness) + " N m/rad" +
+                 (m.penalty_rotational_stiffness_given ? "" : def_rot));
+    line("", "limit k " + f("%.4g", s.limit_stiffness) + " N/m" +
+                 (m.limit_stiffness_given ? "" : def) + ", " +
+                 f("%.4g", s.limit_rotational_stiffness) + " N m/rad" +
+                 (m.limit_rotational_stiffness_given ? "" : def_rot));
+  }
+
   const StableStepReport& st = m.stable;
   const double substeps = s.frame_period / s.dt;
   const bool whole = std::abs(substeps - std::round(substeps)) <= 1e-9 * substeps;
@@ -115,7 +158,30 @@ std::string info_text(const ModelDescription& m) {
                         "omega_max = " +
                         f("%.6g", st.omega_max) + " rad/s, f_max = " +
                         f("%.6g", st.omega_max / (2.0 * std::numbers::pi)) + " Hz)");
-  line("", "set by " + m.describe_element(st.governing_element));
+  if (st.governing_hinge >= 0) {
+    line("", "set by " + m.describe_hinge(st.governing_hinge) + ", direction " +
+                 kDofName[st.hinge_direction] + " (a two-node spring)");
+  } else {
+    line("", "set by " + m.describe_element(st.governing_element));
+  }
+  if (z.hinges > 0) {
+    // The same model with each method (issue 3: the NTN / penalty ratio).
+    const StableStepReport exact = stable_step_with(m, HingeMethod::kNtnExact);
+    const StableStepReport pen = stable_step_with(m, HingeMethod::kPenalty);
+    line("ntn_exact dt", f("%.6g", exact.dt_stable) + " s (rigid directions add no stiffness)");
+    if (pen.dt_stable > 0) {
+      std::string by = pen.governing_hinge >= 0 ? m.describe_hinge(pen.governing_hinge) +
+                                                      ", direction " + kDofName[pen.hinge_direction]
+                                                : m.describe_element(pen.governing_element);
+      line("penalty dt", f("%.6g", pen.dt_stable) + " s (rigid directions as springs of the " +
+                             "penalty k), set by " + by);
+      line("", "ntn_exact / penalty = " + f("%.4g", exact.dt_stable / pen.dt_stable));
+    } else {
+      line("penalty dt",
+           "0 s: a penalty spring acts on a DOF without mass (penalty needs mass "
+           "on both nodes); ntn_exact / penalty = inf");
+    }
+  }
   line("CFL (seed)",
        f("%.6g", st.dt_cfl) + " s = l / sqrt(E / rho) at " + m.describe_element(st.cfl_element));
   line("substeps", (whole ? std::to_string(std::llround(substeps))
@@ -126,16 +192,40 @@ std::string info_text(const ModelDescription& m) {
   const MemoryFootprint mem = memory_footprint(z);
   line("memory", "Model " + std::to_string(mem.model) + " B + State " + std::to_string(mem.state) +
                      " B + Scratch " + std::to_string(mem.scratch) + " B = " + bytes(mem.total));
+  const auto hinges = static_cast<std::size_t>(z.hinges);
+  const std::size_t hinge_nodes = z.hinges > 0 ? static_cast<std::size_t>(z.nodes) : 0;
+  const std::size_t hinge_bytes = mem.per_hinge * hinges + mem.per_node_with_hinges * hinge_nodes +
+                                  mem.per_curve_point * static_cast<std::size_t>(z.curve_points);
   const std::size_t rest = mem.total - mem.per_element * static_cast<std::size_t>(z.elements) -
-                           mem.per_node * static_cast<std::size_t>(z.nodes);
+                           mem.per_node * static_cast<std::size_t>(z.nodes) - hinge_bytes;
   line("", "per element " + std::to_string(mem.per_element) + " B (ntn::BeamData) x " +
                std::to_string(z.elements) + " = " +
                std::to_string(mem.per_element * static_cast<std::size_t>(z.elements)) + " B");
   line("", "per node " + std::to_string(mem.per_node) +
                " B (6 DOFs x 8 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
                " = " + std::to_string(mem.per_node * static_cast<std::size_t>(z.nodes)) + " B");
+  if (z.hinges > 0) {
+    line("", "per hinge " + std::to_string(mem.per_hinge) +
+                 " B (ntn::HingeData + forest edge, root, mass, index) x " +
+                 std::to_string(z.hinges) + " + per node " +
+                 std::to_string(mem.per_node_with_hinges) + " B (tree, held, coupled force) x " +
+                 std::to_string(z.nodes) + " + curve points " +
+                 std::to_string(mem.per_curve_point * static_cast<std::size_t>(z.curve_points)) +
+                 " B = " + std::to_string(hinge_bytes) + " B");
+  }
   line("",
        "rest " + std::to_string(rest) + " B (loads, channels, time functions, scalars, padding)");
+  if (!m.mechanisms.empty()) {
+    for (const Mechanism& mech : m.mechanisms) {
+      std::string dofs;
+      for (int d = 0; d < kDofsPerNode; ++d) {
+        if ((mech.dofs >> d) & 1U) dofs += (dofs.empty() ? "" : ", ") + std::string(kDofName[d]);
+      }
+      line(&mech == &m.mechanisms.front() ? "mechanisms" : "",
+           m.describe_node(mech.node) + ": " + dofs +
+               " (no effective mass, no stiffness: held at zero)");
+    }
+  }
   return o;
 }
 

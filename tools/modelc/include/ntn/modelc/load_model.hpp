@@ -15,6 +15,7 @@ namespace ntn::modelc {
 struct LoadResult {
   std::optional<ModelDescription> model;  // set exactly when `errors` is empty
   std::vector<Diagnostic> errors;         // sorted by line, then column
+  std::vector<Diagnostic> notes;          // severity kNote (mechanisms), when the model loads
   bool ok() const { return model.has_value(); }
 };
 

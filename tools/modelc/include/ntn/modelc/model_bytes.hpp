@@ -15,6 +15,9 @@ struct MemoryFootprint {
   std::size_t total = 0;        // the three together
   std::size_t per_element = 0;  // marginal bytes of one more element (BeamData)
   std::size_t per_node = 0;     // marginal bytes of one more node (8 DOF arrays + fixed + list)
+  std::size_t per_hinge = 0;    // marginal bytes of one more hinge (HingeData + forest slots)
+  std::size_t per_node_with_hinges = 0;  // extra per node in a model with hinges
+  std::size_t per_curve_point = 0;       // marginal bytes of one more curve point
 };
 
 MemoryFootprint memory_footprint(const Sizes& s);

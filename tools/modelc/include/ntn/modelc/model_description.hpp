@@ -2,6 +2,7 @@
 // model file gave (nodes, members, channels) so that tools can report in the user's terms.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,30 @@ struct MemberInfo {
   int end_node = 0;             // node index of the member's second end
   int first_interior_node = 0;  // generated nodes [first, first + count), start to end
   int interior_node_count = 0;  // = divisions - 1
+  // Member-end releases: the node made at that end (after the interior nodes) and its hinge
+  // (node 1 = that node, node 2 = start_node / end_node), or -1 without a release.
+  int start_release_node = -1;
+  int end_release_node = -1;
+  int start_hinge = -1;
+  int end_hinge = -1;
+};
+
+// Where a hinge came from. Hinges are ordered: explicit [[hinges]] in file order, then
+// member-end releases (member order, start before end), then supports with axes (file order).
+enum class HingeOrigin : std::uint8_t { kExplicit, kRelease, kSupport };
+
+struct HingeInfo {
+  std::string name;  // the id, "<member>.start" / "<member>.end", or "support.<node id>"
+  HingeOrigin origin = HingeOrigin::kExplicit;
+  int member = -1;  // kRelease: member index
+  int end = 0;      // kRelease: 0 start, 1 end
+};
+
+// DOFs with no effective mass and no stiffness (a mechanism, DESIGN §7.1): not an error; the
+// kernel holds them at zero. Bits as NodeSpec::fixed, in global axes.
+struct Mechanism {
+  int node = 0;
+  std::uint8_t dofs = 0;
 };
 
 struct ModelDescription {
@@ -48,13 +73,21 @@ struct ModelDescription {
   std::vector<std::string> input_names;
   std::vector<std::string> output_names;
   std::vector<std::string> output_units;  // "m", "m/s", "m/s2", "rad", "N", "N m", "-", ...
+  std::vector<HingeInfo> hinge_info;      // per hinge
+  std::vector<std::string> curve_ids;     // per curve
+  std::vector<Mechanism> mechanisms;      // ascending node index
+  // Which hinge stiffnesses the file gave (false: the compiler's default, config/README.md).
+  bool penalty_stiffness_given = false;
+  bool penalty_rotational_stiffness_given = false;
+  bool limit_stiffness_given = false;
+  bool limit_rotational_stiffness_given = false;
 
   bool dt_auto = true;           // dt = "auto" in the file
   double dt_requested = 0;       // s, the number given when !dt_auto
   double frame_rate = 1000;      // Hz; settings.frame_period = 1 / frame_rate
   double damping_ratio = 0;      // [model.damping] ratio as given (0 when alpha was given)
   double damping_frequency = 0;  // Hz, [model.damping] frequency as given (0 likewise)
-  StableStepReport stable;       // the kernel's stable step report for this model
+  StableStepReport stable;       // the kernel's stable step report for this model (its method)
 
   Sizes sizes() const;
   SpecView view() const;
@@ -63,6 +96,10 @@ struct ModelDescription {
   std::string describe_element(int element) const;
   // "node 12" for a user node, "node 2 of member C1 (model node 40)" for a generated one.
   std::string describe_node(int node) const;
+  // "hinge H1", "member-end release B1.start", "support with axes support.3".
+  std::string describe_hinge(int hinge) const;
+  // Counts of hinges by origin.
+  int hinge_count(HingeOrigin origin) const;
 };
 
 }  // namespace ntn::modelc
