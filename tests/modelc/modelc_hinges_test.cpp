@@ -390,6 +390,31 @@ TEST(Hinges, NoNotesWithoutMechanisms) {
   EXPECT_TRUE(h.notes.empty());
 }
 
+// hinged_beam.toml's comment: its bearing plate (node 7, no member) needs its point mass only for
+// penalty. Without it, ntn_exact moves node 7 with node 6 through H_ecc's six rigid directions
+// (no mechanism, no note), while penalty puts stiff springs on a node without mass: an error.
+TEST(Hinges, BearingMassOnlyPenaltyNeedsIt) {
+  std::FILE* f = std::fopen(config("hinged_beam.toml").c_str(), "rb");
+  ASSERT_NE(f, nullptr);
+  std::string text;
+  char buf[4096];
+  std::size_t k;
+  while ((k = std::fread(buf, 1, sizeof buf, f)) > 0)
+    text.append(buf, k);
+  std::fclose(f);
+  const std::size_t at = text.find("[[point_masses]]\nnode = 7");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find("[[time_functions]]") - at);
+  const auto exact = load_model_from_string(text, "hb.toml");
+  ASSERT_TRUE(exact.ok()) << ntn::modelc::format_all(exact.errors);
+  EXPECT_TRUE(exact.notes.empty());
+  text.replace(text.find("hinge_method = \"ntn_exact\""), 26, "hinge_method = \"penalty\"");
+  const auto pen = load_model_from_string(text, "hb.toml");
+  ASSERT_EQ(pen.errors.size(), 1U) << ntn::modelc::format_all(pen.errors);
+  EXPECT_EQ(pen.errors[0].key, "nodes[6].id");
+  EXPECT_NE(pen.errors[0].message.find("penalty needs mass on both nodes"), std::string::npos);
+}
+
 // ntn-model info prints the stable step with the model's method and with penalty, and their
 // ratio (issue 3): the same numbers as the kernel's stable_time_step on the same model with
 // hinge_method switched.

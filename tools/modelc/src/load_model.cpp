@@ -1,8 +1,13 @@
 // Model file (TOML) -> ModelDescription. Three passes, each collecting every problem it can:
-//   1. read every table, check keys, types and values (unknown/missing keys, ranges, duplicates);
-//   2. resolve references, mesh the members, check geometry (zero length, orientation);
-//   3. physics with the kernel's own functions: lumped mass (no mass, massless free DOFs) and
-//      the stable time step (dt = "auto", or a given dt above the stable step).
+//   1. read every table, check keys, types and values (unknown/missing keys, ranges, duplicates,
+//      hinge axes orthonormal and right-handed, curve points increasing);
+//   2. resolve references, mesh the members, make the nodes and hinges of member-end releases
+//      and supports with axes, check geometry (zero length, orientation, hinge nodes coincident
+//      unless eccentric, no eccentricity with ntn_paper);
+//   3. rigid cycles of hinges; physics with the kernel's own functions: lumped mass, the
+//      penalty and limit stiffness defaults, curves against the limit stiffness, effective mass
+//      with the hinge constraints (mechanisms are notes, massless springs errors), and the
+//      stable time step (dt = "auto", or a given dt above the stable step).
 // A pass runs only when the ones before it found nothing: its checks need their results.
 #include "ntn/modelc/load_model.hpp"
 
