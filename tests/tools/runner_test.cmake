@@ -35,6 +35,14 @@ list(GET rows 0 header)
 if(NOT header MATCHES "^time\\[s\\],roof_ux\\[m\\],")
   message(FATAL_ERROR "unexpected CSV header: ${header}")
 endif()
+# --duration limits the run: 0.5 s at one row per 1 ms frame is 500 rows and the header.
+execute_process(COMMAND ${RUNNER} --input ag_x=${RECORD} --duration 0.5 --out ${OUT}/short.csv
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+file(STRINGS ${OUT}/short.csv short_rows)
+list(LENGTH short_rows n)
+if(NOT rc EQUAL 0 OR NOT n EQUAL 501)
+  message(FATAL_ERROR "--duration 0.5: exit ${rc}, ${n} CSV lines (expected 501)")
+endif()
 # A missing record is a clear error with exit code 2, not a crash.
 execute_process(COMMAND ${RUNNER} --input ag_x=${OUT}/missing.AT2 RESULT_VARIABLE rc
                 ERROR_VARIABLE err)

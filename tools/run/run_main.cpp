@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
     records[k] = std::move(*r.record);
     fed[k] = true;
   }
+  double record_duration = 0;
   for (int k = 0; k < kS.inputs; ++k) {
     if (!fed[static_cast<std::size_t>(k)]) {
       std::fprintf(stderr, "error: no record for input channel '%s' (use --input %s=FILE)\n",
@@ -113,10 +114,9 @@ int main(int argc, char** argv) {
                    std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str());
       return 2;
     }
-    if (duration < 0 || records[static_cast<std::size_t>(k)].duration() > duration) {
-      duration = std::max(duration, records[static_cast<std::size_t>(k)].duration());
-    }
+    record_duration = std::max(record_duration, records[static_cast<std::size_t>(k)].duration());
   }
+  if (duration < 0) duration = record_duration;  // default: the longest record
   if (duration <= 0) {
     std::fprintf(stderr, "error: give --duration (the model has no input records)\n");
     return 2;
@@ -216,16 +216,20 @@ int main(int argc, char** argv) {
                   std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str(),
                   r.source.c_str(), r.values.size(), r.dt, r.peak_abs(), r.units.c_str());
     }
-    std::printf("  size        %d nodes, %d elements, %d DOFs\n", kS.nodes, kS.elements,
-                6 * kS.nodes);
-    std::printf(
-        "  time step   dt = %.6g s (stable %.6g s, element %d of member %s), %lld per %g ms "
-        "frame\n",
-        dt, stable.dt_stable, gov,
-        std::string(mdl::kMemberNames[static_cast<std::size_t>(
-                        mdl::kSpec.elements[static_cast<std::size_t>(gov)].member)])
-            .c_str(),
-        static_cast<long long>(per_frame), period * 1e3);
+    std::printf("  size        %d nodes, %d elements, %d hinges, %d DOFs\n", kS.nodes, kS.elements,
+                kS.hinges, 6 * kS.nodes);
+    std::string governing;
+    if (stable.governing_hinge >= 0) {
+      governing = "hinge " + std::to_string(stable.governing_hinge) + ", direction " +
+                  std::to_string(stable.hinge_direction);
+    } else {
+      governing = "element " + std::to_string(gov) + " of member " +
+                  std::string(mdl::kMemberNames[static_cast<std::size_t>(
+                      mdl::kSpec.elements[static_cast<std::size_t>(gov)].member)]);
+    }
+    std::printf("  time step   dt = %.6g s (stable %.6g s, %s), %lld per %g ms frame\n", dt,
+                stable.dt_stable, governing.c_str(), static_cast<long long>(per_frame),
+                period * 1e3);
     std::printf(
         "  run         %lld steps, %.3f s simulated, wall %.3f s, real-time factor %.1fx, "
         "%.3f us/step\n",
@@ -242,6 +246,9 @@ int main(int argc, char** argv) {
         std::printf("  peak base %s %-16s %s %s at t = %.3f s\n",
                     is_translation(o) ? "shear " : "moment", name.c_str(),
                     fmt("%.2f", p.value / 1e3).c_str(), is_translation(o) ? "kN" : "kN m", p.time);
+      } else if (o.kind == ntn::OutputKind::kHingeForce) {
+        std::printf("  peak hinge force %-16s %s %s at t = %.3f s\n", name.c_str(),
+                    fmt("%.4g", p.value / 1e3).c_str(), o.dof < 3 ? "kN" : "kN m", p.time);
       } else {
         std::printf("  peak             %-16s %s %s at t = %.3f s\n", name.c_str(),
                     fmt("%.5g", p.value).c_str(),
