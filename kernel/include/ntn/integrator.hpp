@@ -126,16 +126,22 @@ void accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
     for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
       w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
     }
-  } else {
+  } else if (m.hinge_method == HingeMethod::kNtnPaper) {
     for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
       w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
     }
-    if (m.hinge_method == HingeMethod::kNtnPaper) paper_forces(m.hinges, w.r.data());
-    if (m.hinge_method == HingeMethod::kNtnExact) forest_up(m.edges, m.num_edges, w.r.data());
+    paper_forces(m.hinges, w.r.data());
     for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
       w.a[j] = w.r[j] * m.inv_mass[j];
     }
+  } else {
+    // One pass: the forest changes R only at tree nodes, whose accelerations it then sets.
+    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+      w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
+      w.a[j] = w.r[j] * m.inv_mass[j];
+    }
     if (m.hinge_method == HingeMethod::kNtnExact) {
+      forest_up(m.edges, m.num_edges, w.r.data());
       forest_down(m.roots, m.num_roots, m.edges, m.num_edges, w.r.data(), w.a.data());
     }
   }
