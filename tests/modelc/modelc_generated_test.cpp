@@ -9,6 +9,7 @@
 #include "hinged_beam_model.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "pinned_joint_model.hpp"
 #include "spec_compare.hpp"
 #include NTN_MODEL_HEADER
 
@@ -48,6 +49,7 @@ static_assert(frame::kSpec.settings.dt > 0 && frame::kDtAuto);
 ntn::Model<frame::kSizes> g_frame;
 ntn::Model<cant::kSizes> g_cant;
 ntn::Model<hb::kSizes> g_hinged;
+ntn::Model<ntn::models::pinned_joint::kSizes> g_pinned;
 
 template <ntn::Sizes S, std::size_t M>
 void check(const ntn::ModelSpec<S>& spec, std::string_view source,
@@ -88,6 +90,29 @@ TEST(GeneratedHeader, HingedBeamMatchesFileAndInitializes) {
     hinge_names.push_back(h.name);
   ntn::test::expect_same_names(hb::kHingeNames, hinge_names);
   EXPECT_EQ(g_hinged.stable.governing_hinge, r.model->stable.governing_hinge);
+}
+
+// The compiler's mechanisms are the DOFs the kernel holds at zero (DESIGN §7.1): the pinned
+// joint's rotation about z, nothing else.
+TEST(GeneratedHeader, MechanismIsWhatTheKernelHolds) {
+  namespace pj = ntn::models::pinned_joint;
+  const auto r = ntn::modelc::load_model(std::string(pj::kSourceFile));
+  ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
+  ntn::test::expect_same_spec(pj::kSpec, *r.model);
+  const ntn::InitStatus st = ntn::init(pj::kSpec, g_pinned);
+  ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  int compiler_dofs = 0;
+  std::vector<std::uint8_t> bits(static_cast<std::size_t>(pj::kSizes.nodes), 0);
+  for (const auto& m : r.model->mechanisms) {
+    bits[static_cast<std::size_t>(m.node)] = m.dofs;
+    for (int d = 0; d < 6; ++d)
+      compiler_dofs += (m.dofs >> d) & 1;
+  }
+  EXPECT_EQ(compiler_dofs, 1);
+  EXPECT_EQ(g_pinned.held_dofs, compiler_dofs);
+  for (int n = 0; n < pj::kSizes.nodes; ++n)
+    EXPECT_EQ(g_pinned.held[static_cast<std::size_t>(n)], bits[static_cast<std::size_t>(n)])
+        << "node " << n;
 }
 
 TEST(GeneratedHeader, CantileverMatchesFileAndInitializes) {
