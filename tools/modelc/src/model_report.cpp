@@ -154,7 +154,7 @@ std::string info_text(const ModelDescription& m) {
                             : std::string("as given")) +
                  ", dt / dt_stable = " + f("%.4f", s.dt / st.dt_stable));
   line("stable dt", f("%.6g", st.dt_stable) +
-                        " s (element eigenvalue bound with damping, "
+                        " s (element eigenvalue bound and hinge springs, with damping, "
                         "omega_max = " +
                         f("%.6g", st.omega_max) + " rad/s, f_max = " +
                         f("%.6g", st.omega_max / (2.0 * std::numbers::pi)) + " Hz)");
