@@ -1,0 +1,472 @@
+// ntn-feeder: streams recorded inputs as UDP input packets to 127.0.0.1:PORT at a fixed frame
+// rate, as a controller or DAQ would, reads the loop's output packets back and writes them as
+// CSV. Optionally injects faults (see ntn/hil/faults.hpp) and prints what it injected.
+//
+// Real time: frame k is sent at t0 + k * period (clock_nanosleep, TIMER_ABSTIME,
+// CLOCK_MONOTONIC). --virtual: no sleeping; after frame k's packets a frame-end marker, then wait
+// for the loop's output of frame k before frame k+1 (lock-step, deterministic).
+#include <sched.h>
+#include <sys/mman.h>
+#include <time.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "ntn/hil/faults.hpp"
+#include "ntn/hil/packet.hpp"
+#include "ntn/hil/udp.hpp"
+#include "record.hpp"
+
+namespace {
+
+using namespace ntn::hil;
+
+constexpr std::int64_t kNsPerS = 1'000'000'000;
+
+std::int64_t now_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+}
+
+void sleep_until_ns(std::int64_t t) {
+  const timespec ts{static_cast<time_t>(t / kNsPerS), static_cast<long>(t % kNsPerS)};
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+struct Channel {
+  std::string name;
+  ntn::io::Record record;
+};
+
+// What came back from the loop, per frame.
+struct Outputs {
+  std::int64_t frames = 0;
+  int count = -1;              // channels of the first output packet
+  std::vector<double> values;  // frames x count
+  std::vector<std::uint16_t> flags;
+  std::vector<bool> have;
+  std::int64_t received = 0, distinct = 0, undecodable = 0, wrong_count = 0, outside = 0;
+  std::int64_t highest = -1;  // highest frame received
+
+  void take(std::span<const std::byte> bytes) {
+    Packet p;
+    if (decode(bytes, p, PacketKind::kOutput) != DecodeError::kOk) {
+      ++undecodable;
+      return;
+    }
+    ++received;
+    if (p.frame < 0 || p.frame >= frames) {
+      ++outside;
+      return;
+    }
+    if (count < 0) {
+      count = p.count;
+      values.assign(static_cast<std::size_t>(frames) * p.count, 0.0);
+      flags.assign(static_cast<std::size_t>(frames), 0);
+      have.assign(static_cast<std::size_t>(frames), false);
+    }
+    if (p.count != count) {
+      ++wrong_count;
+      return;
+    }
+    const auto k = static_cast<std::size_t>(p.frame);
+    if (!have[k]) ++distinct;
+    have[k] = true;
+    flags[k] = p.flags;
+    std::copy_n(p.values.begin(), count, values.begin() + static_cast<std::ptrdiff_t>(k * count));
+    highest = std::max(highest, p.frame);
+  }
+};
+
+struct Percentiles {
+  double p50 = 0, p99 = 0, max = 0;  // us
+};
+
+Percentiles percentiles(std::vector<std::int64_t> ns) {
+  Percentiles r;
+  if (ns.empty()) return r;
+  std::sort(ns.begin(), ns.end());
+  auto at = [&ns](double q) {
+    const auto i = static_cast<std::size_t>(q * static_cast<double>(ns.size() - 1) + 0.5);
+    return static_cast<double>(ns[i]) * 1e-3;
+  };
+  r.p50 = at(0.5), r.p99 = at(0.99), r.max = at(1.0);
+  return r;
+}
+
+constexpr std::array<const char*, 16> kFlagNames{
+    "held",      "missing", "nonfinite", "out_of_range", "corrupt",   "wrong_count",
+    "duplicate", "late",    "early",     "reordered",    "too_early", "bit11",
+    "alarm",     "overrun", "diverged",  "bit15"};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Stream recorded inputs over UDP to the real-time loop and read its outputs back"};
+  int port = 0, listen_port = 0;
+  std::vector<std::string> input_args;
+  std::string record_arg;
+  double scale = 1.0, rate = 1000.0, range_value = 1e308, timeout_s = 10.0, linger_ms = 200;
+  std::int64_t frames = -1;
+  bool lockstep = false, quiet = false;
+  std::vector<std::string> fault_lists, fault_rates;
+  std::uint64_t seed = 1;
+  std::string out_path, json_path;
+  app.add_option("-p,--port", port, "the loop's input port on 127.0.0.1")
+      ->required()
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--listen-port", listen_port,
+                 "own port for sending and for the loop's outputs (0: any free port)")
+      ->check(CLI::Range(0, 65535));
+  app.add_option("-i,--input", input_args,
+                 "NAME=FILE[:COLUMN]: one input channel from a record (AT2 or CSV); channels "
+                 "are numbered in the order given");
+  app.add_option("-r,--record", record_arg, "FILE[:COLUMN]: a single input channel");
+  app.add_option("--scale", scale, "multiply every record value by this");
+  app.add_option("--rate", rate, "frame rate in Hz")->check(CLI::PositiveNumber);
+  app.add_option("-n,--frames", frames, "frames to send (default: the longest record)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--virtual", lockstep,
+               "no sleeping: send frame k, a frame-end marker, then wait for the output of k");
+  app.add_option("--fault", fault_lists, "KIND@FRAME[,KIND@FRAME...]: inject a fault at a frame");
+  app.add_option("--fault-rate", fault_rates, "KIND=P: inject a fault kind with probability P");
+  app.add_option("--seed", seed, "seed of the fault draws and corrupted bytes");
+  app.add_option("--range-value", range_value, "the value a 'range' fault sends");
+  app.add_option("--timeout", timeout_s, "lock-step: seconds to wait for an output")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--linger", linger_ms, "real time: ms to wait for outputs after the last frame")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("-o,--out", out_path, "CSV of the outputs received: time, channels, flags");
+  app.add_option("--summary-json", json_path, "also write the summary as JSON");
+  app.add_flag("-q,--quiet", quiet, "print only the fault line and errors");
+  int fifo = 0;
+  app.add_option("--fifo", fifo,
+                 "real time: run under SCHED_FIFO at this priority with memory locked (falls "
+                 "back with a warning where not permitted)")
+      ->check(CLI::Range(0, 99));
+  CLI11_PARSE(app, argc, argv);
+
+  // Channels.
+  if (!record_arg.empty()) input_args.insert(input_args.begin(), "record=" + record_arg);
+  if (input_args.empty()) {
+    std::fprintf(stderr, "error: give --record FILE or --input NAME=FILE\n");
+    return 2;
+  }
+  if (input_args.size() > static_cast<std::size_t>(kMaxChannels)) {
+    std::fprintf(stderr, "error: at most %d channels\n", kMaxChannels);
+    return 2;
+  }
+  std::vector<Channel> channels;
+  for (const std::string& arg : input_args) {
+    const auto eq = arg.find('=');
+    if (eq == std::string::npos) {
+      std::fprintf(stderr, "error: --input wants NAME=FILE, got '%s'\n", arg.c_str());
+      return 2;
+    }
+    std::string file = arg.substr(eq + 1), column;
+    if (const auto c = file.rfind(':'); c != std::string::npos && c > 1) {
+      column = file.substr(c + 1);
+      file = file.substr(0, c);
+    }
+    ntn::io::ReadResult r = ntn::io::read_record(file, column);
+    if (r.error) {
+      std::fprintf(stderr, "%s\n", r.error->format().c_str());
+      return 2;
+    }
+    channels.push_back({arg.substr(0, eq), std::move(*r.record)});
+  }
+  const double period = 1.0 / rate;
+  if (frames < 0) {
+    double longest = 0;
+    for (const Channel& c : channels)
+      longest = std::max(longest, c.record.duration());
+    frames = static_cast<std::int64_t>(std::ceil(longest / period - 1e-9));
+  }
+
+  // Faults.
+  std::vector<FaultAt> fault_at;
+  std::vector<FaultRate> rates;
+  for (const std::string& s : fault_lists) {
+    if (std::string e = parse_fault_list(s, fault_at); !e.empty()) {
+      std::fprintf(stderr, "error: %s\n", e.c_str());
+      return 2;
+    }
+  }
+  for (const std::string& s : fault_rates) {
+    FaultRate r;
+    if (std::string e = parse_fault_rate(s, r); !e.empty()) {
+      std::fprintf(stderr, "error: %s\n", e.c_str());
+      return 2;
+    }
+    rates.push_back(r);
+  }
+  FaultPlan plan;
+  if (std::string e = make_fault_plan(frames, fault_at, rates, seed, plan); !e.empty()) {
+    std::fprintf(stderr, "error: %s\n", e.c_str());
+    return 2;
+  }
+
+  UdpSocket sock;
+  if (const SocketStatus st = sock.open(static_cast<std::uint16_t>(listen_port)); !st.ok()) {
+    std::fprintf(stderr, "error: cannot open 127.0.0.1:%d: %s\n", listen_port,
+                 st.message().c_str());
+    return 1;
+  }
+  const auto dest = static_cast<std::uint16_t>(port);
+  const auto nch = static_cast<std::size_t>(channels.size());
+
+  if (fifo > 0 && !lockstep) {
+    sched_param sp{};
+    sp.sched_priority = fifo;
+    if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0) {
+      std::fprintf(stderr, "warning: SCHED_FIFO %d not permitted (%s): normal scheduling\n", fifo,
+                   std::strerror(errno));
+    }
+    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+      std::fprintf(stderr, "warning: mlockall not permitted (%s)\n", std::strerror(errno));
+    }
+  }
+
+  Outputs outputs;
+  outputs.frames = frames;
+  std::array<std::byte, kReceiveBufferBytes> rx{};
+  auto drain = [&] {
+    for (;;) {
+      const Received r = sock.receive(rx);
+      if (!r.has_datagram()) return;
+      outputs.take(std::span<const std::byte>(rx.data(), r.size));
+    }
+  };
+
+  std::int64_t send_errors = 0, packets_sent = 0;
+  int first_send_errno = 0;
+  auto send = [&](std::span<const std::byte> bytes) {
+    const SocketStatus st = sock.send_to(dest, bytes);
+    if (st.ok()) {
+      ++packets_sent;
+    } else {
+      if (send_errors++ == 0) first_send_errno = st.error;
+    }
+  };
+
+  // The packet of frame k with its value fault, if any.
+  auto make_packet = [&](std::int64_t k, std::span<std::byte> buf) {
+    std::array<double, kMaxChannels> v{};
+    const double t = static_cast<double>(k) * period;
+    for (std::size_t c = 0; c < nch; ++c)
+      v[c] = scale * channels[c].record.at(t);
+    const FaultKind f = plan[k];
+    const std::size_t hit = static_cast<std::size_t>(k) % nch;
+    if (f == FaultKind::kNan) v[hit] = std::numeric_limits<double>::quiet_NaN();
+    if (f == FaultKind::kInf)
+      v[hit] = (k % 2 == 0 ? 1 : -1) * std::numeric_limits<double>::infinity();
+    if (f == FaultKind::kRange) v[hit] = range_value;
+    const std::size_t n = encode(PacketKind::kInput, static_cast<std::uint32_t>(k), k, 0,
+                                 std::span<const double>(v.data(), nch), buf);
+    if (f == FaultKind::kCorrupt) {
+      buf[fault_hash(seed, k) % n] ^= std::byte{0xFF};
+    }
+    return buf.first(n);
+  };
+
+  std::array<std::byte, kMaxPacketBytes> late_buf{}, buf{}, next_buf{}, end_buf{};
+  std::span<const std::byte> late_packet;  // held back by a late fault, sent next frame
+  std::vector<std::int64_t> wake_ns;
+  if (!lockstep) wake_ns.reserve(static_cast<std::size_t>(frames));
+  const auto period_ns = static_cast<std::int64_t>(std::llround(period * 1e9));
+  const std::int64_t t0 = now_ns() + 2'000'000;  // first deadline 2 ms from now
+  bool timed_out = false;
+  std::int64_t k = 0;
+  for (; k < frames; ++k) {
+    if (!lockstep) {
+      const std::int64_t deadline = t0 + k * period_ns;
+      sleep_until_ns(deadline);
+      wake_ns.push_back(now_ns() - deadline);
+    }
+    if (!late_packet.empty()) {
+      send(late_packet);
+      late_packet = {};
+    }
+    const FaultKind f = plan[k];
+    const bool sent_early = k > 0 && plan[k - 1] == FaultKind::kReorder;
+    if (!sent_early) {
+      switch (f) {
+        case FaultKind::kLost:
+          break;
+        case FaultKind::kLate: {
+          const auto p = make_packet(k, late_buf);
+          late_packet = p;
+          break;
+        }
+        case FaultKind::kDuplicate: {
+          const auto p = make_packet(k, buf);
+          send(p);
+          send(p);
+          break;
+        }
+        case FaultKind::kReorder: {
+          const auto p = make_packet(k, buf);
+          send(make_packet(k + 1, next_buf));
+          send(p);
+          break;
+        }
+        default:
+          send(make_packet(k, buf));
+          break;
+      }
+    }
+    if (lockstep) {
+      const std::size_t n =
+          encode(PacketKind::kFrameEnd, static_cast<std::uint32_t>(k), k, 0, {}, end_buf);
+      send(std::span<const std::byte>(end_buf.data(), n));
+      const std::int64_t give_up = now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
+      while (outputs.highest < k) {
+        const std::int64_t left = give_up - now_ns();
+        if (left <= 0) break;
+        if (sock.wait_readable(std::chrono::nanoseconds(left)) == WaitStatus::kReadable) drain();
+      }
+      if (outputs.highest < k) {
+        std::fprintf(stderr, "error: no output for frame %lld within %g s\n",
+                     static_cast<long long>(k), timeout_s);
+        timed_out = true;
+        break;
+      }
+    } else {
+      drain();
+    }
+  }
+  if (!lockstep && !timed_out) {
+    const std::int64_t until = now_ns() + static_cast<std::int64_t>(linger_ms * 1e6);
+    for (std::int64_t left; outputs.highest < frames - 1 && (left = until - now_ns()) > 0;) {
+      if (sock.wait_readable(std::chrono::nanoseconds(left)) == WaitStatus::kReadable) drain();
+    }
+    drain();
+  }
+
+  // CSV of the outputs.
+  if (!out_path.empty()) {
+    const std::filesystem::path p(out_path);
+    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+    std::ofstream out(out_path, std::ios::binary);
+    out << "time[s]";
+    for (int c = 0; c < outputs.count; ++c)
+      out << ",y" << c;
+    out << ",flags\n";
+    char cell[40];
+    for (std::int64_t j = 0; j < frames && outputs.count >= 0; ++j) {
+      const auto u = static_cast<std::size_t>(j);
+      if (!outputs.have[u]) continue;
+      std::snprintf(cell, sizeof cell, "%.9g", static_cast<double>(j) * period);
+      out << cell;
+      for (int c = 0; c < outputs.count; ++c) {
+        std::snprintf(
+            cell, sizeof cell, ",%.17g",
+            outputs
+                .values[u * static_cast<std::size_t>(outputs.count) + static_cast<std::size_t>(c)]);
+        out << cell;
+      }
+      out << ',' << outputs.flags[u] << '\n';
+    }
+    if (!out) {
+      std::fprintf(stderr, "error: cannot write %s\n", out_path.c_str());
+      return 1;
+    }
+  }
+
+  // Summary.
+  std::array<std::int64_t, 16> flag_frames{};
+  for (std::int64_t j = 0; j < frames && outputs.count >= 0; ++j) {
+    if (!outputs.have[static_cast<std::size_t>(j)]) continue;
+    for (std::size_t b = 0; b < 16; ++b) {
+      if ((outputs.flags[static_cast<std::size_t>(j)] >> b) & 1U) ++flag_frames[b];
+    }
+  }
+  std::string fault_line = "faults";
+  for (FaultKind f : kAllFaults) {
+    fault_line += std::string(" ") + to_string(f) + "=" + std::to_string(plan.count(f));
+  }
+  const Percentiles wake = percentiles(wake_ns);
+  if (!quiet) {
+    std::printf("ntn-feeder  %zu channel%s -> 127.0.0.1:%d from port %u, %g Hz, %lld frames, %s\n",
+                nch, nch == 1 ? "" : "s", port, sock.port(), rate, static_cast<long long>(frames),
+                lockstep ? "lock-step (virtual)" : "real time");
+    for (std::size_t c = 0; c < nch; ++c) {
+      std::printf("  channel %zu  %-10s %s: %zu samples at %g s, peak %.4g %s x %g\n", c,
+                  channels[c].name.c_str(), channels[c].record.source.c_str(),
+                  channels[c].record.values.size(), channels[c].record.dt,
+                  channels[c].record.peak_abs(), channels[c].record.units.c_str(), scale);
+    }
+    const std::string first_error =
+        send_errors ? std::string(" (first: ") + std::strerror(first_send_errno) + ")" : "";
+    std::printf("  sent        %lld datagrams for %lld frames, %lld send errors%s\n",
+                static_cast<long long>(packets_sent), static_cast<long long>(k),
+                static_cast<long long>(send_errors), first_error.c_str());
+    if (!lockstep) {
+      std::printf("  wake-up     latency p50 %.1f us, p99 %.1f us, max %.1f us\n", wake.p50,
+                  wake.p99, wake.max);
+    }
+    std::printf(
+        "  outputs     %lld of %lld frames received (%lld packets, %lld undecodable, %lld "
+        "wrong count, %lld outside the run)\n",
+        static_cast<long long>(outputs.distinct), static_cast<long long>(frames),
+        static_cast<long long>(outputs.received), static_cast<long long>(outputs.undecodable),
+        static_cast<long long>(outputs.wrong_count), static_cast<long long>(outputs.outside));
+    std::string flags_line;
+    for (std::size_t b = 0; b < 16; ++b) {
+      if (flag_frames[b] > 0) {
+        flags_line += std::string(" ") + kFlagNames[b] + "=" + std::to_string(flag_frames[b]);
+      }
+    }
+    std::printf("  out flags  %s\n", flags_line.empty() ? " none" : flags_line.c_str());
+    std::string skipped;
+    for (FaultKind f : kAllFaults) {
+      if (const auto s = plan.skipped[static_cast<std::size_t>(f)]; s > 0)
+        skipped += std::string(" ") + to_string(f) + "=" + std::to_string(s);
+    }
+    if (!skipped.empty()) std::printf("  skipped     (draws on taken frames)%s\n", skipped.c_str());
+    if (!out_path.empty()) std::printf("  csv         %s\n", out_path.c_str());
+  }
+  std::printf("%s\n", fault_line.c_str());
+  std::fflush(stdout);
+
+  if (!json_path.empty()) {
+    std::ofstream js(json_path);
+    js << "{\n  \"frames\": " << frames << ",\n  \"frames_sent\": " << k
+       << ",\n  \"rate_hz\": " << rate << ",\n  \"mode\": \""
+       << (lockstep ? "lock-step" : "real-time") << "\",\n  \"datagrams_sent\": " << packets_sent
+       << ",\n  \"send_errors\": " << send_errors << ",\n  \"faults\": {";
+    bool first = true;
+    for (FaultKind f : kAllFaults) {
+      js << (first ? "" : ", ") << '"' << to_string(f) << "\": " << plan.count(f);
+      first = false;
+    }
+    js << "},\n  \"outputs_received\": " << outputs.distinct
+       << ",\n  \"outputs_undecodable\": " << outputs.undecodable;
+    if (!lockstep) {
+      js << ",\n  \"wake_latency_us\": {\"p50\": " << wake.p50 << ", \"p99\": " << wake.p99
+         << ", \"max\": " << wake.max << "}";
+    }
+    js << ",\n  \"output_flag_frames\": {";
+    first = true;
+    for (std::size_t b = 0; b < 16; ++b) {
+      if (flag_frames[b] == 0) continue;
+      js << (first ? "" : ", ") << '"' << kFlagNames[b] << "\": " << flag_frames[b];
+      first = false;
+    }
+    js << "}\n}\n";
+  }
+  if (timed_out) return 3;
+  return send_errors > 0 ? 1 : 0;
+}
