@@ -1,12 +1,15 @@
 // Regular 3D steel frames for the kernel benchmarks: a grid of bays in x and y on several storeys,
 // every member meshed into several elements, base fixed, a floor mass at every floor joint.
-// Sizes are compile-time (Grid -> ntn::Sizes); the spec is filled at run time into static storage.
+// Beams meet the columns either in a merged node (fully fixed) or through an NTN hinge at each
+// beam end (pinned, or a mix of hinge kinds). Sizes are compile-time (Grid, Joints ->
+// ntn::Sizes); the spec is filled at run time into static storage.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <vector>
 
 #include "ntn/kernel.hpp"
 
@@ -45,6 +48,27 @@ constexpr Sizes sizes_of(Grid g) {
   return s;
 }
 
+// How the beams meet the columns.
+enum class Joints : std::uint8_t {
+  kMerged,  // beam ends share the column's node: fully fixed connections, no hinges
+  kPinned,  // each beam end has its own node and an NTN hinge to the column's node, in the
+            // beam's local axes: rigid in ux, uy, uz, rx (torsion), free in ry, rz
+  kMixed,   // as kPinned, but ry is a `curve` with a +-0.1 mrad gap between rigid stops and rz a
+            // `linear` spring with a dashpot: every hinge kind in one model
+};
+
+constexpr int hinge_count(Grid g, Joints j) {
+  return j == Joints::kMerged ? 0 : 2 * beams(g);
+}
+
+constexpr Sizes sizes_of(Grid g, Joints j) {
+  Sizes s = sizes_of(g);
+  s.nodes += hinge_count(g, j);  // one node of its own per hinged beam end
+  s.hinges = hinge_count(g, j);
+  if (j == Joints::kMixed) s.curves = 1, s.curve_points = 4;
+  return s;
+}
+
 // Geometry and loads of every benchmark frame.
 inline constexpr double kBay = 6.0;          // m, bay width in x and y
 inline constexpr double kStorey = 3.5;       // m, storey height
@@ -60,6 +84,16 @@ struct Section {
 };
 inline constexpr Section kHEB300{149.1e-4, 25170e-8, 8563e-8, 185.0e-8};  // columns
 inline constexpr Section kIPE400{84.46e-4, 23130e-8, 1318e-8, 51.08e-8};  // beams
+
+// Joints::kMixed. ry (strong-axis bending of the beam): free within +-kGap, then rigid stops
+// (curve segments of slope kStopSlope >= the limit stiffness). Self-weight alone turns a pinned
+// IPE 400 end by q l^3 / (24 E I) = 1.2e-4 rad, so the stops engage. rz (weak axis): a rotational
+// spring and dashpot, soft enough not to lower the stable step.
+inline constexpr double kGap = 1e-4;                // rad
+inline constexpr double kStopSlope = 1e10;          // N m/rad
+inline constexpr double kLimitRotStiffness = 1e10;  // N m/rad, curve slopes >= this are rigid
+inline constexpr double kMixedSpring = 1e6;         // N m/rad
+inline constexpr double kMixedDashpot = 1e3;        // N m s/rad
 
 // Placement of T into static storage (no heap), value-initialized at first use. Large models do
 // not fit the stack and should not sit in the executable's data section as constant initializers.
@@ -86,14 +120,25 @@ inline ElementSpec element(int i, int j, const Section& s, double rx, double ry,
 
 }  // namespace detail
 
+// dt_stable of a spec with its hinges' springs (DESIGN §6), from the lumped masses.
+inline StableStepReport stable_step_with_hinges(const SpecView& v) {
+  std::vector<double> mass(kDofsPerNode * v.nodes.size());
+  assemble_lumped_mass(v, mass);
+  return stable_time_step(v, mass);
+}
+
 // Fills `spec` with the frame of grid G. Node and element numbering go storey by storey (columns,
-// then beams in x, then beams in y) so that neighbours in the mesh are near in memory.
-template <Grid G>
-void build_frame(ModelSpec<sizes_of(G)>& spec) {
+// then beams in x, then beams in y) so that neighbours in the mesh are near in memory. A hinged
+// beam end's own node is numbered with that beam's interior nodes (start, interior, end), and its
+// hinge (node 1 = beam end, node 2 = column joint) follows the order of the beams.
+template <Grid G, Joints J = Joints::kMerged>
+void build_frame(ModelSpec<sizes_of(G, J)>& spec) {
   constexpr int kJ = joints_per_level(G);
+  constexpr bool kHinged = J != Joints::kMerged;
   auto joint = [](int level, int ix, int iy) { return level * kJ + iy * (G.nx + 1) + ix; };
   int next_node = kJ * (G.storeys + 1);  // interior nodes follow the joints
   int next_element = 0;
+  int next_hinge = 0;
   int member = 0;
 
   for (int level = 0; level <= G.storeys; ++level) {
@@ -114,11 +159,38 @@ void build_frame(ModelSpec<sizes_of(G)>& spec) {
     }
   }
 
-  // One member from joint a to joint b meshed into `div` elements through new interior nodes.
-  auto add_member = [&](int a, int b, int div, const Section& s, double rx, double ry, double rz) {
+  // A node of its own at joint `at` for a hinged beam end, and its hinge to the joint in the
+  // beam's local axes.
+  auto hinge_end = [&](int at, const std::array<double, 9>& frame) {
+    const int end = next_node++;
+    spec.nodes[static_cast<std::size_t>(end)] = NodeSpec{};
+    NodeSpec& n = spec.nodes[static_cast<std::size_t>(end)];
+    const NodeSpec& j = spec.nodes[static_cast<std::size_t>(at)];
+    n.x = j.x, n.y = j.y, n.z = j.z;
+    if constexpr (kHinged) {
+      HingeSpec& h = spec.hinges[static_cast<std::size_t>(next_hinge++)];
+      h.node1 = end, h.node2 = at;
+      h.frame = frame;
+      h.behaviour = {HingeBehaviour::kRigid, HingeBehaviour::kRigid, HingeBehaviour::kRigid,
+                     HingeBehaviour::kRigid, HingeBehaviour::kFree,  HingeBehaviour::kFree};
+      if constexpr (J == Joints::kMixed) {
+        h.behaviour[kRy] = HingeBehaviour::kCurve, h.curve[kRy] = 0;
+        h.behaviour[kRz] = HingeBehaviour::kLinear;
+        h.stiffness[kRz] = kMixedSpring, h.dashpot[kRz] = kMixedDashpot;
+      }
+    }
+    return end;
+  };
+
+  // One member from joint a to joint b meshed into `div` elements through new interior nodes;
+  // with `pinned`, through a hinged node of its own at each end.
+  auto add_member = [&](int a, int b, int div, const Section& s, double rx, double ry, double rz,
+                        bool pinned) {
     const NodeSpec na = spec.nodes[static_cast<std::size_t>(a)];
     const NodeSpec nb = spec.nodes[static_cast<std::size_t>(b)];
-    int prev = a;
+    const std::array<double, 9> frame =
+        beam_geometry(na, nb, detail::element(a, b, s, rx, ry, rz, member)).rotation;
+    int prev = pinned ? hinge_end(a, frame) : a;
     for (int k = 1; k <= div; ++k) {
       int cur = b;
       if (k < div) {
@@ -127,6 +199,8 @@ void build_frame(ModelSpec<sizes_of(G)>& spec) {
         NodeSpec& n = spec.nodes[static_cast<std::size_t>(cur)];
         n.x = na.x + t * (nb.x - na.x), n.y = na.y + t * (nb.y - na.y);
         n.z = na.z + t * (nb.z - na.z);
+      } else if (pinned) {
+        cur = hinge_end(b, frame);
       }
       spec.elements[static_cast<std::size_t>(next_element++)] =
           detail::element(prev, cur, s, rx, ry, rz, member);
@@ -138,19 +212,29 @@ void build_frame(ModelSpec<sizes_of(G)>& spec) {
   for (int level = 1; level <= G.storeys; ++level) {
     for (int iy = 0; iy <= G.ny; ++iy) {  // columns: strong axis (Iy) bends in the x-z plane
       for (int ix = 0; ix <= G.nx; ++ix) {
-        add_member(joint(level - 1, ix, iy), joint(level, ix, iy), G.col_div, kHEB300, 1, 0, 0);
+        add_member(joint(level - 1, ix, iy), joint(level, ix, iy), G.col_div, kHEB300, 1, 0, 0,
+                   false);
       }
     }
     for (int iy = 0; iy <= G.ny; ++iy) {  // beams along x, web vertical
       for (int ix = 0; ix < G.nx; ++ix) {
-        add_member(joint(level, ix, iy), joint(level, ix + 1, iy), G.beam_div, kIPE400, 0, 0, 1);
+        add_member(joint(level, ix, iy), joint(level, ix + 1, iy), G.beam_div, kIPE400, 0, 0, 1,
+                   kHinged);
       }
     }
     for (int iy = 0; iy < G.ny; ++iy) {  // beams along y, web vertical
       for (int ix = 0; ix <= G.nx; ++ix) {
-        add_member(joint(level, ix, iy), joint(level, ix, iy + 1), G.beam_div, kIPE400, 0, 0, 1);
+        add_member(joint(level, ix, iy), joint(level, ix, iy + 1), G.beam_div, kIPE400, 0, 0, 1,
+                   kHinged);
       }
     }
+  }
+
+  if constexpr (J == Joints::kMixed) {
+    spec.curves[0] = {.first = 0, .count = 4};
+    spec.curve_points = {CurvePoint{-2 * kGap, -kStopSlope * kGap}, CurvePoint{-kGap, 0.0},
+                         CurvePoint{kGap, 0.0}, CurvePoint{2 * kGap, kStopSlope * kGap}};
+    spec.settings.limit_rotational_stiffness = kLimitRotStiffness;
   }
 
   // Ground acceleration channels in x and y, records in g.
@@ -158,7 +242,11 @@ void build_frame(ModelSpec<sizes_of(G)>& spec) {
   spec.inputs[1] = {.kind = InputKind::kGroundAcceleration, .dof = 1, .scale = 9.80665};
   spec.settings.alpha = kAlpha;
   spec.settings.gravity = {0.0, 0.0, -9.80665};
-  spec.settings.dt = kDtFraction * stable_time_step(view(spec)).dt_stable;
+  if constexpr (kHinged) {
+    spec.settings.dt = kDtFraction * stable_step_with_hinges(view(spec)).dt_stable;
+  } else {
+    spec.settings.dt = kDtFraction * stable_time_step(view(spec)).dt_stable;
+  }
 }
 
 }  // namespace ntn::bench
