@@ -20,16 +20,16 @@ namespace cant = ntn::models::cantilever;
 namespace hb = ntn::models::hinged_beam;
 
 // Sizes straight from the files: frame3d has 18 nodes, 26 members of 4 divisions (3 interior
-// nodes each), 6 beams pinned at both ends (a node and a hinge per released end), 1 input and
-// 9 outputs; the cantilever 2 nodes and 1 member of 20 divisions; hinged_beam 8 nodes, 3
+// nodes each), 8 beams pinned at their exterior end (a node and a hinge per released end), 1
+// input and 9 outputs; the cantilever 2 nodes and 1 member of 20 divisions; hinged_beam 8 nodes, 3
 // members of 4 and 1 of 2 divisions, one released end, 3 explicit hinges and a support with
 // axes, one curve of 4 points.
-static_assert(frame::kSizes.nodes == 18 + 26 * 3 + 6 * 2);
+static_assert(frame::kSizes.nodes == 18 + 26 * 3 + 8);
 static_assert(frame::kSizes.elements == 26 * 4);
 static_assert(frame::kSizes.inputs == 1 && frame::kSizes.outputs == 9);
-static_assert(frame::kSizes.hinges == 12 && frame::kSizes.curves == 0);
-static_assert(frame::kHingeNames[0] == "BY_A1A2_1.start" &&
-              frame::kHingeNames[1] == "BY_A1A2_1.end");
+static_assert(frame::kSizes.hinges == 8 && frame::kSizes.curves == 0);
+static_assert(frame::kHingeNames[0] == "BX_A1B1_1.start" &&
+              frame::kHingeNames[1] == "BX_B1C1_1.end");
 static_assert(frame::kSpec.hinges[0].behaviour[ntn::kRy] == ntn::HingeBehaviour::kFree);
 static_assert(frame::kSpec.hinges[0].behaviour[ntn::kRx] == ntn::HingeBehaviour::kRigid);
 static_assert(hb::kSizes.nodes == 8 + 3 * 3 + 1 + 1 && hb::kSizes.elements == 3 * 4 + 2);

@@ -192,6 +192,60 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
   return d[k];
 }
 
+// Rigid branches with the momentum-conserving clamp (DESIGN §7.1): when a curve direction d
+// passes its branch start, the model moves by the response of the whole constrained system to
+// an impulse along that hinge direction (b = the direction's row of B), scaled so that d lands
+// on d_lim: dx = -excess M_c^-1 b / (b^T M_c^-1 b), where M_c^-1 is the lumped inverse mass
+// with the rigid trees applied (the forest's up and down passes). Momentum is kept because the
+// impulse pair is equal and opposite, and the rigid directions stay exact because the response
+// is a constrained motion. Without trees this is each node moving by its share of b^T M^-1 b.
+// Then S 35-37. Uses w.p, w.f and w.r as workspace (the outputs were taken before the update).
+template <Sizes S>
+void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  constexpr auto kN = static_cast<std::size_t>(Model<S>::kDofs);
+  for (const HingeData& h : m.hinges) {
+    if (h.branches == 0) continue;
+    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+    const bool ground = h.node2 == kGround;
+    const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (!((h.branches >> k) & 1U)) continue;
+      double d[6];
+      hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
+      const double excess = d[k] > h.branch_upper[k]   ? d[k] - h.branch_upper[k]
+                            : d[k] < h.branch_lower[k] ? d[k] - h.branch_lower[k]
+                                                       : 0.0;
+      if (excess == 0) continue;
+      double b1[6], b2[6];
+      hinge_direction(h, k, b1, b2);
+      w.r.fill(0.0);
+      for (std::size_t c = 0; c < 6; ++c) {
+        w.r[i1 + c] += b1[c];
+        if (!ground) w.r[i2 + c] += b2[c];
+      }
+      if (m.hinge_method == HingeMethod::kNtnExact) forest_up(m.edges, m.num_edges, w.r.data());
+      for (std::size_t j = 0; j < kN; ++j)
+        w.f[j] = w.r[j] * m.inv_mass[j];
+      if (m.hinge_method == HingeMethod::kNtnExact) {
+        forest_down(m.roots, m.num_roots, m.edges, m.num_edges, w.r.data(), w.f.data());
+      }
+      double mobility = 0;  // b^T M_c^-1 b
+      for (std::size_t c = 0; c < 6; ++c) {
+        mobility += b1[c] * w.f[i1 + c];
+        if (!ground) mobility += b2[c] * w.f[i2 + c];
+      }
+      if (!(mobility > 0)) continue;  // both sides held: nothing can move
+      const double scale = -excess / mobility;
+      for (std::size_t j = 0; j < kN; ++j) {
+        const double du = scale * w.f[j];
+        s.u[j] += du;
+        s.v[j] += du * m.inv_dt;
+        w.a[j] += du * m.inv_dt * m.inv_dt;
+      }
+    }
+  }
+}
+
 // After the update: rigid branches are clamped (momentum-conserving, or S 33), then ntn_paper's
 // S 27-37 or ntn_exact's projection keep the rigid directions exact (DESIGN §7, §7.1).
 template <Sizes S>
@@ -199,7 +253,7 @@ void hinge_constraints(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   const bool paper = m.hinge_method == HingeMethod::kNtnPaper;
   if (!paper) {
     if (m.clamp == ClampRule::kMomentum) {
-      momentum_clamp(m.hinges, m.mass, s.u.data(), s.v.data(), w.a.data(), m.inv_dt);
+      momentum_clamp(m, s, w);
     } else {
       paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, false);
     }

@@ -1,5 +1,5 @@
 // ntn_paper: the seed's NTN modification taken literally (S 17-37), hinge by hinge in index
-// order, and the rigid-branch clamps shared with the other methods (S 32-33, DESIGN §7.1).
+// order, and the S 33 clamp (also used by clamp = "paper" with the other methods).
 #pragma once
 
 #include <array>
@@ -183,42 +183,6 @@ inline void paper_after_update(std::span<const HingeData> hinges,
         du[c] = n[c] - g[c];
       const int node = j == 0 ? h.node1 : h.node2;
       apply_correction(g, v + 6 * node, a + 6 * node, du, inv_dt);  // S 35-37
-    }
-  }
-}
-
-// Rigid branches with the momentum-conserving clamp (DESIGN §7.1, default for ntn_exact and
-// penalty): when d passes a branch start d_lim, the pair moves along that hinge direction so
-// that d = d_lim, each node by its share of the inverse mass, which keeps the pair's
-// mass-weighted centre; then S 35-37.
-inline void momentum_clamp(std::span<const HingeData> hinges, std::span<const double> mass,
-                           double* u, double* v, double* a, double inv_dt) {
-  for (const HingeData& h : hinges) {
-    if (h.branches == 0) continue;
-    double* x1 = u + 6 * h.node1;
-    double* x2 = h.node2 == kGround ? nullptr : u + 6 * h.node2;
-    double d[6];
-    hinge_relative(h, x1, x2, d);
-    for (std::size_t k = 0; k < 6; ++k) {
-      if (!((h.branches >> k) & 1U)) continue;
-      const double excess = d[k] > h.branch_upper[k]   ? d[k] - h.branch_upper[k]
-                            : d[k] < h.branch_lower[k] ? d[k] - h.branch_lower[k]
-                                                       : 0.0;
-      if (excess == 0) continue;
-      double b1[6], b2[6];
-      hinge_direction(h, k, b1, b2);
-      const double* m1 = mass.data() + 6 * h.node1;
-      const double* m2 = x2 == nullptr ? nullptr : mass.data() + 6 * h.node2;
-      const double w = hinge_inverse_mass(h, k, m1, m2);
-      // x_j -= excess M_j^-1 b_j / w moves d by -excess exactly (linear in x).
-      double du1[6], du2[6];
-      for (int c = 0; c < 6; ++c) {
-        du1[c] = b1[c] != 0 ? -excess * b1[c] / (m1[c] * w) : 0.0;
-        du2[c] = (m2 != nullptr && b2[c] != 0) ? -excess * b2[c] / (m2[c] * w) : 0.0;
-      }
-      apply_correction(x1, v + 6 * h.node1, a + 6 * h.node1, du1, inv_dt);
-      if (x2 != nullptr) apply_correction(x2, v + 6 * h.node2, a + 6 * h.node2, du2, inv_dt);
-      hinge_relative(h, x1, x2, d);
     }
   }
 }

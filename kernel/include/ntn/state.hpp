@@ -23,13 +23,13 @@ struct State {
 template <Sizes S>
 struct Scratch {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
-  std::array<double, kDofs> p{};            // external load P_n
-  std::array<double, kDofs> f{};            // internal force F_n
-  std::array<double, kDofs> a{};            // acceleration a_n
+  std::array<double, kDofs> p{};                       // external load P_n
+  std::array<double, kDofs> f{};                       // internal force F_n
+  std::array<double, kDofs> a{};                       // acceleration a_n
   std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};  // R_n - C v, coupled (models with hinges)
-  std::array<double, S.outputs> outputs{};  // output channels at t_n
-  std::array<double, 3> ground{};           // m/s^2, ground acceleration a_g at t_n (x, y, z)
-  double time = 0;                          // s, t_n of `outputs`
+  std::array<double, S.outputs> outputs{};             // output channels at t_n
+  std::array<double, 3> ground{};  // m/s^2, ground acceleration a_g at t_n (x, y, z)
+  double time = 0;                 // s, t_n of `outputs`
 };
 
 }  // namespace ntn
