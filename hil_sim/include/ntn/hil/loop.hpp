@@ -1,0 +1,156 @@
+// The fixed-rate frame loop (DESIGN §8): one I/O frame per period, N kernel substeps per frame
+// (dt = period / N), inputs held or linearly interpolated within the frame, outputs and alarms
+// per frame, per-frame wake-up latency, compute time and overruns, and an optional log.
+//
+// Overrun policy: catch up. Frames are processed strictly in index order, each with its own
+// accepted inputs; a late frame is followed at once by the next one, without sleeping, until
+// the loop is back on its deadlines. No frame is ever skipped, so the response is a function
+// of the accepted inputs alone, however late the computer was (and a replay reproduces it).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "ntn/hil/clock.hpp"
+#include "ntn/hil/packet.hpp"
+#include "ntn/hil/recorder.hpp"
+#include "ntn/kernel.hpp"
+
+namespace ntn::hil {
+
+struct LoopConfig {
+  std::int64_t frames = 0;
+  int substeps = 1;          // kernel steps per frame: period = substeps x dt
+  bool interpolate = false;  // linear between the previous and this frame's value (one frame
+                             // of delay, since the next sample is not known yet); else hold
+  double period = 1e-3;      // s
+};
+
+// A limit alarm on one output channel: on when |value| > limit, off again when
+// |value| < limit - hysteresis.
+struct Alarm {
+  bool enabled = false;
+  double limit = 0;
+  double hysteresis = 0;
+  bool active = false;
+  std::uint64_t raised = 0;       // times it went on
+  std::uint64_t frames_on = 0;    // frames it was on
+  std::int64_t first_frame = -1;  // frame it first went on
+};
+
+struct FrameTimes {
+  std::vector<std::int64_t> latency_ns;  // wake-up minus deadline (0 on the virtual clock)
+  std::vector<std::int64_t> compute_ns;  // inputs to outputs of the frame
+  std::int64_t overruns = 0;
+  std::int64_t max_late_frames = 0;  // longest run of consecutive overrunning frames
+  void reserve(std::int64_t frames) {
+    latency_ns.reserve(static_cast<std::size_t>(frames));
+    compute_ns.reserve(static_cast<std::size_t>(frames));
+  }
+};
+
+struct LoopResult {
+  std::int64_t frames = 0;
+  std::int64_t diverged_frame = -1;  // first frame whose state became non-finite, or -1
+  std::uint64_t input_held_frames = 0;
+};
+
+// Runs `config.frames` frames. Source: `void frame_inputs(std::int64_t k, std::span<double> v,
+// std::uint16_t& flags)` gives frame k's accepted inputs (through the input gate: finite, in
+// range) and the gate's flag:: bits. Sink: `void frame_outputs(std::int64_t k,
+// std::span<const double> v, std::uint16_t flags)` gets the outputs with the gate's bits and
+// the loop's (flag::kAlarm, kOverrun, kDiverged).
+// Outputs of frame k are the channels at t_k = k period (after the frame's first substep).
+// Nothing here allocates after the vectors in `times` were reserved.
+template <Sizes S, class Clock, class Source, class Sink>
+LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch, Clock& clock,
+                    Source& source, Sink& sink, Recorder* recorder, const LoopConfig& config,
+                    std::span<Alarm> alarms, FrameTimes& times) {
+  LoopResult result;
+  std::array<double, S.inputs> current{}, previous{}, step_in{};
+  std::array<double, S.outputs> out{}, last_good{};
+  std::uint16_t in_flags = 0;
+  source.frame_inputs(0, current, in_flags);
+  (void)start(model, state, scratch, current);
+  previous = current;
+  const auto period_ns = static_cast<std::int64_t>(config.period * 1e9 + 0.5);
+  const std::int64_t t0 = clock.now() + (Clock::kVirtual ? 0 : period_ns);
+  std::int64_t late_run = 0;
+  bool diverged = false;
+  for (std::int64_t k = 0; k < config.frames; ++k) {
+    const std::int64_t deadline = t0 + k * period_ns;
+    const std::int64_t woke = clock.wait_until(deadline);
+    const std::int64_t c0 = monotonic_ns();
+    if (k > 0) source.frame_inputs(k, current, in_flags);
+    std::uint16_t flags = in_flags;
+    if ((in_flags & flag::kHeld) != 0) ++result.input_held_frames;
+    if (!diverged) {
+      for (int i = 0; i < config.substeps; ++i) {
+        if (config.interpolate) {
+          const double s = static_cast<double>(i) / static_cast<double>(config.substeps);
+          for (std::size_t c = 0; c < step_in.size(); ++c)
+            step_in[c] = previous[c] + s * (current[c] - previous[c]);
+        } else {
+          step_in = current;
+        }
+        const StepStatus st = step(model, state, scratch, step_in);
+        if (i == 0) out = scratch.outputs;
+        if (st == StepStatus::kDiverged) {
+          diverged = true;
+          result.diverged_frame = k;
+          break;
+        }
+      }
+    }
+    if (diverged) {
+      out = last_good;  // safe state: hold the last good outputs, flagged
+      flags |= flag::kDiverged;
+    } else {
+      last_good = out;
+    }
+    previous = current;
+    for (std::size_t c = 0; c < alarms.size() && c < out.size(); ++c) {
+      Alarm& a = alarms[c];
+      if (!a.enabled) continue;
+      const double v = out[c] < 0 ? -out[c] : out[c];
+      if (!a.active && v > a.limit) {
+        a.active = true, ++a.raised;
+        if (a.first_frame < 0) a.first_frame = k;
+      } else if (a.active && v < a.limit - a.hysteresis) {
+        a.active = false;
+      }
+      if (a.active) ++a.frames_on, flags |= flag::kAlarm;
+    }
+    const std::int64_t c1 = monotonic_ns();
+    const std::int64_t finish = Clock::kVirtual ? deadline : c1 - c0 + woke;
+    if (!Clock::kVirtual && finish > deadline + period_ns) {
+      flags |= flag::kOverrun;
+      ++times.overruns;
+      times.max_late_frames = std::max(times.max_late_frames, ++late_run);
+    } else {
+      late_run = 0;
+    }
+    sink.frame_outputs(k, out, flags);
+    if (recorder != nullptr) recorder->write_frame(k, in_flags, flags, current, out);
+    if (times.latency_ns.size() < times.latency_ns.capacity()) {
+      times.latency_ns.push_back(woke - deadline);
+      times.compute_ns.push_back(monotonic_ns() - c0);
+    }
+    ++result.frames;
+  }
+  return result;
+}
+
+// Percentile of a sample (nearest rank), for the summary; sorts a copy.
+inline std::int64_t percentile(std::vector<std::int64_t> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  auto rank = static_cast<std::size_t>(p / 100.0 * static_cast<double>(v.size()) + 0.999999);
+  rank = std::clamp<std::size_t>(rank, 1, v.size());
+  return v[rank - 1];
+}
+
+}  // namespace ntn::hil

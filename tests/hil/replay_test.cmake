@@ -1,0 +1,45 @@
+file(MAKE_DIRECTORY ${OUT})
+set(log ${OUT}/run.ntnlog)
+# 10^5 frames (100 s: the record, then the ground at rest) on the virtual clock, recorded.
+execute_process(COMMAND ${HIL} run --clock virtual --input ag_x=${RECORD} --frames 100000
+                        --record ${log} -q
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "run: exit ${rc}: ${out} ${err}")
+endif()
+execute_process(COMMAND ${HIL} replay ${log} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "bit-identical over 100000 frames")
+  message(FATAL_ERROR "replay: exit ${rc}: ${out}")
+endif()
+
+# Flip the lowest bit of frame 5000's input (t = 5 s, inside the record). Layout
+# (hil_sim/include/ntn/hil/recorder.hpp): header 8 + 5 x 4 + 2 x 8 + 64 = 108 bytes; a frame of
+# frame3d (1 input, 9 outputs) is 8 + 4 + 4 + 8 + 9 x 8 + 8 = 104 bytes; its input starts at 16.
+math(EXPR offset "108 + 5000 * 104 + 16")
+file(READ ${log} byte OFFSET ${offset} LIMIT 1 HEX)
+math(EXPR flipped "0x${byte} ^ 1" OUTPUT_FORMAT HEXADECIMAL)
+string(SUBSTRING "${flipped}" 2 -1 flipped)
+string(LENGTH "${flipped}" len)
+if(len EQUAL 1)
+  set(flipped "0${flipped}")
+endif()
+execute_process(COMMAND sh -c "printf '\\x${flipped}' | dd of=${log} bs=1 seek=${offset} conv=notrunc status=none"
+                RESULT_VARIABLE rc)
+execute_process(COMMAND ${HIL} replay ${log} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 1 OR NOT out MATCHES "DIFFERS at frame 5000 ")
+  message(FATAL_ERROR "a changed input bit at frame 5000 was not found there: exit ${rc}: ${out}")
+endif()
+
+# Real time against virtual time over the same 1500 frames (1.5 s of the record).
+foreach(clock real virtual)
+  execute_process(COMMAND ${HIL} run --clock ${clock} --input ag_x=${RECORD} --frames 1500 -q
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out_${clock})
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${clock} clock: exit ${rc}")
+  endif()
+  string(REGEX MATCH "output hash ([0-9a-f]+)" _ "${out_${clock}}")
+  set(hash_${clock} ${CMAKE_MATCH_1})
+endforeach()
+if(NOT hash_real STREQUAL hash_virtual OR hash_real STREQUAL "")
+  message(FATAL_ERROR "real clock ${hash_real} != virtual clock ${hash_virtual}")
+endif()
