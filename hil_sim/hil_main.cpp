@@ -456,7 +456,8 @@ int main(int argc, char** argv) {
        << ",\n  \"latency_us\": {\"p50\": " << us(lat50) << ", \"p99\": " << us(lat99)
        << ", \"p99.9\": " << us(lat999) << ", \"max\": " << us(latmax) << "}"
        << ",\n  \"compute_fraction\": {\"p50\": " << static_cast<double>(cmp50) / period_ns
-       << ", \"p99\": " << static_cast<double>(cmp99) / period_ns << ", \"p99.9\": " << static_cast<double>(cmp999) / period_ns
+       << ", \"p99\": " << static_cast<double>(cmp99) / period_ns
+       << ", \"p99.9\": " << static_cast<double>(cmp999) / period_ns
        << ", \"max\": " << static_cast<double>(cmpmax) / period_ns << "}"
        << ",\n  \"inputs\": {\"accepted\": " << gc.accepted << ", \"missing\": " << gc.missing
        << ", \"lost\": " << gc.lost() << ", \"late\": " << gc.late
