@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <cmath>
 #include <initializer_list>
 #include <span>
@@ -145,6 +146,145 @@ inline Eigen::VectorXd static_displacement(const ntn::SpecView& spec, const Eige
   for (std::size_t i = 0; i < d.size(); ++i)
     u(d[i]) = x(static_cast<Eigen::Index>(i));
   return u;
+}
+
+// ---- Hinges (DESIGN §7), written from the equations, not from the kernel's hinge code ----
+
+// B of one hinge (6 x dofs): d_L = B u with B = T [-I -E I 0; 0 -I 0 I], E the seed's (S 16)
+// eccentricity matrix of e = x2 - x1. A ground hinge (node2 = kGround) has no node-2 columns.
+inline Eigen::MatrixXd hinge_b(const ntn::SpecView& spec, const ntn::HingeSpec& h) {
+  Eigen::Matrix3d T;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      T(r, c) = h.frame[static_cast<std::size_t>(3 * r + c)];
+  }
+  const double ex = h.eccentricity[0], ey = h.eccentricity[1], ez = h.eccentricity[2];
+  Eigen::Matrix3d E;  // (S 16)
+  E << 0, ez, -ey, -ez, 0, ex, ey, -ex, 0;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(6, dofs_of(spec));
+  const Eigen::Index n1 = ntn::kDofsPerNode * h.node1;
+  B.block<3, 3>(0, n1) = -T;
+  B.block<3, 3>(0, n1 + 3) = -T * E;
+  B.block<3, 3>(3, n1 + 3) = -T;
+  if (h.node2 != ntn::kGround) {
+    const Eigen::Index n2 = ntn::kDofsPerNode * h.node2;
+    B.block<3, 3>(0, n2) = T;
+    B.block<3, 3>(3, n2 + 3) = T;
+  }
+  return B;
+}
+
+// Relative displacement d_L of hinge h for a full displacement vector u.
+inline Eigen::Matrix<double, 6, 1> hinge_relative_displacement(const ntn::SpecView& spec,
+                                                               const ntn::HingeSpec& h,
+                                                               const double* u) {
+  const Eigen::MatrixXd B = hinge_b(spec, h);
+  return B * Eigen::Map<const Eigen::VectorXd>(u, B.cols());
+}
+
+// The rigid rows of every hinge's B, stacked: the constraints C u = 0 that ntn_exact holds.
+inline Eigen::MatrixXd rigid_constraints(const ntn::SpecView& spec) {
+  std::vector<Eigen::VectorXd> rows;
+  for (const ntn::HingeSpec& h : spec.hinges) {
+    const Eigen::MatrixXd B = hinge_b(spec, h);
+    for (int k = 0; k < 6; ++k) {
+      if (h.behaviour[static_cast<std::size_t>(k)] == ntn::HingeBehaviour::kRigid)
+        rows.push_back(B.row(k).transpose());
+    }
+  }
+  Eigen::MatrixXd C(static_cast<Eigen::Index>(rows.size()), dofs_of(spec));
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    C.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+  return C;
+}
+
+// Stiffness of the hinges' linear springs, sum B^T diag(k) B over `linear` directions (DESIGN
+// §7); with `penalty_t` / `penalty_r` > 0 the rigid directions become springs of that stiffness.
+inline Eigen::MatrixXd hinge_spring_stiffness(const ntn::SpecView& spec, double penalty_t = 0,
+                                              double penalty_r = 0) {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(dofs_of(spec), dofs_of(spec));
+  for (const ntn::HingeSpec& h : spec.hinges) {
+    const Eigen::MatrixXd B = hinge_b(spec, h);
+    for (int k = 0; k < 6; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      double s = 0;
+      if (h.behaviour[kk] == ntn::HingeBehaviour::kLinear) s = h.stiffness[kk];
+      if (h.behaviour[kk] == ntn::HingeBehaviour::kRigid) s = k < 3 ? penalty_t : penalty_r;
+      if (s != 0) K += s * B.row(k).transpose() * B.row(k);
+    }
+  }
+  return K;
+}
+
+// Undamped modes of the hinged structure with its rigid hinge directions as exact constraints:
+// K phi = omega^2 M phi on the free DOFs restricted to the null space of C (rigid_constraints),
+// solved as Z^T K Z y = omega^2 Z^T M Z y with Z an orthonormal basis of that null space (SVD of
+// C), phi = Z y. K includes the hinges' linear springs. Shapes are full-size and mass-normalized.
+inline Modes constrained_modes(const ntn::SpecView& spec) {
+  const std::vector<Eigen::Index> d = free_dofs(spec);
+  const auto n = static_cast<Eigen::Index>(d.size());
+  const Eigen::MatrixXd Kfull = global_stiffness(spec) + hinge_spring_stiffness(spec);
+  const Eigen::MatrixXd Cfull = rigid_constraints(spec);
+  Modes out;
+  out.mass = lumped_mass(spec);
+  Eigen::MatrixXd C(Cfull.rows(), n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    C.col(i) = Cfull.col(d[static_cast<std::size_t>(i)]);
+  Eigen::MatrixXd Z;
+  if (C.rows() == 0) {
+    Z = Eigen::MatrixXd::Identity(n, n);
+  } else {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+    const Eigen::VectorXd sv = svd.singularValues();
+    Eigen::Index rank = 0;
+    for (Eigen::Index i = 0; i < sv.size(); ++i)
+      rank += sv(i) > 1e-12 * sv(0) ? 1 : 0;
+    Z = svd.matrixV().rightCols(n - rank);
+  }
+  Eigen::VectorXd m(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    m(i) = out.mass(d[static_cast<std::size_t>(i)]);
+  const Eigen::MatrixXd K = Z.transpose() * restrict_to(Kfull, d) * Z;
+  const Eigen::MatrixXd M = Z.transpose() * m.asDiagonal() * Z;
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  if (eig.info() != Eigen::Success) throw std::runtime_error("constrained eigen solver failed");
+  out.omega = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::MatrixXd phi = Z * eig.eigenvectors();  // free DOFs x modes, phi^T M phi = I
+  out.shapes = Eigen::MatrixXd::Zero(dofs_of(spec), phi.cols());
+  for (Eigen::Index i = 0; i < n; ++i)
+    out.shapes.row(d[static_cast<std::size_t>(i)]) = phi.row(i);
+  return out;
+}
+
+// Central difference's undamped stable step 2 / omega_max of the assembled system: elements,
+// the hinges' linear springs and, with penalty_t / penalty_r > 0, penalty springs in the rigid
+// directions, with the lumped mass on the free DOFs that have mass. The exact bound for that
+// system, to check the kernel's estimate (DESIGN §6) against and to run penalty models safely.
+inline double assembled_stable_step(const ntn::SpecView& spec, double penalty_t = 0,
+                                    double penalty_r = 0) {
+  const Eigen::VectorXd m = lumped_mass(spec);
+  std::vector<Eigen::Index> d;
+  for (const Eigen::Index j : free_dofs(spec)) {
+    if (m(j) > 0) d.push_back(j);
+  }
+  const Eigen::MatrixXd K =
+      global_stiffness(spec) + hinge_spring_stiffness(spec, penalty_t, penalty_r);
+  const auto n = static_cast<Eigen::Index>(d.size());
+  Eigen::VectorXd s(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    s(i) = 1.0 / std::sqrt(m(d[static_cast<std::size_t>(i)]));
+  const Eigen::MatrixXd A = s.asDiagonal() * restrict_to(K, d) * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) throw std::runtime_error("eigen solver failed");
+  return 2.0 / std::sqrt(eig.eigenvalues().maxCoeff());
+}
+
+// Modal coordinate of a displacement vector: phi_i^T M u (mass-normalized shapes).
+inline double modal_coordinate(const Modes& m, Eigen::Index mode, const double* u) {
+  double q = 0;
+  for (Eigen::Index j = 0; j < m.shapes.rows(); ++j)
+    q += m.shapes(j, mode) * m.mass(j) * u[j];
+  return q;
 }
 
 }  // namespace ntn_test

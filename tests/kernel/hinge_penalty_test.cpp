@@ -1,0 +1,281 @@
+// ntn_exact against the `penalty` method (issue 3, "What must be shown" 4) on the three shapes the
+// seed's algorithm cannot take: a star joint (four members, four different hinge frames on one
+// node), a chain of hinges (a tree two levels deep), and an eccentric rigid hinge.
+//
+// Truth and tolerance. The penalty model is the same structure with each rigid direction a
+// spring k_p (K = B^T K_p B, DESIGN §7); as k_p grows it converges to the constrained structure
+// that ntn_exact integrates, at first order: its rigid directions yield by d = f / k_p, and the
+// response differs by the effect of those slips. Both methods run at the penalty model's (small)
+// stable step, so the time discretization is identical and only the model differs. The test
+// measures the penalty run's own slips, s = max |d_rigid| (rotations times the members' length,
+// to compare displacements), relative to the peak displacement, and requires
+//   - the history difference at k_p to be at most 10 s (the slips f / k_p, propagated through the
+//     structure with a dynamic amplification of order one; 10 leaves room for that),
+//   - the difference at 10 k_p to be ten times smaller, within 25 % (first order in 1 / k_p:
+//     ntn_exact is the limit the penalty model converges to, not merely close to it),
+//   - and the difference at k_p below 1e-3 of the peak (the issue's "agrees").
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ntn/kernel.hpp"
+#include "support/assemble.hpp"
+#include "support/builders.hpp"
+#include "support/hinges.hpp"
+#include "support/no_heap.hpp"
+
+namespace {
+
+using ntn_test::Mat3;
+using ntn_test::Vec3;
+using B = ntn::HingeBehaviour;
+
+constexpr ntn_test::Section kMember = ntn_test::rectangle(0.08, 0.12);
+constexpr ntn_test::Section kColumn = ntn_test::rectangle(0.15, 0.15);
+
+template <ntn::Sizes S>
+struct Sim {
+  ntn::ModelSpec<S> spec;
+  ntn::Model<S> model;
+  ntn::State<S> state;
+  ntn::Scratch<S> scratch;
+};
+
+// A triangle pulse (time function 0) at node n in all six directions, scaled by f.
+template <ntn::Sizes S>
+void pulse_at(ntn::ModelSpec<S>& s, int first_load, int n, double f) {
+  const double load[6] = {3e4, -2e4, 2.5e4, 1e3, -1.5e3, 2e3};
+  for (int d = 0; d < 6; ++d)
+    s.loads[static_cast<std::size_t>(first_load + d)] = {n, d, f * load[d], 0};
+}
+
+// ---- Star joint: node 0 is the joint (a small point mass: the penalty springs need a mass on
+// both sides), members along +x, +y, -x and +z, each from its own end node at the joint to a
+// clamped far end, two elements each. Four hinge frames, four sets of releases.
+constexpr ntn::Sizes kStar{
+    .nodes = 13, .elements = 8, .time_functions = 1, .time_points = 3, .loads = 12, .hinges = 4};
+
+void build_star(ntn::ModelSpec<kStar>& s) {
+  s = {};
+  ntn_test::FrameBuilder<kStar> f(s);
+  const int joint = f.add_node({0, 0, 0});
+  s.nodes[static_cast<std::size_t>(joint)].added = {20, 20, 20, 0.2, 0.2, 0.2};
+  const Vec3 far[4] = {{2, 0, 0}, {0, 1.8, 0}, {-2.2, 0, 0}, {0, 0, 2}};
+  const Vec3 ref[4] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}};
+  int end[4];
+  for (int m = 0; m < 4; ++m) {
+    end[m] = f.add_node({0, 0, 0});
+    const int tip = f.add_node(far[m], ntn_test::kFixedAll);
+    f.add_member(end[m], tip, 2, ntn_test::kSteel, kMember, ref[m]);
+  }
+  EXPECT_TRUE(f.complete());
+  Mat3 frame[4];
+  for (int m = 0; m < 4; ++m)
+    frame[m] = ntn_test::member_frame({0, 0, 0}, far[m], ref[m]);
+  // 1: rigid in all six, member frame.
+  s.hinges[0] = ntn_test::hinge(end[0], joint, frame[0]);
+  // 2: pinned about local y, frame turned 25 degrees about the member axis.
+  s.hinges[1] = ntn_test::hinge(
+      end[1], joint,
+      ntn_test::rotate_frame(frame[1], ntn_test::rotation(far[1], 25 * ntn_test::kDegree)),
+      ntn_test::released(1U << ntn::kRy));
+  // 3: free about local z, a torsion spring about local x, frame turned -40 degrees about the
+  // member axis and 15 about global z.
+  Mat3 f3 = ntn_test::rotate_frame(frame[2], ntn_test::rotation(far[2], -40 * ntn_test::kDegree));
+  f3 = ntn_test::rotate_frame(f3, ntn_test::rotation({0, 0, 1}, 15 * ntn_test::kDegree));
+  s.hinges[2] = ntn_test::hinge(end[2], joint, f3, ntn_test::released(1U << ntn::kRz));
+  s.hinges[2].behaviour[ntn::kRx] = B::kLinear;
+  s.hinges[2].stiffness[ntn::kRx] = 2e5;  // N m/rad
+  // 4: free about local x and y, the issue's skewed frame (30 + 20 degrees).
+  s.hinges[3] = ntn_test::hinge(end[3], joint, ntn_test::skewed_frame(frame[3]),
+                                ntn_test::released((1U << ntn::kRx) | (1U << ntn::kRy)));
+  s.time_points = ntn_test::triangle_pulse(0.004);
+  s.time_functions[0] = {0, 3};
+  pulse_at(s, 0, joint, 1.0);
+  pulse_at(s, 6, 3, -0.5);  // the middle of member 1
+}
+
+// ---- Chain: four coincident nodes at (2, 0, 0): A (end of a beam from the clamped origin),
+// B and C (connector plates: point masses), D (end of a beam to the clamped (4, 0, 0)).
+// Hinges A-B (pinned about local y), C-B (free about a turned local z) and D-C (a rotational
+// spring about local x, rigid otherwise). B is the root (most rigid hinges, heavier than C), so
+// D hangs two hinges below it.
+constexpr ntn::Sizes kChain{
+    .nodes = 8, .elements = 4, .time_functions = 1, .time_points = 3, .loads = 12, .hinges = 3};
+
+void build_chain(ntn::ModelSpec<kChain>& s) {
+  s = {};
+  ntn_test::FrameBuilder<kChain> f(s);
+  const int left = f.add_node({0, 0, 0}, ntn_test::kFixedAll);
+  const int a = f.add_node({2, 0, 0});
+  const int b = f.add_node({2, 0, 0});
+  const int c = f.add_node({2, 0, 0});
+  const int d = f.add_node({2, 0, 0});
+  const int right = f.add_node({4, 0, 0}, ntn_test::kFixedAll);
+  s.nodes[static_cast<std::size_t>(b)].added = {30, 30, 30, 0.3, 0.3, 0.3};
+  s.nodes[static_cast<std::size_t>(c)].added = {15, 15, 15, 0.15, 0.15, 0.15};
+  f.add_member(left, a, 2, ntn_test::kSteel, kMember, {0, 0, 1});
+  f.add_member(d, right, 2, ntn_test::kSteel, kMember, {0.3, 0, 1});
+  EXPECT_TRUE(f.complete());
+  const Mat3 member = ntn_test::member_frame({0, 0, 0}, {1, 0, 0}, {0, 0, 1});
+  s.hinges[0] = ntn_test::hinge(a, b, member, ntn_test::released(1U << ntn::kRy));
+  s.hinges[1] = ntn_test::hinge(
+      c, b, ntn_test::rotate_frame(member, ntn_test::rotation({1, 0, 0}, 35 * ntn_test::kDegree)),
+      ntn_test::released(1U << ntn::kRz));
+  s.hinges[2] = ntn_test::hinge(d, c, ntn_test::skewed_frame(member));
+  s.hinges[2].behaviour[ntn::kRx] = B::kLinear;
+  s.hinges[2].stiffness[ntn::kRx] = 5e4;  // N m/rad
+  s.time_points = ntn_test::triangle_pulse(0.004);
+  s.time_functions[0] = {0, 3};
+  pulse_at(s, 0, 1, 1.0);   // the middle of the left beam
+  pulse_at(s, 6, b, -0.7);  // the plate
+}
+
+// ---- Eccentric rigid hinge: a beam whose end A sits 0.15 m above and 0.1 m beside the column
+// top C it is rigidly connected to (e = x_C - x_A), as where a beam meets a column face. Column
+// 3 m (3 elements) clamped at its base, beam 3 m (3 elements) clamped at its far end.
+constexpr ntn::Sizes kEccentric{
+    .nodes = 8, .elements = 6, .time_functions = 1, .time_points = 3, .loads = 12, .hinges = 1};
+
+void build_eccentric(ntn::ModelSpec<kEccentric>& s) {
+  s = {};
+  ntn_test::FrameBuilder<kEccentric> f(s);
+  const int base = f.add_node({0, 0, -3}, ntn_test::kFixedAll);
+  const int top = f.add_node({0, 0, 0});
+  const int a = f.add_node({0, 0.1, 0.15});
+  const int far = f.add_node({3, 0.1, 0.15}, ntn_test::kFixedAll);
+  f.add_member(base, top, 3, ntn_test::kSteel, kColumn, {1, 0, 0});
+  f.add_member(a, far, 3, ntn_test::kSteel, kMember, {0, 0, 1});
+  EXPECT_TRUE(f.complete());
+  s.hinges[0] =
+      ntn_test::hinge(a, top, ntn_test::kIdentity3, ntn_test::kAllRigid, {0.0, -0.1, -0.15});
+  s.time_points = ntn_test::triangle_pulse(0.004);
+  s.time_functions[0] = {0, 3};
+  pulse_at(s, 0, top, 1.0);
+  pulse_at(s, 6, 6, 0.5);  // the beam's first inner node
+}
+
+struct Comparison {
+  double difference = 0;  // max |u_exact - u_penalty| over translations / peak
+  double slip = 0;        // penalty's max rigid |d| (rotations x length) / peak
+  double peak = 0;
+  long steps = 0;
+};
+
+// Runs penalty (stiffness kp, kpr) and ntn_exact at the penalty model's step over t_end.
+template <ntn::Sizes S>
+Comparison compare(Sim<S>& pen, Sim<S>& ex, void (*build)(ntn::ModelSpec<S>&), double kp,
+                   double kpr, double length, double t_end) {
+  build(pen.spec);
+  pen.spec.settings.hinge_method = ntn::HingeMethod::kPenalty;
+  pen.spec.settings.penalty_stiffness = kp;
+  pen.spec.settings.penalty_rotational_stiffness = kpr;
+  // 0.9 of the exact stable step of the assembled penalty system: the kernel's per-spring
+  // estimate (DESIGN §6) is 1.26-1.47x too large for these three joints (several springs on one
+  // node, eccentricity; see hinge_time_step_test), and a run at 0.9 of it diverges.
+  const double exact_step = ntn_test::assembled_stable_step(ntn::view(pen.spec), kp, kpr);
+  pen.spec.settings.dt =
+      0.9 * std::min(exact_step, ntn_test::hinged_stable_step(pen.spec).dt_stable);
+  build(ex.spec);
+  ex.spec.settings.hinge_method = ntn::HingeMethod::kNtnExact;
+  ex.spec.settings.dt = pen.spec.settings.dt;
+  // B of each hinge, node-1 and node-2 columns, for the penalty run's slips.
+  Eigen::Matrix<double, 6, 6> b1[S.hinges], b2[S.hinges];
+  for (int h = 0; h < S.hinges; ++h) {
+    const ntn::HingeSpec& hs = pen.spec.hinges[static_cast<std::size_t>(h)];
+    const Eigen::MatrixXd Bh = ntn_test::hinge_b(ntn::view(pen.spec), hs);
+    b1[h] = Bh.block<6, 6>(0, 6 * hs.node1);
+    b2[h] = Bh.block<6, 6>(0, 6 * hs.node2);
+  }
+  Comparison out;
+  out.steps = static_cast<long>(t_end / pen.spec.settings.dt);
+  const ntn_test::EigenNoMalloc guard;
+  for (Sim<S>* r : {&pen, &ex}) {
+    EXPECT_TRUE(ntn::init(r->spec, r->model).ok());
+    r->state = {};
+    EXPECT_EQ(ntn::start(r->model, r->state, r->scratch, {}), ntn::StepStatus::kOk);
+  }
+  double diff = 0, slip = 0;
+  for (long n = 0; n < out.steps; ++n) {
+    if (ntn::step(pen.model, pen.state, pen.scratch, {}) != ntn::StepStatus::kOk ||
+        ntn::step(ex.model, ex.state, ex.scratch, {}) != ntn::StepStatus::kOk) {
+      ADD_FAILURE() << "step " << n << " did not return kOk";
+      break;
+    }
+    for (std::size_t j = 0; j < pen.state.u.size(); ++j) {
+      if (j % 6 >= 3) continue;
+      out.peak = std::max(out.peak, std::abs(pen.state.u[j]));
+      diff = std::max(diff, std::abs(pen.state.u[j] - ex.state.u[j]));
+    }
+    for (int h = 0; h < S.hinges; ++h) {
+      const ntn::HingeSpec& hs = pen.spec.hinges[static_cast<std::size_t>(h)];
+      const Eigen::Map<const Eigen::Matrix<double, 6, 1>> u1(&pen.state.u[6 * hs.node1]);
+      const Eigen::Map<const Eigen::Matrix<double, 6, 1>> u2(&pen.state.u[6 * hs.node2]);
+      const Eigen::Matrix<double, 6, 1> d = b1[h] * u1 + b2[h] * u2;
+      for (std::size_t k = 0; k < 6; ++k) {
+        if (hs.behaviour[k] != B::kRigid) continue;
+        slip = std::max(slip, std::abs(d(static_cast<Eigen::Index>(k))) * (k < 3 ? 1 : length));
+      }
+    }
+  }
+  out.difference = diff / out.peak;
+  out.slip = slip / out.peak;
+  std::printf(
+      "    k_p %.2e N/m, %.2e N m/rad: dt %.3e s, %ld steps, peak %.3e m; penalty slip / peak "
+      "%.3e, max |u_exact - u_penalty| / peak %.3e\n",
+      kp, kpr, pen.spec.settings.dt, out.steps, out.peak, out.slip, out.difference);
+  return out;
+}
+
+template <ntn::Sizes S>
+void check_against_penalty(const char* name, void (*build)(ntn::ModelSpec<S>&), double length,
+                           double t_end) {
+  static Sim<S> pen, ex;
+  // Penalty stiffness 1e3 x the members' axial EA / l and bending 4 E I / l (l = 1 m).
+  const double axial = ntn_test::kSteel.E * kMember.A;
+  const double bending = 4 * ntn_test::kSteel.E * kMember.Iy;
+  std::printf("  %s:\n", name);
+  const Comparison a = compare(pen, ex, build, 1e3 * axial, 1e3 * bending, length, t_end);
+  const Comparison b = compare(pen, ex, build, 1e4 * axial, 1e4 * bending, length, t_end);
+  EXPECT_GT(a.peak, 1e-5) << name;
+  EXPECT_LT(a.difference, 10 * a.slip) << name;
+  EXPECT_LT(a.difference, 1e-3) << name;
+  const double order = a.difference / b.difference;
+  std::printf("    difference ratio k_p : 10 k_p = %.3f (first order: 10)\n", order);
+  EXPECT_NEAR(order, 10.0, 2.5) << name;
+}
+
+TEST(HingePenalty, StarJointWithFourFrames) {
+  check_against_penalty<kStar>("star joint", build_star, 2.0, 0.05);
+}
+
+TEST(HingePenalty, ChainOfHinges) {
+  // The forest is two levels deep: some edge's parent is itself a child.
+  static Sim<kChain> r;
+  build_chain(r.spec);
+  r.spec.settings.dt = 0.9 * ntn_test::hinged_stable_step(r.spec).dt_stable;
+  {
+    const ntn_test::EigenNoMalloc guard;
+    ASSERT_TRUE(ntn::init(r.spec, r.model).ok());
+  }
+  ASSERT_EQ(r.model.num_edges, 3);
+  ASSERT_EQ(r.model.num_roots, 1);
+  EXPECT_EQ(r.model.roots[0].node, 2);  // B
+  bool deep = false;
+  for (int k = 0; k < r.model.num_edges; ++k) {
+    for (int j = 0; j < r.model.num_edges; ++j)
+      deep |= r.model.edges[static_cast<std::size_t>(k)].parent ==
+              r.model.edges[static_cast<std::size_t>(j)].child;
+  }
+  EXPECT_TRUE(deep);
+  check_against_penalty<kChain>("chain", build_chain, 2.0, 0.05);
+}
+
+TEST(HingePenalty, EccentricRigidHinge) {
+  check_against_penalty<kEccentric>("eccentric rigid hinge", build_eccentric, 3.0, 0.05);
+}
+
+}  // namespace
