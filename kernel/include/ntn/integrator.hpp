@@ -99,20 +99,30 @@ void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   }
 }
 
-// Hinge springs and dashpots (linear, curve, and rigid directions under `penalty`): f_L from
-// d_L = B u and its rate from v_{n-1/2}, added to F_n as B^T f_L (DESIGN §7).
+// Spring and dashpot force f_L of one hinge (force on node 1, hinge frame): from d_L = B u and
+// its rate from v_{n-1/2} (DESIGN §7).
+template <Sizes S>
+void hinge_spring_local(const Model<S>& m, const State<S>& s, const HingeData& h, double* f) {
+  const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+  const bool ground = h.node2 == kGround;
+  const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+  double d[6], d_dot[6];
+  hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
+  hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
+  hinge_spring_force(h, m.curve_points, d, d_dot, f);
+}
+
+// Hinge springs and dashpots (linear, curve, and rigid directions under `penalty`) added to F_n
+// as B^T f_L (DESIGN §7).
 template <Sizes S>
 void hinge_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   for (const HingeData& h : m.hinges) {
     if (h.springs == 0) continue;
-    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+    double f[6];
+    hinge_spring_local(m, s, h, f);
     const bool ground = h.node2 == kGround;
-    const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
-    double d[6], d_dot[6], f[6];
-    hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
-    hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
-    hinge_spring_force(h, m.curve_points, d, d_dot, f);
-    hinge_scatter(h, f, &w.f[i1], ground ? nullptr : &w.f[i2]);
+    hinge_scatter(h, f, &w.f[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+                  ground ? nullptr : &w.f[static_cast<std::size_t>(kDofsPerNode * h.node2)]);
   }
 }
 
@@ -172,13 +182,8 @@ double hinge_force(const Model<S>& m, const State<S>& s, const Scratch<S>& w, in
     return l[k % 3];
   }
   if (!((h.springs >> k) & 1U)) return 0.0;
-  const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
-  const bool ground = h.node2 == kGround;
-  const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
-  double d[6], d_dot[6], f[6];
-  hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
-  hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
-  hinge_spring_force(h, m.curve_points, d, d_dot, f);
+  double f[6];
+  hinge_spring_local(m, s, h, f);
   return f[kk];
 }
 
@@ -199,7 +204,8 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
 // with the rigid trees applied (the forest's up and down passes). Momentum is kept because the
 // impulse pair is equal and opposite, and the rigid directions stay exact because the response
 // is a constrained motion. Without trees this is each node moving by its share of b^T M^-1 b.
-// Then S 35-37. Uses w.p, w.f and w.r as workspace (the outputs were taken before the update).
+// Then S 35-37. Uses w.f and w.r as workspace (the outputs were taken before the update), and
+// costs one pass over the model per stop event.
 template <Sizes S>
 void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   constexpr auto kN = static_cast<std::size_t>(Model<S>::kDofs);
