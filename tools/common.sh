@@ -29,10 +29,12 @@ ntn_install_missing() {
 }
 
 # ntn_build PRESET [TARGET...]: configure and build one preset (warnings are errors).
+# NTN_CMAKE_ARGS adds cache settings (tools/check leaves the benchmarks out).
 ntn_build() {
   local preset=$1
   shift
-  cmake --preset "$preset" -S "$NTN_ROOT" >/dev/null
+  # shellcheck disable=SC2086
+  cmake --preset "$preset" -S "$NTN_ROOT" ${NTN_CMAKE_ARGS:-} >/dev/null
   if [ $# -gt 0 ]; then
     cmake --build --preset "$preset" -j "$(ntn_jobs)" --target "$@"
   else
