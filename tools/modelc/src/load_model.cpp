@@ -435,6 +435,33 @@ struct TimeFunction {
   std::vector<TimePoint> points;
 };
 
+// An array of [x, y] points whose x increases strictly (time-function and curve points): each
+// bad entry and each x that does not come after the previous one is reported; `ok` turns false.
+std::vector<std::array<double, 2>> increasing_pairs(Loader& L, const toml::array& a,
+                                                    const std::string& key, const char* x,
+                                                    const char* unit, const char* what, bool& ok) {
+  std::vector<std::array<double, 2>> out;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    auto xy = L.array_of<double>(
+        a[i], k, 2, [&L](const toml::node& e, const std::string& ek) { return L.number(e, ek); });
+    if (!xy) {
+      ok = false;
+      continue;
+    }
+    if (!out.empty() && !((*xy)[0] > out.back()[0])) {
+      L.error(a[i].source(), k,
+              std::string(x) + " = " + num((*xy)[0]) + unit +
+                  " does not come after the previous "
+                  "point's " +
+                  x + " = " + num(out.back()[0]) + unit + ": " + what + " must increase strictly");
+      ok = false;
+    }
+    out.push_back({(*xy)[0], (*xy)[1]});
+  }
+  return out;
+}
+
 struct Load {
   long long node = 0;
   Where at;
@@ -955,23 +982,8 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     }
     TimeFunction f;
     bool ok = true;
-    for (std::size_t i = 0; i < a->size(); ++i) {
-      const std::string k = pkey + "[" + std::to_string(i) + "]";
-      auto tv = L.array_of<double>((*a)[i], k, 2, [&L](const toml::node& e, const std::string& ek) {
-        return L.number(e, ek);
-      });
-      if (!tv) {
-        ok = false;
-        continue;
-      }
-      if (!f.points.empty() && !((*tv)[0] > f.points.back().t)) {
-        L.error((*a)[i].source(), k,
-                "t = " + num((*tv)[0]) + " s does not come after the previous point's t = " +
-                    num(f.points.back().t) + " s: times must increase strictly");
-        ok = false;
-      }
-      f.points.push_back({(*tv)[0], (*tv)[1]});
-    }
+    for (const auto& [time, value] : increasing_pairs(L, *a, pkey, "t", " s", "times", ok))
+      f.points.push_back({time, value});
     if (!id || !ok) return;
     f.id = *id;
     p.time_functions.push_back(f);
@@ -1141,23 +1153,8 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     }
     Curve c;
     bool ok = true;
-    for (std::size_t i = 0; i < a->size(); ++i) {
-      const std::string k = pkey + "[" + std::to_string(i) + "]";
-      auto df = L.array_of<double>((*a)[i], k, 2, [&L](const toml::node& e, const std::string& ek) {
-        return L.number(e, ek);
-      });
-      if (!df) {
-        ok = false;
-        continue;
-      }
-      if (!c.points.empty() && !((*df)[0] > c.points.back().d)) {
-        L.error((*a)[i].source(), k,
-                "d = " + num((*df)[0]) + " does not come after the previous point's d = " +
-                    num(c.points.back().d) + ": deformations must increase strictly");
-        ok = false;
-      }
-      c.points.push_back({(*df)[0], (*df)[1]});
-    }
+    for (const auto& [d, force] : increasing_pairs(L, *a, pkey, "d", "", "deformations", ok))
+      c.points.push_back({d, force});
     if (!id || !ok) return;
     c.id = *id;
     c.points_at = t.where("points");
