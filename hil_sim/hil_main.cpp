@@ -52,12 +52,22 @@ struct FileSource {
 
 // Input packets on a loopback port, through the gate. In lock-step mode (virtual clock) frame k
 // waits for the sender's frame-end marker for k, so the accepted inputs do not depend on timing.
+// In real time frame 0 waits for the sender's first input packet (frame f0, arriving at t_a) and
+// the loop's deadlines follow the sender's stream: frame k is due at t_a + (k - f0) period +
+// period / 2, half a period after its packet is expected, so that arrival jitter below half a
+// period makes no packet late (after its frame ran) or early (before the frame before it ran).
 struct UdpSource {
   ntn::hil::UdpSocket* socket;
   ntn::hil::InputGate* gate;
   bool lock_step;
+  std::int64_t period_ns = 1'000'000;
+  std::int64_t first_wait_ns = 0;  // real time: how long frame 0 waits for the first packet
   std::array<std::byte, ntn::hil::kMaxPacketBytes + 64> buffer{};
   std::uint64_t timeouts = 0;
+  std::int64_t epoch = -1;        // deadline of frame 0, or -1: none (no packet came)
+  std::int64_t first_frame = -1;  // frame of the packet the deadlines follow
+  std::int64_t waited_ns = 0;     // time frame 0 waited for it
+  std::int64_t epoch_ns() const { return epoch; }
   void drain(std::int64_t k, bool& ended) {
     for (;;) {
       const ntn::hil::Received r = socket->receive(buffer);
@@ -66,8 +76,34 @@ struct UdpSource {
       if (res.status == ntn::hil::OfferStatus::kFrameEnd && res.frame >= k) ended = true;
     }
   }
+  // The first input packet that decodes with the model's channel count fixes the deadlines
+  // (one beyond the jitter buffer too: the loop was started after the sender, and catches up).
+  void wait_first_packet() {
+    const std::int64_t start = ntn::hil::monotonic_ns();
+    for (std::int64_t left = first_wait_ns; left > 0;
+         left = start + first_wait_ns - ntn::hil::monotonic_ns()) {
+      if (socket->wait_readable(std::chrono::nanoseconds(left)) != ntn::hil::WaitStatus::kReadable)
+        continue;
+      for (;;) {
+        const ntn::hil::Received r = socket->receive(buffer);
+        if (!r.has_datagram()) break;
+        const std::int64_t arrival = ntn::hil::monotonic_ns();
+        const auto res = gate->offer(std::span<const std::byte>(buffer.data(), r.size));
+        using ntn::hil::OfferStatus;
+        if (res.status == OfferStatus::kCurrent || res.status == OfferStatus::kBuffered ||
+            res.status == OfferStatus::kTooEarly) {
+          first_frame = res.frame;
+          epoch = arrival - res.frame * period_ns + period_ns / 2;
+          waited_ns = arrival - start;
+          return;
+        }
+      }
+    }
+    waited_ns = ntn::hil::monotonic_ns() - start;
+  }
   void frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
     gate->begin_frame(k);
+    if (k == 0 && !lock_step) wait_first_packet();
     bool ended = false;
     drain(k, ended);
     while (lock_step && !ended) {
@@ -136,7 +172,7 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> input_args, alarm_args;
   std::string clock_name = "real", out_path, json_path, log_path, replay_path;
-  double duration = -1;
+  double duration = -1, first_wait_s = 10;
   std::int64_t frames = -1;
   int listen_port = -1, reply_port = 0, cpu = -1;
   bool interpolate = false, fifo = false, mlock = false, quiet = false;
@@ -149,6 +185,10 @@ int main(int argc, char** argv) {
                   "real (absolute deadlines) or virtual (as fast as "
                   "possible; lock-step with UDP)")
       ->check(CLI::IsMember({"real", "virtual"}));
+  run->add_option("--wait-first", first_wait_s,
+                  "real time with --listen: seconds to wait for the sender's first packet, which "
+                  "fixes the frame deadlines (default 10)")
+      ->check(CLI::PositiveNumber);
   run->add_option("-t,--duration", duration, "seconds to run (default: the longest record)");
   run->add_option("-n,--frames", frames, "frames to run (overrides --duration)");
   run->add_flag("--interpolate", interpolate,
@@ -357,13 +397,18 @@ int main(int argc, char** argv) {
   times.reserve(frames);
   ntn::hil::LoopResult result;
   std::uint64_t udp_timeouts = 0;
+  std::int64_t first_frame = -1, first_waited_ns = 0;
   const std::int64_t wall0 = ntn::hil::monotonic_ns();
   auto go = [&](auto& clock) {
     if (udp_in) {
       UdpSource source{&socket, &gate, virtual_clock};
+      source.period_ns = static_cast<std::int64_t>(std::llround(period * 1e9));
+      source.first_wait_ns = static_cast<std::int64_t>(first_wait_s * 1e9);
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
                                   log_path.empty() ? nullptr : &recorder, config, alarms, times);
       udp_timeouts = source.timeouts;
+      first_frame = source.first_frame;
+      first_waited_ns = source.waited_ns;
     } else {
       FileSource source{&records, &gate, period};
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
@@ -377,7 +422,14 @@ int main(int argc, char** argv) {
     ntn::hil::RealClock clock;
     go(clock);
   }
-  const double wall = static_cast<double>(ntn::hil::monotonic_ns() - wall0) / 1e9;
+  // The wait for the sender's first packet is not part of the run.
+  const double wall = static_cast<double>(ntn::hil::monotonic_ns() - wall0 - first_waited_ns) / 1e9;
+  if (udp_in && !virtual_clock && first_frame < 0) {
+    std::fprintf(stderr,
+                 "warning: no input packet within %g s: the loop ran on its own clock, every "
+                 "frame missing\n",
+                 first_wait_s);
+  }
   if (!log_path.empty() && !recorder.close()) {
     std::fprintf(stderr, "error: %s\n", recorder.error().c_str());
     return 1;
@@ -443,6 +495,12 @@ int main(int argc, char** argv) {
       std::printf("  DIVERGED at frame %lld: outputs held at the last good frame and flagged\n",
                   static_cast<long long>(result.diverged_frame));
     }
+    if (udp_in && !virtual_clock && first_frame >= 0) {
+      std::printf(
+          "  deadlines follow the sender: its packet of frame %lld came after %.3f s, "
+          "frame k is due half a period after packet k\n",
+          static_cast<long long>(first_frame), static_cast<double>(first_waited_ns) / 1e9);
+    }
     if (udp_timeouts > 0)
       std::printf("  %llu frames timed out waiting for the sender\n",
                   static_cast<unsigned long long>(udp_timeouts));
@@ -465,6 +523,7 @@ int main(int argc, char** argv) {
        << ", \"early\": " << gc.early << ", \"too_early\": " << gc.too_early
        << ", \"corrupt\": " << gc.corrupt << ", \"wrong_count\": " << gc.wrong_count
        << ", \"nonfinite\": " << gc.nonfinite << ", \"out_of_range\": " << gc.out_of_range << "}"
+       << ",\n  \"first_packet_frame\": " << first_frame
        << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"output_hash\": \""
        << std::hex << run_hash << std::dec << "\"\n}\n";
   }

@@ -109,6 +109,46 @@ TEST_F(Loop, RealAndVirtualClocksGiveTheSameOutputs) {
     EXPECT_GE(l, 0);
 }
 
+// A source that fixes the first deadline (as the UDP source does from the sender's first
+// packet) moves the whole frame grid: frame k is due at epoch + k period, on the real clock.
+struct EpochSource : SyntheticSource {
+  std::int64_t epoch = -1;
+  std::int64_t epoch_ns() const { return epoch; }
+};
+
+TEST_F(Loop, SourceFixesTheDeadlines) {
+  state = {};
+  ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
+  EpochSource source{{&gate, 0}};
+  // 30 ms ahead: well beyond the loop's default of one period from now, so a loop that ignored
+  // the source would finish its 20 frames (20 ms) before the epoch.
+  source.epoch = ntn::hil::monotonic_ns() + 30'000'000;
+  HashSink sink;
+  ntn::hil::LoopConfig config;
+  config.frames = 20;
+  config.substeps = static_cast<int>(std::llround(config.period / model.dt));
+  ntn::hil::RealClock clock;
+  ntn::hil::FrameTimes times;
+  times.reserve(config.frames);
+  std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+  const auto result = ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr,
+                                         config, alarms, times);
+  const std::int64_t end = ntn::hil::monotonic_ns();
+  EXPECT_EQ(result.epoch_ns, source.epoch);
+  // The last frame woke at or after its deadline epoch + 19 periods.
+  EXPECT_GE(end, source.epoch + 19 * 1'000'000);
+  for (std::int64_t l : times.latency_ns)
+    EXPECT_GE(l, 0);
+  // Without an epoch from the source the loop starts one period after it began.
+  source.epoch = -1;
+  state = {};
+  const std::int64_t before = ntn::hil::monotonic_ns();
+  const auto own = ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config,
+                                      alarms, times);
+  EXPECT_GE(own.epoch_ns, before + 1'000'000);
+  EXPECT_LE(own.epoch_ns, ntn::hil::monotonic_ns());
+}
+
 // A NaN burst on an input never reaches an output: the gate holds the last good value.
 TEST_F(Loop, NanBurstGivesNoNanOutput) {
   ntn::hil::VirtualClock clock;

@@ -54,13 +54,30 @@ struct FrameTimes {
 
 struct LoopResult {
   std::int64_t frames = 0;
+  std::int64_t epoch_ns = 0;         // deadline of frame 0 (real clock: monotonic ns)
   std::int64_t diverged_frame = -1;  // first frame whose state became non-finite, or -1
   std::uint64_t input_held_frames = 0;
 };
 
+// The deadline of frame 0 a source asks for on the real clock, or -1 (the loop then starts one
+// period from now). A source that takes packets from a sender in real time fixes it from the
+// arrival of the sender's first packet, so that the loop's frames fall between the sender's
+// (hil_main.cpp, UdpSource); a source without `epoch_ns()` leaves it to the loop.
+template <class Source>
+std::int64_t source_epoch_ns(const Source& source) {
+  if constexpr (requires { source.epoch_ns(); }) {
+    return source.epoch_ns();
+  } else {
+    return -1;
+  }
+}
+
 // Runs `config.frames` frames. Source: `void frame_inputs(std::int64_t k, std::span<double> v,
 // std::uint16_t& flags)` gives frame k's accepted inputs (through the input gate: finite, in
-// range) and the gate's flag:: bits. Sink: `void frame_outputs(std::int64_t k,
+// range) and the gate's flag:: bits; it is called for frame 0 before the loop fixes its
+// deadlines, so it may wait there for its first input and then say, through an optional
+// `std::int64_t epoch_ns() const`, when frame 0 is due (see source_epoch_ns). Sink: `void
+// frame_outputs(std::int64_t k,
 // std::span<const double> v, std::uint16_t flags)` gets the outputs with the gate's bits and
 // the loop's (flag::kAlarm, kOverrun, kDiverged).
 // Outputs of frame k are the channels at t_k = k period (after the frame's first substep).
@@ -77,7 +94,10 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
   (void)start(model, state, scratch, current);
   previous = current;
   const auto period_ns = static_cast<std::int64_t>(config.period * 1e9 + 0.5);
-  const std::int64_t t0 = clock.now() + (Clock::kVirtual ? 0 : period_ns);
+  const std::int64_t asked = Clock::kVirtual ? -1 : source_epoch_ns(source);
+  const std::int64_t t0 =
+      Clock::kVirtual ? clock.now() : (asked >= 0 ? asked : clock.now() + period_ns);
+  result.epoch_ns = t0;
   std::int64_t late_run = 0;
   bool diverged = false;
   for (std::int64_t k = 0; k < config.frames; ++k) {
