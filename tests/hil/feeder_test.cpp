@@ -2,12 +2,7 @@
 // socket, output packets sent back) and the feeder runs as a subprocess with faults injected.
 // In lock-step mode every count must equal the injected one, and every value the gate passed
 // must be the feeder's record sample or the held last good value, bit for bit.
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <time.h>
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -27,62 +22,20 @@
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/udp.hpp"
 #include "record.hpp"
-
-extern char** environ;
+#include "subprocess.hpp"
 
 namespace {
 
 using namespace ntn::hil;
 using namespace std::chrono_literals;
+using ntn_test::Child;
+using ntn_test::read_file;
+using ntn_test::TempDir;
 
 constexpr int kChannels = 2;
 constexpr double kRate = 1000.0;  // Hz, the feeder's default
 const std::string kElCentro = std::string(NTN_RECORDS_DIR) + "/elCentro.AT2";
 const std::string kArleta = std::string(NTN_RECORDS_DIR) + "/ARL360.AT2";
-
-// A child process with stdout in a file; killed if the test ends before it does.
-class Child {
- public:
-  Child(const std::vector<std::string>& args, const std::string& stdout_path) {
-    std::vector<char*> argv;
-    for (const std::string& a : args)
-      argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                     0644);
-    ok_ = posix_spawn(&pid_, argv[0], &fa, nullptr, argv.data(), environ) == 0;
-    posix_spawn_file_actions_destroy(&fa);
-  }
-  ~Child() {
-    if (ok_ && !reaped_) {
-      kill(pid_, SIGKILL);
-      wait();
-    }
-  }
-  Child(const Child&) = delete;
-  Child& operator=(const Child&) = delete;
-  bool started() const { return ok_; }
-  int wait() {  // exit code, or -1
-    int status = 0;
-    if (waitpid(pid_, &status, 0) != pid_) return -1;
-    reaped_ = true;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  bool ok_ = false;
-  bool reaped_ = false;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The feeder's "faults nan=1 inf=0 ..." line, as a map.
 std::map<std::string, std::uint64_t> fault_line(const std::string& out) {
@@ -98,13 +51,6 @@ std::map<std::string, std::uint64_t> fault_line(const std::string& out) {
     if (eq != std::string::npos) m[word.substr(0, eq)] = std::stoull(word.substr(eq + 1));
   }
   return m;
-}
-
-std::string temp_dir(const std::string& name) {
-  const std::string d =
-      ::testing::TempDir() + "ntn_feeder_test_" + std::to_string(getpid()) + "_" + name;
-  std::filesystem::create_directories(d);
-  return d;
 }
 
 InputGate make_gate() {
@@ -252,7 +198,7 @@ std::vector<std::string> feeder_args(std::uint16_t port, std::int64_t frames) {
 // Each kind once, at frames where the signal moves, in lock-step.
 TEST(Feeder, LockStepEachFaultKindCountedExactly) {
   constexpr std::int64_t kFrames = 600;
-  const std::string dir = temp_dir("each");
+  const TempDir dir("feeder_test_each");
   UdpSocket s;
   ASSERT_TRUE(s.open().ok());
   const std::string faults =
@@ -262,24 +208,24 @@ TEST(Feeder, LockStepEachFaultKindCountedExactly) {
   for (const char* a : {"--virtual", "--fault"})
     args.emplace_back(a);
   args.push_back(faults);
-  args.insert(args.end(), {"--out", dir + "/out.csv"});
-  Child feeder(args, dir + "/stdout.txt");
+  args.insert(args.end(), {"--out", dir / "out.csv"});
+  Child feeder(args, dir / "stdout.txt");
   ASSERT_TRUE(feeder.started());
 
   InputGate gate = make_gate();
   const LoopRun run = lockstep_loop(s, gate, kFrames);
   ASSERT_EQ(run.error, "");
-  ASSERT_EQ(feeder.wait(), 0) << read_file(dir + "/stdout.txt");
+  ASSERT_EQ(feeder.wait(), 0) << read_file(dir / "stdout.txt");
 
   std::vector<FaultAt> list;
   ASSERT_EQ(parse_fault_list(faults, list), "");
   FaultPlan plan;
   ASSERT_EQ(make_fault_plan(kFrames, list, {}, 1, plan), "");
-  const std::string out = read_file(dir + "/stdout.txt");
+  const std::string out = read_file(dir / "stdout.txt");
   expect_printed_counts(out, plan);
   expect_counts(gate.counters(), plan, kFrames);
   expect_held_values(run, plan);
-  expect_csv_matches(dir + "/out.csv", run);
+  expect_csv_matches(dir / "out.csv", run);
   // Flags of the faulted frames.
   EXPECT_EQ(run.flags[200], flag::kNonFinite | flag::kHeld);
   EXPECT_EQ(run.flags[240], flag::kOutOfRange | flag::kHeld);
@@ -296,7 +242,7 @@ TEST(Feeder, LockStepEachFaultKindCountedExactly) {
 TEST(Feeder, LockStepRandomFaultsCountedExactly) {
   constexpr std::int64_t kFrames = 3000;
   constexpr std::uint64_t kSeed = 2024;
-  const std::string dir = temp_dir("random");
+  const TempDir dir("feeder_test_random");
   UdpSocket s;
   ASSERT_TRUE(s.open().ok());
   std::vector<std::string> args = feeder_args(s.port(), kFrames);
@@ -306,7 +252,7 @@ TEST(Feeder, LockStepRandomFaultsCountedExactly) {
     args.insert(args.end(), {"--fault-rate", std::string(to_string(k)) + "=0.01"});
     rates.push_back({k, 0.01});
   }
-  Child feeder(args, dir + "/stdout.txt");
+  Child feeder(args, dir / "stdout.txt");
   ASSERT_TRUE(feeder.started());
   InputGate gate = make_gate();
   const LoopRun run = lockstep_loop(s, gate, kFrames);
@@ -317,7 +263,7 @@ TEST(Feeder, LockStepRandomFaultsCountedExactly) {
   ASSERT_EQ(make_fault_plan(kFrames, {}, rates, kSeed, plan), "");
   for (FaultKind k : kAllFaults)
     ASSERT_GT(plan.count(k), 5u) << to_string(k);  // each kind really exercised
-  const std::string out = read_file(dir + "/stdout.txt");
+  const std::string out = read_file(dir / "stdout.txt");
   expect_printed_counts(out, plan);
   expect_counts(gate.counters(), plan, kFrames);
   expect_held_values(run, plan);
@@ -338,14 +284,14 @@ void sleep_until(std::chrono::steady_clock::time_point t) {
 // lost frames, the frame accounting, an output back for every frame, and the pace.
 TEST(Feeder, RealTimeOneKilohertz) {
   constexpr std::int64_t kFrames = 1500;
-  const std::string dir = temp_dir("realtime");
+  const TempDir dir("feeder_test_realtime");
   UdpSocket s;
   ASSERT_TRUE(s.open().ok());
   std::vector<std::string> args = feeder_args(s.port(), kFrames);
   args.insert(args.end(), {"--fault", "corrupt@300,duplicate@600,lost@700,nan@900,corrupt@1100",
-                           "--out", dir + "/out.csv", "--linger", "5000"});
+                           "--out", dir / "out.csv", "--linger", "5000"});
   const auto start = std::chrono::steady_clock::now();
-  Child feeder(args, dir + "/stdout.txt");
+  Child feeder(args, dir / "stdout.txt");
   ASSERT_TRUE(feeder.started());
 
   InputGate gate = make_gate();
@@ -371,7 +317,7 @@ TEST(Feeder, RealTimeOneKilohertz) {
   ASSERT_EQ(feeder.wait(), 0);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::string out = read_file(dir + "/stdout.txt");
+  const std::string out = read_file(dir / "stdout.txt");
   std::printf("%s", out.c_str());
 
   const GateCounters& n = gate.counters();
@@ -393,7 +339,7 @@ TEST(Feeder, RealTimeOneKilohertz) {
 }
 
 TEST(Feeder, BadArgumentsExitTwo) {
-  const std::string dir = temp_dir("args");
+  const TempDir dir("feeder_test_args");
   const std::vector<std::vector<std::string>> bad{
       {NTN_FEEDER, "--port", "9", "--record", "/nonexistent.AT2"},
       {NTN_FEEDER, "--port", "9", "--record", kElCentro, "--fault", "bogus@1"},
@@ -402,7 +348,7 @@ TEST(Feeder, BadArgumentsExitTwo) {
       {NTN_FEEDER, "--port", "9"},
   };
   for (const auto& a : bad) {
-    Child c(a, dir + "/stdout.txt");
+    Child c(a, dir / "stdout.txt");
     ASSERT_TRUE(c.started());
     EXPECT_EQ(c.wait(), 2) << a.back();
   }

@@ -43,3 +43,6 @@ endforeach()
 if(NOT hash_real STREQUAL hash_virtual OR hash_real STREQUAL "")
   message(FATAL_ERROR "real clock ${hash_real} != virtual clock ${hash_virtual}")
 endif()
+
+# Passed: the log and its directory go (a failure above keeps them for a look).
+file(REMOVE_RECURSE ${OUT})
