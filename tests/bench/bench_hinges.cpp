@@ -497,7 +497,8 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
     }
     lap(kClamps);
     if (m.hinge_method == HingeMethod::kNtnExact) {
-      forest_project(m.edges, m.num_edges, s.u.data(), s.v.data(), w.a.data(), m.inv_dt);
+      forest_project(m.edges, m.project_edges, m.num_project_edges, s.u.data(), s.v.data(),
+                     w.a.data(), m.inv_dt);
     }
     lap(kProject);
   }

@@ -54,6 +54,8 @@ inline void diag6_madd(const Diag6& m, const double* x, double* y) {
     y[i] = t[i];
 }
 
+inline constexpr std::array<double, 6> kZero6{};  // the ground's motion: a, u, v all zero
+
 struct ForestEdge {
   std::int32_t child = 0;
   std::int32_t parent = kGround;
@@ -425,60 +427,124 @@ inline void forest_down(std::span<const ForestRoot> roots, int root_count,
   for (int k = 0; k < root_count; ++k) {
     const ForestRoot& root = roots[static_cast<std::size_t>(k)];
     double* ar = a + 6 * root.node;
-    for (int d = 0; d < 6; ++d)
-      ar[d] = 0;
     if (root.diagonal) {
-      diag6_madd(root.inv_mass_d, r + 6 * root.node, ar);
+      const double* rr = r + 6 * root.node;
+      for (int d = 0; d < 6; ++d)
+        ar[d] = root.inv_mass_d.d[static_cast<std::size_t>(d)] * rr[d];
     } else {
+      for (int d = 0; d < 6; ++d)
+        ar[d] = 0;
       mat6_madd(root.inv_mass, r + 6 * root.node, ar);
     }
   }
   for (int k = 0; k < count; ++k) {
     const ForestEdge& e = edges[static_cast<std::size_t>(k)];
     double* ac = a + 6 * e.child;
-    for (int d = 0; d < 6; ++d)
-      ac[d] = 0;
     if (e.aligned) {
-      if (e.parent != kGround) diag6_madd(e.rigid_d, a + 6 * e.parent, ac);
-      diag6_madd(e.down_r_d, r + 6 * e.child, ac);
+      // a_c = G a_p + down_r r_c with G the 0/1 rigid diagonal, in one pass (loads before stores)
+      const double* rc = r + 6 * e.child;
+      const double* ap = e.parent != kGround ? a + 6 * e.parent : kZero6.data();
+      double t[6];
+      for (int d = 0; d < 6; ++d) {
+        const auto i = static_cast<std::size_t>(d);
+        t[d] = e.rigid_d.d[i] * ap[d] + e.down_r_d.d[i] * rc[d];
+      }
+      for (int d = 0; d < 6; ++d)
+        ac[d] = t[d];
     } else {
+      for (int d = 0; d < 6; ++d)
+        ac[d] = 0;
       if (e.parent != kGround) mat6_madd(e.down_a, a + 6 * e.parent, ac);
       mat6_madd(e.down_r, r + 6 * e.child, ac);
     }
   }
 }
 
-// Projection, root to leaves: the child's rigid components of q are set from its parent's
-// (generalizes S 30-31), and v, a of the changed DOFs follow (S 35-37): a change du of u_{n+1}
-// changes v_{n+1/2} by du / dt and a_n by du / dt^2.
-inline void forest_project(std::span<const ForestEdge> edges, int count, double* u, double* v,
-                           double* a, double inv_dt) {
+// Projection of one edge, after its parent's: the child's rigid components of q are set from its
+// parent's (generalizes S 30-31), and v, a of the changed DOFs follow (S 35-37): a change du of
+// u_{n+1} changes v_{n+1/2} by du / dt and a_n by du / dt^2.
+inline void project_edge(const ForestEdge& e, double* u, double* v, double* a, double inv_dt) {
+  double du[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
+  double* uc = u + 6 * e.child;
+  if (e.aligned) {
+    if (e.parent != kGround) diag6_madd(e.rigid_d, u + 6 * e.parent, du);
+    diag6_madd(e.rigid_d, uc, back);
+  } else {
+    if (e.parent != kGround) mat6_madd(e.proj_p, u + 6 * e.parent, du);
+    mat6_madd(e.proj_c, uc, back);
+  }
+  double* vc = v + 6 * e.child;
+  double* ac = a + 6 * e.child;
+  double nu[6], nv[6], na[6];  // loads before stores, as in diag6_madd
+  for (int d = 0; d < 6; ++d) {
+    const double delta = du[d] - back[d];
+    nu[d] = uc[d] + delta;
+    nv[d] = vc[d] + delta * inv_dt;
+    na[d] = ac[d] + delta * inv_dt * inv_dt;
+  }
+  for (int d = 0; d < 6; ++d)
+    uc[d] = nu[d];
+  for (int d = 0; d < 6; ++d)
+    vc[d] = nv[d];
+  for (int d = 0; d < 6; ++d)
+    ac[d] = na[d];
+}
+
+// Projection after the update, root to leaves, of the edges in `list` (ascending, so parents
+// first): see select_projected_edges for which edges need it.
+inline void forest_project(std::span<const ForestEdge> edges, std::span<const std::int32_t> list,
+                           int count, double* u, double* v, double* a, double inv_dt) {
+  for (int k = 0; k < count; ++k) {
+    project_edge(edges[static_cast<std::size_t>(list[static_cast<std::size_t>(k)])], u, v, a,
+                 inv_dt);
+  }
+}
+
+// Which edges the step re-projects (DESIGN §7.1); returns their number, indices in `out`.
+// In a tree whose edges are all aligned, the downward pass sets a child's rigid accelerations to
+// its parent's exactly (a product by 1 plus products by 0), and the update then moves child and
+// parent alike, so their rigid components stay equal with no projection: projecting would
+// change at most the sign of a zero. A tree with a rotated or eccentric edge rounds, so all its
+// edges are re-projected every step; so is every tree when the S 33 clamp (`all`), which moves
+// single nodes, is in use. The edges of one tree are contiguous (build_forest places them tree
+// by tree), and node_tree gives each child's tree.
+inline int select_projected_edges(std::span<const ForestEdge> edges,
+                                  std::span<const std::int32_t> node_tree, bool all,
+                                  std::span<std::int32_t> out) {
+  int n = 0;
+  std::size_t begin = 0;
+  while (begin < edges.size()) {
+    const std::int32_t tree = node_tree[static_cast<std::size_t>(edges[begin].child)];
+    std::size_t end = begin;
+    bool aligned = true;
+    while (end < edges.size() && node_tree[static_cast<std::size_t>(edges[end].child)] == tree) {
+      aligned = aligned && edges[end].aligned;
+      ++end;
+    }
+    if (all || !aligned) {
+      for (std::size_t k = begin; k < end; ++k)
+        out[static_cast<std::size_t>(n++)] = static_cast<std::int32_t>(k);
+    }
+    begin = end;
+  }
+  return n;
+}
+
+// The initial conditions onto the constraints, root to leaves, every edge: u_0 and v_0 of each
+// child take their parent's rigid components (start() does this once, so that the step need
+// only re-project the trees that round).
+inline void forest_project_initial(std::span<const ForestEdge> edges, int count, double* u,
+                                   double* v) {
   for (int k = 0; k < count; ++k) {
     const ForestEdge& e = edges[static_cast<std::size_t>(k)];
-    double du[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
-    double* uc = u + 6 * e.child;
-    if (e.aligned) {
-      if (e.parent != kGround) diag6_madd(e.rigid_d, u + 6 * e.parent, du);
-      diag6_madd(e.rigid_d, uc, back);
-    } else {
-      if (e.parent != kGround) mat6_madd(e.proj_p, u + 6 * e.parent, du);
-      mat6_madd(e.proj_c, uc, back);
+    for (double* x : {u, v}) {
+      double to[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
+      double* xc = x + 6 * e.child;
+      if (e.parent != kGround) mat6_madd(e.proj_p, x + 6 * e.parent, to);
+      mat6_madd(e.proj_c, xc, back);
+      for (int d = 0; d < 6; ++d)
+        xc[d] += to[d] - back[d];
     }
-    double* vc = v + 6 * e.child;
-    double* ac = a + 6 * e.child;
-    double nu[6], nv[6], na[6];  // loads before stores, as in diag6_madd
-    for (int d = 0; d < 6; ++d) {
-      const double delta = du[d] - back[d];
-      nu[d] = uc[d] + delta;
-      nv[d] = vc[d] + delta * inv_dt;
-      na[d] = ac[d] + delta * inv_dt * inv_dt;
-    }
-    for (int d = 0; d < 6; ++d)
-      uc[d] = nu[d];
-    for (int d = 0; d < 6; ++d)
-      vc[d] = nv[d];
-    for (int d = 0; d < 6; ++d)
-      ac[d] = na[d];
   }
 }
 

@@ -116,8 +116,9 @@ void hinge_spring_local(const Model<S>& m, const State<S>& s, const HingeData& h
 // as B^T f_L (DESIGN §7).
 template <Sizes S>
 void hinge_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  for (const HingeData& h : m.hinges) {
-    if (h.springs == 0) continue;
+  for (int i = 0; i < m.num_spring_hinges; ++i) {
+    const HingeData& h =
+        m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
     double f[6];
     hinge_spring_local(m, s, h, f);
     const bool ground = h.node2 == kGround;
@@ -209,8 +210,9 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
 template <Sizes S>
 void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   constexpr auto kN = static_cast<std::size_t>(Model<S>::kDofs);
-  for (const HingeData& h : m.hinges) {
-    if (h.branches == 0) continue;
+  for (int i = 0; i < m.num_branch_hinges; ++i) {
+    const HingeData& h =
+        m.hinges[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])];
     const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
     const bool ground = h.node2 == kGround;
     const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
@@ -253,7 +255,9 @@ void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
 }
 
 // After the update: rigid branches are clamped (momentum-conserving, or S 33), then ntn_paper's
-// S 27-37 or ntn_exact's projection keep the rigid directions exact (DESIGN §7, §7.1).
+// S 27-37 or ntn_exact's projection keep the rigid directions exact (DESIGN §7, §7.1): the trees
+// that round (rotated or eccentric hinges) are re-projected; in aligned trees the forest keeps
+// them exact by itself (select_projected_edges).
 template <Sizes S>
 void hinge_constraints(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   const bool paper = m.hinge_method == HingeMethod::kNtnPaper;
@@ -267,7 +271,8 @@ void hinge_constraints(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, true);
   }
   if (m.hinge_method == HingeMethod::kNtnExact) {
-    forest_project(m.edges, m.num_edges, s.u.data(), s.v.data(), w.a.data(), m.inv_dt);
+    forest_project(m.edges, m.project_edges, m.num_project_edges, s.u.data(), s.v.data(),
+                   w.a.data(), m.inv_dt);
   }
 }
 
@@ -347,7 +352,8 @@ bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
 
 }  // namespace detail
 
-// Starts a run from the caller's u_0 and v_0 in `s` (zero by default):
+// Starts a run from the caller's u_0 and v_0 in `s` (zero by default): with ntn_exact, u_0 and
+// v_0 first take the rigid components of their tree parents (the constraints hold from t_0);
 // v_{-1/2} = v_0 - dt/2 a_0 (DESIGN §5), tick = 0.
 template <Sizes S>
 [[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w,
@@ -355,6 +361,10 @@ template <Sizes S>
   s.tick = 0;
   for (auto& h : s.held_inputs)
     h = 0.0;
+  if constexpr (S.hinges > 0) {
+    if (m.hinge_method == HingeMethod::kNtnExact)
+      forest_project_initial(m.edges, m.num_edges, s.u.data(), s.v.data());
+  }
   const bool accepted = detail::accept_inputs(m, s, in);
   detail::forces_and_accelerations(m, s, w, 0.0);  // with C v_0
   for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {

@@ -1,8 +1,10 @@
 // Model<S>: everything constant during a run, built once by init() (DESIGN §2).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
@@ -45,11 +47,17 @@ struct Model {
   std::array<ForestEdge, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
   std::array<ForestRoot, S.hinges> roots{};  // ntn_exact: trees not rooted at the ground
   std::array<Mat6, S.hinges> mass_up{};      // ntn_exact: mass each edge hands its parent
-  std::array<std::int32_t, S.hinges> hinge_edge{};    // hinge -> its forest edge, or -1
-  std::array<std::int32_t, kHingeNodes> node_tree{};  // node -> its rigid tree, or -1
-  std::array<std::uint8_t, kHingeNodes> held{};       // mechanism DOFs held at zero (bits)
+  std::array<std::int32_t, S.hinges> hinge_edge{};     // hinge -> its forest edge, or -1
+  std::array<std::int32_t, kHingeNodes> node_tree{};   // node -> its rigid tree, or -1
+  std::array<std::uint8_t, kHingeNodes> held{};        // mechanism DOFs held at zero (bits)
+  std::array<std::int32_t, S.hinges> spring_hinges{};  // hinges with a spring or dashpot
+  std::array<std::int32_t, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
+  std::array<std::int32_t, S.hinges> project_edges{};  // ntn_exact: edges the step re-projects
   int num_edges = 0;
   int num_roots = 0;
+  int num_spring_hinges = 0;
+  int num_branch_hinges = 0;
+  int num_project_edges = 0;
   int held_dofs = 0;  // DOFs held at zero as mechanisms (no mass, no stiffness)
   HingeMethod hinge_method = HingeMethod::kNtnExact;
   ClampRule clamp = ClampRule::kMomentum;
@@ -179,6 +187,14 @@ template <Sizes S>
     }
     model.curve_points = spec.curve_points;
     model.num_edges = model.num_roots = model.held_dofs = 0;
+    model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
+    for (int i = 0; i < S.hinges; ++i) {
+      const HingeData& h = model.hinges[static_cast<std::size_t>(i)];
+      if (h.springs != 0)
+        model.spring_hinges[static_cast<std::size_t>(model.num_spring_hinges++)] = i;
+      if (h.branches != 0)
+        model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = i;
+    }
     for (auto& e : model.hinge_edge)
       e = -1;
     for (auto& t : model.node_tree)
@@ -194,6 +210,11 @@ template <Sizes S>
         const int h = model.edges[static_cast<std::size_t>(k)].hinge;
         model.hinge_edge[static_cast<std::size_t>(h)] = k;
       }
+      const bool any_branch = std::any_of(model.hinges.begin(), model.hinges.end(),
+                                          [](const HingeData& h) { return h.branches != 0; });
+      model.num_project_edges = select_projected_edges(
+          std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges)),
+          model.node_tree, model.clamp == ClampRule::kPaper && any_branch, model.project_edges);
     } else if (model.hinge_method == HingeMethod::kNtnPaper) {
       paper_masses(model.hinges, eff);
     }

@@ -74,8 +74,14 @@ std::size_t model_size(const Sizes& s) {
   l.array<std::int32_t>(s.hinges);                                       // hinge_edge
   l.array<std::int32_t>(hinge_nodes);                                    // node_tree
   l.array<std::uint8_t>(hinge_nodes);                                    // held
+  l.array<std::int32_t>(s.hinges);                                       // spring_hinges
+  l.array<std::int32_t>(s.hinges);                                       // branch_hinges
+  l.array<std::int32_t>(s.hinges);                                       // project_edges
   l.scalar<int>();                                                       // num_edges
   l.scalar<int>();                                                       // num_roots
+  l.scalar<int>();                                                       // num_spring_hinges
+  l.scalar<int>();                                                       // num_branch_hinges
+  l.scalar<int>();                                                       // num_project_edges
   l.scalar<int>();                                                       // held_dofs
   l.scalar<HingeMethod>();                                               // hinge_method
   l.scalar<ClampRule>();                                                 // clamp
@@ -121,9 +127,10 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per node: 6 DOFs x 8 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
   // Scratch: p, f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 8 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
-  // Per hinge: its data and its forest slots (edge, root, mass handed up, hinge -> edge).
+  // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
+  // places in the lists of hinges with springs, with branches and of projected edges.
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestRoot) + sizeof(Mat6) +
-                sizeof(std::int32_t);
+                4 * sizeof(std::int32_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held) and the coupled force of its 6 DOFs (Scratch::r).
   f.per_node_with_hinges =
