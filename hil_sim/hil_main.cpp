@@ -135,8 +135,13 @@ struct Sink {
   std::uint32_t sequence = 0;
   double period = 1e-3;
   std::array<std::byte, ntn::hil::kMaxPacketBytes> packet{};
-  std::vector<std::uint64_t>* hashes = nullptr;  // per-frame output hash (replay compares)
+  std::vector<std::uint64_t>* hashes = nullptr;       // per-frame output hash (replay compares)
+  std::array<double, kS.outputs> peak{};              // largest |value| per channel
+  std::array<std::int64_t, kS.outputs> peak_frame{};  // and its first frame
   void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t flags) {
+    for (std::size_t c = 0; c < peak.size(); ++c) {
+      if (std::abs(v[c]) > peak[c]) peak[c] = std::abs(v[c]), peak_frame[c] = k;
+    }
     if (csv != nullptr) {
       char row[64];
       std::snprintf(row, sizeof row, "%.9g", static_cast<double>(k) * period);
@@ -157,6 +162,38 @@ struct Sink {
       hashes->push_back(ntn::hil::hash_outputs(v));
   }
 };
+
+// "NAME=LIMIT[:HYSTERESIS]" or "NAME=off" for one output channel, as the model file's alarm
+// keys: 0 < LIMIT finite, 0 <= HYSTERESIS < LIMIT. "" on success, else what is wrong.
+std::string parse_alarm(const std::string& arg, std::vector<ntn::hil::Alarm>& alarms) {
+  const auto eq = arg.find('=');
+  const std::string name = arg.substr(0, eq);
+  std::size_t c = 0;
+  while (c < kS.outputs && mdl::kOutputNames[c] != name)
+    ++c;
+  if (eq == std::string::npos) return "want OUTPUT=LIMIT[:HYSTERESIS] or OUTPUT=off";
+  if (c == kS.outputs) return "the model has no output '" + name + "'";
+  const std::string spec = arg.substr(eq + 1);
+  if (spec == "off") {
+    alarms[c] = {};
+    return "";
+  }
+  const auto number = [](const std::string& text, double& out) {
+    char* end = nullptr;
+    out = std::strtod(text.c_str(), &end);
+    return !text.empty() && end == text.c_str() + text.size() && std::isfinite(out);
+  };
+  const auto colon = spec.find(':');
+  double limit = 0, hysteresis = 0;
+  if (!number(spec.substr(0, colon), limit) || !(limit > 0))
+    return "the limit must be a finite number > 0";
+  if (colon != std::string::npos &&
+      (!number(spec.substr(colon + 1), hysteresis) || hysteresis < 0 || !(hysteresis < limit)))
+    return "the hysteresis must be a number >= 0 and below the limit";
+  alarms[c] = {};
+  alarms[c].enabled = true, alarms[c].limit = limit, alarms[c].hysteresis = hysteresis;
+  return "";
+}
 
 double us(std::int64_t ns) {
   return static_cast<double>(ns) / 1e3;
@@ -193,7 +230,9 @@ int main(int argc, char** argv) {
   run->add_option("-n,--frames", frames, "frames to run (overrides --duration)");
   run->add_flag("--interpolate", interpolate,
                 "interpolate inputs linearly within a frame (one frame of delay); default: hold");
-  run->add_option("--alarm", alarm_args, "NAME=LIMIT[:HYSTERESIS]: limit alarm on an output");
+  run->add_option("--alarm", alarm_args,
+                  "NAME=LIMIT[:HYSTERESIS] or NAME=off: limit alarm on an output, replacing the "
+                  "model file's for that channel");
   run->add_option("-o,--out", out_path, "CSV of the outputs, one row per frame, with flags");
   run->add_option("--record", log_path, "binary log of accepted inputs and outputs (replay)");
   run->add_option("--summary-json", json_path, "write the summary as JSON");
@@ -327,24 +366,18 @@ int main(int argc, char** argv) {
   config.frames = frames;
   config.interpolate = interpolate;
 
+  // Alarms: the model file's ([[outputs]] alarm, alarm_hysteresis), then --alarm per channel.
   std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+  for (std::size_t c = 0; c < alarms.size(); ++c) {
+    alarms[c].enabled = mdl::kAlarmLimits[c] > 0;
+    alarms[c].limit = mdl::kAlarmLimits[c];
+    alarms[c].hysteresis = mdl::kAlarmHysteresis[c];
+  }
   for (const std::string& arg : alarm_args) {
-    const auto eq = arg.find('=');
-    const std::string name = arg.substr(0, eq);
-    std::size_t c = 0;
-    while (c < kS.outputs && mdl::kOutputNames[c] != name)
-      ++c;
-    if (eq == std::string::npos || c == kS.outputs) {
-      std::fprintf(stderr,
-                   "error: --alarm wants OUTPUT=LIMIT[:HYSTERESIS] with an output name, got '%s'\n",
-                   arg.c_str());
+    if (const std::string e = parse_alarm(arg, alarms); !e.empty()) {
+      std::fprintf(stderr, "error: --alarm %s: %s\n", arg.c_str(), e.c_str());
       return 2;
     }
-    const std::string spec = arg.substr(eq + 1);
-    const auto colon = spec.find(':');
-    alarms[c].enabled = true;
-    alarms[c].limit = std::stod(spec.substr(0, colon));
-    alarms[c].hysteresis = colon == std::string::npos ? 0.0 : std::stod(spec.substr(colon + 1));
   }
 
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(mdl::kSpec.inputs));
@@ -470,27 +503,40 @@ int main(int argc, char** argv) {
     std::printf("  overruns %lld (longest run %lld frames)\n",
                 static_cast<long long>(times.overruns),
                 static_cast<long long>(times.max_late_frames));
+    const auto u = [](std::uint64_t x) { return static_cast<unsigned long long>(x); };
     std::printf(
-        "  inputs   accepted %llu, missing %llu (lost %llu), late %llu, duplicate %llu, "
-        "reordered %llu, early %llu, too early %llu, corrupt %llu, wrong count %llu, "
-        "non-finite values %llu, out of range %llu\n",
-        static_cast<unsigned long long>(gc.accepted), static_cast<unsigned long long>(gc.missing),
-        static_cast<unsigned long long>(gc.lost()), static_cast<unsigned long long>(gc.late),
-        static_cast<unsigned long long>(gc.duplicate),
-        static_cast<unsigned long long>(gc.reordered), static_cast<unsigned long long>(gc.early),
-        static_cast<unsigned long long>(gc.too_early), static_cast<unsigned long long>(gc.corrupt),
-        static_cast<unsigned long long>(gc.wrong_count),
-        static_cast<unsigned long long>(gc.nonfinite),
-        static_cast<unsigned long long>(gc.out_of_range));
-    for (int c = 0; c < kS.outputs; ++c) {
-      const auto& a = alarms[static_cast<std::size_t>(c)];
+        "  inputs   accepted %llu, missing %llu (lost %llu), late %llu, early %llu, "
+        "reordered %llu, duplicate %llu\n"
+        "           corrupt %llu, wrong count %llu, too early %llu; values non-finite %llu, out "
+        "of range %llu (held)\n",
+        u(gc.accepted), u(gc.missing), u(gc.lost()), u(gc.late), u(gc.early), u(gc.reordered),
+        u(gc.duplicate), u(gc.corrupt), u(gc.wrong_count), u(gc.too_early), u(gc.nonfinite),
+        u(gc.out_of_range));
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      const auto& a = alarms[c];
       if (!a.enabled) continue;
-      std::printf(
-          "  alarm    %s > %g: raised %llu times, on for %llu frames, first at frame %lld\n",
-          std::string(mdl::kOutputNames[static_cast<std::size_t>(c)]).c_str(), a.limit,
-          static_cast<unsigned long long>(a.raised), static_cast<unsigned long long>(a.frames_on),
-          static_cast<long long>(a.first_frame));
+      const std::string name(mdl::kOutputNames[c]);
+      if (a.raised == 0) {
+        std::printf("  alarm    |%s| > %g (off below %g): not raised\n", name.c_str(), a.limit,
+                    a.limit - a.hysteresis);
+      } else {
+        std::printf(
+            "  ALARM    |%s| > %g (off below %g): raised %llu times, on for %llu frames, first "
+            "at t = %.3f s\n",
+            name.c_str(), a.limit, a.limit - a.hysteresis, u(a.raised), u(a.frames_on),
+            static_cast<double>(a.first_frame) * period);
+      }
     }
+    std::printf("  peak |y| (at t)");
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      const std::string unit(mdl::kOutputUnits[c]);
+      std::printf("%s%s %.4g%s (%.2f s)",
+                  c == 0 ? " " : (c % 3 == 0 ? "\n                  " : ", "),
+                  std::string(mdl::kOutputNames[c]).c_str(), sink.peak[c],
+                  unit == "-" ? "" : (" " + unit).c_str(),
+                  static_cast<double>(sink.peak_frame[c]) * period);
+    }
+    std::printf("\n");
     if (result.diverged_frame >= 0) {
       std::printf("  DIVERGED at frame %lld: outputs held at the last good frame and flagged\n",
                   static_cast<long long>(result.diverged_frame));
@@ -523,7 +569,22 @@ int main(int argc, char** argv) {
        << ", \"early\": " << gc.early << ", \"too_early\": " << gc.too_early
        << ", \"corrupt\": " << gc.corrupt << ", \"wrong_count\": " << gc.wrong_count
        << ", \"nonfinite\": " << gc.nonfinite << ", \"out_of_range\": " << gc.out_of_range << "}"
-       << ",\n  \"first_packet_frame\": " << first_frame
+       << ",\n  \"first_packet_frame\": " << first_frame << ",\n  \"alarms\": [";
+    bool first_alarm = true;
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      const auto& a = alarms[c];
+      if (!a.enabled) continue;
+      js << (first_alarm ? "" : ",") << "\n    {\"channel\": \"" << mdl::kOutputNames[c]
+         << "\", \"limit\": " << a.limit << ", \"hysteresis\": " << a.hysteresis
+         << ", \"raised\": " << a.raised << ", \"frames_on\": " << a.frames_on
+         << ", \"first_frame\": " << a.first_frame << "}";
+      first_alarm = false;
+    }
+    js << "],\n  \"peaks\": {";
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      js << (c == 0 ? "" : ", ") << "\"" << mdl::kOutputNames[c] << "\": " << sink.peak[c];
+    }
+    js << "}"
        << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"output_hash\": \""
        << std::hex << run_hash << std::dec << "\"\n}\n";
   }

@@ -17,6 +17,7 @@
 
 #include "ntn/hil/faults.hpp"
 #include "ntn/hil/packet.hpp"
+#include "ntn/modelc/load_model.hpp"
 #include "record.hpp"
 #include "subprocess.hpp"
 
@@ -31,6 +32,7 @@ using ntn_test::TempDir;
 constexpr double kPeriod = 1.0 / 1000.0;  // s: frame3d's frame and the feeder's default rate
 
 const std::string kElCentro = std::string(NTN_RECORDS_DIR) + "/elCentro.AT2";
+const std::string kFrame3d = std::string(NTN_CONFIG_DIR) + "/frame3d.toml";
 
 // The number after "key": in a JSON text, looked up after "section": when one is given (the
 // summaries are flat enough for this; a missing key is NaN, which fails every comparison).
@@ -377,6 +379,135 @@ TEST(HilE2E, RealTimeWithFaults) {
   EXPECT_EQ(replay.wait(60s), 0);
   EXPECT_NE(read_file(dir / "replay.txt").find("bit-identical over 2000 frames"), std::string::npos)
       << read_file(dir / "replay.txt");
+}
+
+// An alarm's state frame by frame from the channel's values (the rule of config/README.md:
+// on when |value| > limit, off again when |value| < limit - hysteresis).
+struct AlarmTrace {
+  std::vector<bool> on;
+  int raised = 0, cleared = 0;
+  int held_by_hysteresis = 0;  // frames on with |value| <= limit: on only because of hysteresis
+};
+
+AlarmTrace alarm_trace(const Csv& csv, std::size_t channel, double limit, double hysteresis) {
+  AlarmTrace t;
+  bool on = false;
+  for (const auto& row : csv.values) {
+    const double v = std::abs(row[channel]);
+    if (!on && v > limit) {
+      on = true, ++t.raised;
+    } else if (on && v < limit - hysteresis) {
+      on = false, ++t.cleared;
+    }
+    if (on && v <= limit) ++t.held_by_hysteresis;
+    t.on.push_back(on);
+  }
+  return t;
+}
+
+// The "raised" count of a channel in the loop's JSON summary (-1 if it has no alarm there).
+double json_raised(const std::string& js, const std::string& channel) {
+  const std::size_t at = js.find("{\"channel\": \"" + channel + "\"");
+  return at == std::string::npos ? -1 : json_number(js.substr(at), "raised");
+}
+
+// Runs the loop on El Centro (virtual clock, file input) with extra arguments; the CSV and JSON.
+struct FileRun {
+  int exit = -1;
+  Csv csv;
+  std::string json, screen;
+};
+
+FileRun run_el_centro(const TempDir& dir, const std::string& tag,
+                      const std::vector<std::string>& extra) {
+  std::vector<std::string> a{NTN_HIL,          "run",
+                             "--clock",        "virtual",
+                             "--input",        "ag_x=" + kElCentro,
+                             "--frames",       "8000",
+                             "--out",          dir / (tag + ".csv"),
+                             "--summary-json", dir / (tag + ".json")};
+  a.insert(a.end(), extra.begin(), extra.end());
+  Child c(a, dir / (tag + ".txt"));
+  FileRun r;
+  r.exit = c.wait(60s);
+  r.screen = read_file(dir / (tag + ".txt"));
+  if (r.exit == 0)
+    r.csv = read_csv(dir / (tag + ".csv")), r.json = read_file(dir / (tag + ".json"));
+  return r;
+}
+
+// The model file's alarms are on by default: every frame's alarm flag is the OR of the alarms
+// computed from the CSV's own values with the file's limits and hysteresis, an alarm goes on
+// and off again under El Centro, and some frames stay on only because of the hysteresis.
+// --alarm NAME=off and --alarm NAME=LIMIT:H replace a channel's alarm; bad values exit 2.
+TEST(HilE2E, ModelAlarmTriggersAndClearsWithHysteresis) {
+  const auto model = ntn::modelc::load_model(kFrame3d);
+  ASSERT_TRUE(model.ok()) << ntn::modelc::format_all(model.errors);
+  const auto& alarms = model.model->output_alarms;
+  const auto& names = model.model->output_names;
+  const TempDir dir("hil_e2e_alarm");
+
+  const FileRun def = run_el_centro(dir, "default", {});
+  ASSERT_EQ(def.exit, 0) << def.screen;
+  ASSERT_EQ(def.csv.error, "");
+  ASSERT_EQ(def.csv.values.size(), 8000U);
+  std::vector<bool> any(def.csv.values.size(), false);
+  int channels = 0, raised = 0, cleared = 0, held = 0;
+  for (std::size_t c = 0; c < alarms.size(); ++c) {
+    if (alarms[c].limit <= 0) {
+      EXPECT_EQ(json_raised(def.json, names[c]), -1) << names[c];
+      continue;
+    }
+    ++channels;
+    const AlarmTrace t = alarm_trace(def.csv, c, alarms[c].limit, alarms[c].hysteresis);
+    EXPECT_EQ(json_raised(def.json, names[c]), t.raised) << names[c];
+    raised += t.raised, cleared += t.cleared, held += t.held_by_hysteresis;
+    for (std::size_t k = 0; k < t.on.size(); ++k)
+      any[k] = any[k] || t.on[k];
+  }
+  EXPECT_GT(channels, 0);  // frame3d.toml has alarms
+  EXPECT_GT(raised, 1);    // on more than once: it went on, off, and on again
+  EXPECT_GT(cleared, 0);
+  EXPECT_GT(held, 0);  // the hysteresis changed the state of some frames
+  for (std::size_t k = 0; k < any.size(); ++k)
+    ASSERT_EQ((def.csv.flags[k] & flag::kAlarm) != 0, any[k]) << "frame " << k;
+
+  // Every model alarm off: no frame flagged.
+  std::vector<std::string> off;
+  for (std::size_t c = 0; c < alarms.size(); ++c) {
+    if (alarms[c].limit > 0) off.insert(off.end(), {"--alarm", names[c] + "=off"});
+  }
+  const FileRun none = run_el_centro(dir, "off", off);
+  ASSERT_EQ(none.exit, 0) << none.screen;
+  for (unsigned f : none.csv.flags)
+    ASSERT_EQ(f & flag::kAlarm, 0U);
+
+  // One channel's alarm replaced (a limit of 3/4 of its peak, hysteresis a tenth of that):
+  // its raised count follows the new values; the outputs do not change.
+  std::size_t ch = 0;
+  while (ch < alarms.size() && !(alarms[ch].limit > 0))
+    ++ch;
+  ASSERT_LT(ch, alarms.size());
+  double peak = 0;
+  for (const auto& row : def.csv.values)
+    peak = std::max(peak, std::abs(row[ch]));
+  const double limit = 0.75 * peak, hysteresis = 0.075 * peak;
+  char spec[96];
+  std::snprintf(spec, sizeof spec, "%s=%.17g:%.17g", names[ch].c_str(), limit, hysteresis);
+  const FileRun other = run_el_centro(dir, "override", {"--alarm", spec});
+  ASSERT_EQ(other.exit, 0) << other.screen;
+  const AlarmTrace t = alarm_trace(other.csv, ch, limit, hysteresis);
+  EXPECT_GT(t.raised, 0);
+  EXPECT_EQ(json_raised(other.json, names[ch]), t.raised);
+  EXPECT_EQ(output_hash(other.screen), output_hash(def.screen));
+
+  for (const std::string& bad : {names[ch] + "=-1", names[ch] + "=0.01:0.02", names[ch] + "=x",
+                                 names[ch] + "=0.01:-1", std::string("no_such_output=1")}) {
+    Child c({NTN_HIL, "run", "--clock", "virtual", "--input", "ag_x=" + kElCentro, "--frames", "10",
+             "--alarm", bad},
+            dir / "bad.txt");
+    EXPECT_EQ(c.wait(30s), 2) << bad;
+  }
 }
 
 }  // namespace

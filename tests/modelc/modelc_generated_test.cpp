@@ -120,4 +120,29 @@ TEST(GeneratedHeader, CantileverMatchesFileAndInitializes) {
         cant::kMemberNames, g_cant);
 }
 
+// The alarm tables beside the output names hold the [[outputs]] alarm keys bit for bit (limit 0
+// where a channel has none); the kernel's ModelSpec does not carry them.
+template <std::size_t N>
+void expect_same_alarms(std::string_view source, const std::array<double, N>& limits,
+                        const std::array<double, N>& hysteresis) {
+  const auto r = ntn::modelc::load_model(std::string(source));
+  ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
+  ASSERT_EQ(r.model->output_alarms.size(), N);
+  for (std::size_t c = 0; c < N; ++c) {
+    ntn::test::expect_bits(limits[c], r.model->output_alarms[c].limit, "alarm limit", c);
+    ntn::test::expect_bits(hysteresis[c], r.model->output_alarms[c].hysteresis, "hysteresis", c);
+  }
+}
+
+TEST(GeneratedHeader, AlarmTablesMatchFile) {
+  expect_same_alarms(frame::kSourceFile, frame::kAlarmLimits, frame::kAlarmHysteresis);
+  expect_same_alarms(cant::kSourceFile, cant::kAlarmLimits, cant::kAlarmHysteresis);
+  expect_same_alarms(hb::kSourceFile, hb::kAlarmLimits, hb::kAlarmHysteresis);
+  // frame3d has alarms (its storey drifts), so the comparison covered non-zero entries.
+  int with_alarm = 0;
+  for (double limit : frame::kAlarmLimits)
+    with_alarm += limit > 0 ? 1 : 0;
+  EXPECT_GT(with_alarm, 0);
+}
+
 }  // namespace

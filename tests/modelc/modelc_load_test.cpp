@@ -386,6 +386,44 @@ dof = "rx"
   EXPECT_EQ(d.output_units[3], "rad/s");
 }
 
+// Output alarms: per output, in file order; the hysteresis defaults to 0; no alarm is limit 0;
+// the header carries them as kAlarmLimits / kAlarmHysteresis with the values' own literals.
+TEST(ModelLoad, OutputAlarms) {
+  const auto d = load_ok(kHead + kMember + R"(
+[[outputs]]
+name = "tip"
+kind = "displacement"
+node = 2
+dof = "uz"
+alarm = 0.02
+alarm_hysteresis = 0.005
+
+[[outputs]]
+name = "plain"
+kind = "velocity"
+node = 2
+dof = "uz"
+
+[[outputs]]
+name = "moment"
+kind = "element_force"
+member = "M1"
+end = "start"
+component = "My"
+alarm = 1.5e4
+)");
+  ASSERT_EQ(d.output_alarms.size(), 3U);
+  EXPECT_EQ(d.output_alarms[0].limit, 0.02);
+  EXPECT_EQ(d.output_alarms[0].hysteresis, 0.005);
+  EXPECT_EQ(d.output_alarms[1].limit, 0.0);
+  EXPECT_EQ(d.output_alarms[1].hysteresis, 0.0);
+  EXPECT_EQ(d.output_alarms[2].limit, 1.5e4);
+  EXPECT_EQ(d.output_alarms[2].hysteresis, 0.0);
+  const std::string h = ntn::modelc::emit_header(d);
+  EXPECT_NE(h.find("kAlarmLimits{{0.02, 0.0, 15000.0}}"), std::string::npos) << h;
+  EXPECT_NE(h.find("kAlarmHysteresis{{0.0050000000000000001, 0.0, 0.0}}"), std::string::npos) << h;
+}
+
 TEST(ModelLoad, AllowUnstableAcceptsLargeDt) {
   std::string text = kHead + kMember;
   text.replace(text.find("name = \"m\""), 10, "name = \"m\"\ndt = 1.0e-2\nallow_unstable = true");

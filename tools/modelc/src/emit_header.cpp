@@ -111,6 +111,14 @@ std::string names(const std::vector<std::string>& v) {
   return s + "}}";
 }
 
+std::string doubles(const std::vector<double>& v) {
+  if (v.empty()) return "{}";
+  std::string s = "{{";
+  for (std::size_t i = 0; i < v.size(); ++i)
+    s += (i ? ", " : "") + lit(v[i]);
+  return s + "}}";
+}
+
 const char* input_kind(InputKind k) {
   switch (k) {
     case InputKind::kGroundAcceleration:
@@ -299,6 +307,14 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
        names(m.output_names) + ";\n";
   o += "inline constexpr std::array<std::string_view, kSizes.outputs> kOutputUnits" +
        names(m.output_units) + ";\n";
+  std::vector<double> limits, hysteresis;
+  for (const OutputAlarm& a : m.output_alarms)
+    limits.push_back(a.limit), hysteresis.push_back(a.hysteresis);
+  o += "// Limit alarms per output ([[outputs]] alarm, alarm_hysteresis; channel units): on when\n"
+       "// |value| > limit, off again when |value| < limit - hysteresis. Limit 0: no alarm.\n";
+  o += "inline constexpr std::array<double, kSizes.outputs> kAlarmLimits" + doubles(limits) + ";\n";
+  o += "inline constexpr std::array<double, kSizes.outputs> kAlarmHysteresis" +
+       doubles(hysteresis) + ";\n";
   o += "inline constexpr std::array<std::string_view, " + std::to_string(member_names.size()) +
        "> kMemberNames" + names(member_names) + ";  // by ElementSpec::member\n";
   std::vector<std::string> hinge_names;

@@ -490,7 +490,8 @@ struct Output {
   Where dof_at;
   IdAt member;
   int end = 0;
-  IdAt hinge;  // kHinge
+  IdAt hinge;                              // kHinge
+  double alarm = 0, alarm_hysteresis = 0;  // limit alarm on |value| (0: none), channel units
 };
 
 struct ModelTable {
@@ -1081,7 +1082,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     if (!kind) return;
     bool ok = name.has_value();
     if (*kind <= 2 || *kind == 6) {
-      Table t(L, tt, path, {"name", "kind", "node", "dof"});
+      Table t(L, tt, path, {"name", "kind", "node", "dof", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kNode;
       o.node_kind = *kind == 0   ? OutputKind::kDisplacement
@@ -1094,7 +1095,8 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       if (dof) o.dof = *dof;
       ok = ok && node && dof;
     } else if (*kind == 3) {
-      Table t(L, tt, path, {"name", "kind", "member", "end", "component"});
+      Table t(L, tt, path,
+              {"name", "kind", "member", "end", "component", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kElementForce;
       auto member = read_id(t, "member");
@@ -1105,7 +1107,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       if (comp) o.dof = *comp;
       ok = ok && member && end && comp;
     } else if (*kind == 4) {
-      Table t(L, tt, path, {"name", "kind", "nodes", "direction"});
+      Table t(L, tt, path, {"name", "kind", "nodes", "direction", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kDrift;
       auto nodes = t.node_ids("nodes", Need::kRequired, 2);
@@ -1114,7 +1116,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       if (dir) o.dof = *dir;
       ok = ok && nodes && dir;
     } else if (*kind >= 7) {
-      Table t(L, tt, path, {"name", "kind", "hinge", "direction"});
+      Table t(L, tt, path, {"name", "kind", "hinge", "direction", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kHinge;
       o.node_kind = *kind == 7 ? OutputKind::kHingeForce : OutputKind::kHingeDisplacement;
@@ -1124,15 +1126,33 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       if (dir) o.dof = *dir;
       ok = ok && hinge && dir;
     } else {
-      Table t(L, tt, path, {"name", "kind", "direction"});
+      Table t(L, tt, path, {"name", "kind", "direction", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kReaction;
       auto dir = t.choice("direction", Need::kRequired, kReactionDirections);
       if (dir) o.dof = *dir, o.dof_at = t.where("direction");
       ok = ok && dir;
     }
+    // Limit alarm, in the channel's units: on when |value| > alarm, off again below
+    // alarm - alarm_hysteresis (ntn-hil-<model>).
+    Table a(L, tt, path, {});
+    const auto alarm = a.positive("alarm", Need::kOptional);
+    const auto hysteresis = a.non_negative("alarm_hysteresis", Need::kOptional);
+    ok = ok && (alarm || !a.has("alarm")) && (hysteresis || !a.has("alarm_hysteresis"));
+    if (hysteresis && !a.has("alarm")) {
+      L.error(a.where("alarm_hysteresis"),
+              "alarm_hysteresis needs an alarm: give alarm = LIMIT in this output");
+      ok = false;
+    } else if (alarm && hysteresis && !(*hysteresis < *alarm)) {
+      L.error(a.where("alarm_hysteresis"), "alarm_hysteresis = " + num(*hysteresis) +
+                                               " must be less than alarm = " + num(*alarm) +
+                                               " (the alarm goes off below alarm - hysteresis)");
+      ok = false;
+    }
     if (!ok) return;
     o.name = *name;
+    o.alarm = alarm.value_or(0.0);
+    o.alarm_hysteresis = hysteresis.value_or(0.0);
     p.outputs.push_back(o);
   });
 
@@ -1757,6 +1777,7 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
     d.outputs.push_back(os);
     d.output_names.push_back(o.name.id);
     d.output_units.push_back(units);
+    d.output_alarms.push_back({o.alarm, o.alarm_hysteresis});
   }
 
   if (L.failed()) return std::nullopt;

@@ -101,6 +101,13 @@ std::string info_text(const ModelDescription& m) {
   line("loads", std::to_string(z.loads) + " nodal loads, " + std::to_string(z.time_functions) +
                     " time functions (" + std::to_string(z.time_points) + " points)");
   line("channels", std::to_string(z.inputs) + " inputs, " + std::to_string(z.outputs) + " outputs");
+  for (std::size_t c = 0; c < m.output_alarms.size(); ++c) {
+    const OutputAlarm& a = m.output_alarms[c];
+    if (a.limit <= 0) continue;
+    const std::string unit = m.output_units[c] == "-" ? "" : " " + m.output_units[c];
+    line("alarm", "|" + m.output_names[c] + "| > " + f("%g", a.limit) + unit + ", off below " +
+                      f("%g", a.limit - a.hysteresis) + unit);
+  }
   line("mass", "translational, all nodes: x " + f("%.1f", mt.all[0]) + " kg, y " +
                    f("%.1f", mt.all[1]) + " kg, z " + f("%.1f", mt.all[2]) + " kg");
   line("", "  = elements (sum rho A l) " + f("%.1f", mt.elements) + " kg + point masses " +

@@ -31,6 +31,13 @@ struct MemberInfo {
   int end_hinge = -1;
 };
 
+// A limit alarm on an output channel ([[outputs]] alarm, alarm_hysteresis), in the channel's
+// units: on when |value| > limit, off again when |value| < limit - hysteresis. limit 0: none.
+struct OutputAlarm {
+  double limit = 0;
+  double hysteresis = 0;
+};
+
 // Where a hinge came from. Hinges are ordered: explicit [[hinges]] in file order, then
 // member-end releases (member order, start before end), then supports with axes (file order).
 enum class HingeOrigin : std::uint8_t { kExplicit, kRelease, kSupport };
@@ -72,10 +79,11 @@ struct ModelDescription {
   std::vector<std::string> time_function_ids;
   std::vector<std::string> input_names;
   std::vector<std::string> output_names;
-  std::vector<std::string> output_units;  // "m", "m/s", "m/s2", "rad", "N", "N m", "-", ...
-  std::vector<HingeInfo> hinge_info;      // per hinge
-  std::vector<std::string> curve_ids;     // per curve
-  std::vector<Mechanism> mechanisms;      // ascending node index
+  std::vector<std::string> output_units;   // "m", "m/s", "m/s2", "rad", "N", "N m", "-", ...
+  std::vector<OutputAlarm> output_alarms;  // per output
+  std::vector<HingeInfo> hinge_info;       // per hinge
+  std::vector<std::string> curve_ids;      // per curve
+  std::vector<Mechanism> mechanisms;       // ascending node index
   // Which hinge stiffnesses the file gave (false: the compiler's default, config/README.md).
   bool penalty_stiffness_given = false;
   bool penalty_rotational_stiffness_given = false;
