@@ -76,18 +76,22 @@ struct UdpSource {
       if (res.status == ntn::hil::OfferStatus::kFrameEnd && res.frame >= k) ended = true;
     }
   }
-  // The first input packet that decodes with the model's channel count fixes the deadlines
-  // (one beyond the jitter buffer too: the loop was started after the sender, and catches up).
+  // The first input packet (decoded, with the model's channel count) seen arriving fixes the
+  // deadlines; one beyond the jitter buffer too (the sender started long before the loop, which
+  // then catches up). Packets already queued when frame 0 begins go through the gate, but their
+  // arrival time is unknown, so the deadlines wait for the next packet to arrive.
   void wait_first_packet() {
     const std::int64_t start = ntn::hil::monotonic_ns();
+    bool ended = false;
+    drain(0, ended);
     for (std::int64_t left = first_wait_ns; left > 0;
          left = start + first_wait_ns - ntn::hil::monotonic_ns()) {
       if (socket->wait_readable(std::chrono::nanoseconds(left)) != ntn::hil::WaitStatus::kReadable)
         continue;
+      const std::int64_t arrival = ntn::hil::monotonic_ns();
       for (;;) {
         const ntn::hil::Received r = socket->receive(buffer);
         if (!r.has_datagram()) break;
-        const std::int64_t arrival = ntn::hil::monotonic_ns();
         const auto res = gate->offer(std::span<const std::byte>(buffer.data(), r.size));
         using ntn::hil::OfferStatus;
         if (res.status == OfferStatus::kCurrent || res.status == OfferStatus::kBuffered ||
@@ -381,14 +385,7 @@ int main(int argc, char** argv) {
   }
 
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(mdl::kSpec.inputs));
-  ntn::hil::UdpSocket socket;
-  if (udp_in || reply_port != 0) {
-    const auto st = socket.open(static_cast<std::uint16_t>(std::max(listen_port, 0)));
-    if (!st.ok()) {
-      std::fprintf(stderr, "error: %s\n", st.message().c_str());
-      return 2;
-    }
-  }
+  ntn::hil::UdpSocket socket;  // opened last, when the loop is ready (below)
   std::string csv;
   if (!out_path.empty()) {
     csv.reserve(static_cast<std::size_t>(frames + 2) * (kS.outputs + 2) * 24);
@@ -428,6 +425,16 @@ int main(int argc, char** argv) {
   }
   ntn::hil::FrameTimes times;
   times.reserve(frames);
+  // The port is bound only now, after every allocation, mlockall and the scheduler change: a
+  // sender that waits for the port (tools/demo, tests/hil) then starts when the loop can take
+  // its packets at once.
+  if (udp_in || reply_port != 0) {
+    const auto st = socket.open(static_cast<std::uint16_t>(std::max(listen_port, 0)));
+    if (!st.ok()) {
+      std::fprintf(stderr, "error: %s\n", st.message().c_str());
+      return 2;
+    }
+  }
   ntn::hil::LoopResult result;
   std::uint64_t udp_timeouts = 0;
   std::int64_t first_frame = -1, first_waited_ns = 0;
@@ -487,11 +494,10 @@ int main(int argc, char** argv) {
   const std::int64_t cmpmax = ntn::hil::percentile(times.compute_ns, 100);
   if (!quiet) {
     std::printf(
-        "ntn-hil  model %s, %s clock, %lld frames of %g ms, %d substeps (dt = %.6g s), "
-        "inputs %s%s\n",
+        "ntn-hil  %s, %s clock, %lld frames of %g ms x %d substeps (dt %.4g us), %s inputs%s\n",
         std::string(mdl::kName).c_str(), clock_name.c_str(), static_cast<long long>(result.frames),
-        period * 1e3, config.substeps, g_model.dt, udp_in ? "UDP" : "files",
-        interpolate ? ", interpolated" : ", held");
+        period * 1e3, config.substeps, g_model.dt * 1e6, udp_in ? "UDP" : "file",
+        interpolate ? " interpolated" : " held");
     std::printf("  wall %.3f s for %.3f s simulated (%.1fx real time)\n", wall,
                 static_cast<double>(result.frames) * period,
                 static_cast<double>(result.frames) * period / wall);
@@ -505,10 +511,10 @@ int main(int argc, char** argv) {
                 static_cast<long long>(times.max_late_frames));
     const auto u = [](std::uint64_t x) { return static_cast<unsigned long long>(x); };
     std::printf(
-        "  inputs   accepted %llu, missing %llu (lost %llu), late %llu, early %llu, "
-        "reordered %llu, duplicate %llu\n"
-        "           corrupt %llu, wrong count %llu, too early %llu; values non-finite %llu, out "
-        "of range %llu (held)\n",
+        "  inputs   accepted %llu, missing %llu (lost %llu), late %llu, early %llu\n"
+        "           reordered %llu, duplicate %llu, corrupt %llu, wrong count %llu, too early "
+        "%llu\n"
+        "           values held: non-finite %llu, out of range %llu\n",
         u(gc.accepted), u(gc.missing), u(gc.lost()), u(gc.late), u(gc.early), u(gc.reordered),
         u(gc.duplicate), u(gc.corrupt), u(gc.wrong_count), u(gc.too_early), u(gc.nonfinite),
         u(gc.out_of_range));
@@ -517,34 +523,32 @@ int main(int argc, char** argv) {
       if (!a.enabled) continue;
       const std::string name(mdl::kOutputNames[c]);
       if (a.raised == 0) {
-        std::printf("  alarm    |%s| > %g (off below %g): not raised\n", name.c_str(), a.limit,
+        std::printf("  alarm    |%s| > %g, off < %g: not raised\n", name.c_str(), a.limit,
                     a.limit - a.hysteresis);
       } else {
         std::printf(
-            "  ALARM    |%s| > %g (off below %g): raised %llu times, on for %llu frames, first "
-            "at t = %.3f s\n",
+            "  ALARM    |%s| > %g, off < %g: raised %llu times, %llu frames on, first at %.3f s\n",
             name.c_str(), a.limit, a.limit - a.hysteresis, u(a.raised), u(a.frames_on),
             static_cast<double>(a.first_frame) * period);
       }
     }
-    std::printf("  peak |y| (at t)");
+    int width = 0;
+    for (const std::string_view name : mdl::kOutputNames)
+      width = std::max(width, static_cast<int>(name.size()));
     for (std::size_t c = 0; c < kS.outputs; ++c) {
-      const std::string unit(mdl::kOutputUnits[c]);
-      std::printf("%s%s %.4g%s (%.2f s)",
-                  c == 0 ? " " : (c % 3 == 0 ? "\n                  " : ", "),
+      std::printf("  %s %-*s %11.4g %-5s at %.3f s\n", c == 0 ? "peak |y|" : "        ", width,
                   std::string(mdl::kOutputNames[c]).c_str(), sink.peak[c],
-                  unit == "-" ? "" : (" " + unit).c_str(),
+                  std::string(mdl::kOutputUnits[c]).c_str(),
                   static_cast<double>(sink.peak_frame[c]) * period);
     }
-    std::printf("\n");
     if (result.diverged_frame >= 0) {
       std::printf("  DIVERGED at frame %lld: outputs held at the last good frame and flagged\n",
                   static_cast<long long>(result.diverged_frame));
     }
     if (udp_in && !virtual_clock && first_frame >= 0) {
       std::printf(
-          "  deadlines follow the sender: its packet of frame %lld came after %.3f s, "
-          "frame k is due half a period after packet k\n",
+          "  deadlines follow the sender from its packet of frame %lld (waited %.3f s): "
+          "frame k at packet k + T/2\n",
           static_cast<long long>(first_frame), static_cast<double>(first_waited_ns) / 1e9);
     }
     if (udp_timeouts > 0)
