@@ -530,6 +530,35 @@ inline int select_projected_edges(std::span<const ForestEdge> edges,
   return n;
 }
 
+// One rigid tree: its edges [first_edge, end_edge) (contiguous: build_forest places the trees
+// one after the other) and its root (index into the roots), or -1 when rooted at the ground.
+struct ForestTree {
+  std::int32_t first_edge = 0;
+  std::int32_t end_edge = 0;
+  std::int32_t root = -1;
+};
+
+// The trees of a built forest, in the order of node_tree's indices; returns their number.
+// A tree is rooted at the ground when its first edge hangs from the ground; the others take the
+// roots in order (build_forest adds a root for each tree not rooted at the ground).
+inline int forest_trees(std::span<const ForestEdge> edges, std::span<const std::int32_t> node_tree,
+                        std::span<ForestTree> out) {
+  int n = 0, roots = 0;
+  std::size_t begin = 0;
+  while (begin < edges.size()) {
+    const std::int32_t tree = node_tree[static_cast<std::size_t>(edges[begin].child)];
+    std::size_t end = begin;
+    while (end < edges.size() && node_tree[static_cast<std::size_t>(edges[end].child)] == tree)
+      ++end;
+    ForestTree& t = out[static_cast<std::size_t>(n++)];
+    t.first_edge = static_cast<std::int32_t>(begin);
+    t.end_edge = static_cast<std::int32_t>(end);
+    t.root = edges[begin].parent == kGround ? -1 : roots++;
+    begin = end;
+  }
+  return n;
+}
+
 // The initial conditions onto the constraints, root to leaves, every edge: u_0 and v_0 of each
 // child take their parent's rigid components (start() does this once, so that the step need
 // only re-project the trees that round).

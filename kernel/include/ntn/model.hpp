@@ -53,11 +53,13 @@ struct Model {
   std::array<std::int32_t, S.hinges> spring_hinges{};  // hinges with a spring or dashpot
   std::array<std::int32_t, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
   std::array<std::int32_t, S.hinges> project_edges{};  // ntn_exact: edges the step re-projects
+  std::array<ForestTree, S.hinges> trees{};            // ntn_exact: edge range and root per tree
   int num_edges = 0;
   int num_roots = 0;
   int num_spring_hinges = 0;
   int num_branch_hinges = 0;
   int num_project_edges = 0;
+  int num_trees = 0;
   int held_dofs = 0;  // DOFs held at zero as mechanisms (no mass, no stiffness)
   HingeMethod hinge_method = HingeMethod::kNtnExact;
   ClampRule clamp = ClampRule::kMomentum;
@@ -188,6 +190,7 @@ template <Sizes S>
     model.curve_points = spec.curve_points;
     model.num_edges = model.num_roots = model.held_dofs = 0;
     model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
+    model.num_trees = 0;
     for (int i = 0; i < S.hinges; ++i) {
       const HingeData& h = model.hinges[static_cast<std::size_t>(i)];
       if (h.springs != 0)
@@ -215,6 +218,9 @@ template <Sizes S>
       model.num_project_edges = select_projected_edges(
           std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges)),
           model.node_tree, model.clamp == ClampRule::kPaper && any_branch, model.project_edges);
+      model.num_trees = forest_trees(
+          std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges)),
+          model.node_tree, model.trees);
     } else if (model.hinge_method == HingeMethod::kNtnPaper) {
       paper_masses(model.hinges, eff);
     }

@@ -77,11 +77,13 @@ std::size_t model_size(const Sizes& s) {
   l.array<std::int32_t>(s.hinges);                                       // spring_hinges
   l.array<std::int32_t>(s.hinges);                                       // branch_hinges
   l.array<std::int32_t>(s.hinges);                                       // project_edges
+  l.array<ForestTree>(s.hinges);                                         // trees
   l.scalar<int>();                                                       // num_edges
   l.scalar<int>();                                                       // num_roots
   l.scalar<int>();                                                       // num_spring_hinges
   l.scalar<int>();                                                       // num_branch_hinges
   l.scalar<int>();                                                       // num_project_edges
+  l.scalar<int>();                                                       // num_trees
   l.scalar<int>();                                                       // held_dofs
   l.scalar<HingeMethod>();                                               // hinge_method
   l.scalar<ClampRule>();                                                 // clamp
@@ -128,9 +130,10 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Scratch: p, f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 8 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
   // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
-  // places in the lists of hinges with springs, with branches and of projected edges.
+  // places in the lists of hinges with springs, with branches and of projected edges, and a
+  // tree slot (a forest has at most one tree per hinge).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestRoot) + sizeof(Mat6) +
-                4 * sizeof(std::int32_t);
+                4 * sizeof(std::int32_t) + sizeof(ForestTree);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held) and the coupled force of its 6 DOFs (Scratch::r).
   f.per_node_with_hinges =
