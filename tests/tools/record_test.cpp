@@ -2,12 +2,12 @@
 // Fortran fields that run together, CSV, and an error with file:line:column for each bad file.
 #include <gtest/gtest.h>
 
-#include <ostream>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "record.hpp"
 
@@ -15,9 +15,21 @@ namespace {
 
 const std::string kRecords = NTN_RECORDS_DIR;
 
+// Files written by the tests, removed when the test program ends.
+struct TempFiles {
+  std::vector<std::filesystem::path> paths;
+  ~TempFiles() {
+    std::error_code ec;
+    for (const auto& p : paths)
+      std::filesystem::remove(p, ec);
+  }
+};
+TempFiles temp_files;
+
 std::string write_temp(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / ("ntn_record_test_" + name);
   std::ofstream(path, std::ios::binary) << text;
+  temp_files.paths.push_back(path);
   return path.string();
 }
 
@@ -86,6 +98,24 @@ TEST(Csv, ReadsAColumnByName) {
   EXPECT_EQ(ntn::io::read_record(path).record->values, (std::vector<double>{1, 2, 3}));
 }
 
+// A CSV as ntn-run and ntn-hil write it: times with 9 significant digits. At 1 024 Hz those are
+// rounded (1/1024 = 0.0009765625 is printed 0.000976562), so spacing taken from the first two
+// rows drifted off the grid at the 1 025th row. The grid from the end points is exact to the
+// rounding of one printed time over the record: dt within 1e-9 relative.
+TEST(Csv, ReadsNineDigitTimesAtAnyRate) {
+  std::string text = "time,a\n";
+  for (int k = 0; k < 3 * 1024; ++k) {
+    char row[64];
+    std::snprintf(row, sizeof row, "%.9g,%d\n", k / 1024.0, k % 7);
+    text += row;
+  }
+  const std::string path = write_temp("rate1024.csv", text);
+  const auto r = ntn::io::read_csv(path, "a");
+  ASSERT_FALSE(r.error) << r.error->format();
+  EXPECT_NEAR(r.record->dt, 1.0 / 1024, 1e-9 / 1024);
+  EXPECT_EQ(r.record->values.size(), 3U * 1024);
+}
+
 struct BadFile {
   const char* name;
   const char* text;
@@ -130,7 +160,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"many.AT2", "a\nb\nc\nNPTS= 2, DT= 0.01 SEC\n 0.1  0.2\n 0.3\n", 6, 1,
                 "more values than NPTS"},
         BadFile{"cols.csv", "t,a\n0,1\n0.1,2,3\n", 3, 1, "expected 2 values"},
-        BadFile{"uneven.csv", "t,a\n0,1\n0.1,2\n0.3,3\n", 4, 1, "not uniformly spaced"},
+        BadFile{"uneven.csv", "t,a\n0,1\n0.1,2\n0.2,3\n0.35,4\n0.4,5\n", 5, 1,
+                "not uniformly spaced"},
         BadFile{"back.csv", "t,a\n0,1\n-0.1,2\n", 3, 1, "time must increase"},
         BadFile{"inf.csv", "t,a\n0,1\n0.1,inf\n", 3, 5, "not a finite number"}),
     [](const ::testing::TestParamInfo<BadFile>& i) {

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -222,15 +223,22 @@ ReadResult read_csv(const std::string& path, const std::string& column) {
     r.values.push_back(v[col]);
   }
   if (times.size() < 2) return fail(path, 2, 1, "a CSV record needs at least 2 rows");
-  // The first two rows set the spacing; every later row must keep it (to 1e-6 relative).
-  r.dt = times[1] - times[0];
-  if (!(r.dt > 0)) return fail(path, rows[1], 1, "time must increase");
-  for (std::size_t k = 2; k < times.size(); ++k) {
+  // The spacing is (t_last - t_0) / (n - 1); every row must sit on that grid to 1e-6 of the
+  // spacing, plus the rounding of a time printed with 9 significant digits (as ntn-run and
+  // ntn-hil write it: 5e-9 of |t|, taken as 1e-8). Spacing from the first two rows alone would
+  // carry their rounding along the whole record (at 1 024 Hz the 1 025th row failed).
+  if (!(times[1] > times[0])) return fail(path, rows[1], 1, "time must increase");
+  r.dt = (times.back() - times[0]) / static_cast<double>(times.size() - 1);
+  for (std::size_t k = 1; k < times.size(); ++k) {
     const double expected = times[0] + static_cast<double>(k) * r.dt;
-    if (std::abs(times[k] - expected) > 1e-6 * r.dt) {
-      return fail(path, rows[k], 1,
-                  "time is not uniformly spaced (t = " + std::to_string(times[k]) +
-                      " s, expected " + std::to_string(expected) + " s)");
+    const double tolerance = 1e-6 * r.dt + 1e-8 * std::max(std::abs(times[k]), std::abs(times[0]));
+    if (!(std::abs(times[k] - expected) <= tolerance)) {
+      char message[200];
+      std::snprintf(message, sizeof message,
+                    "time is not uniformly spaced (t = %.12g s, expected %.12g s on the grid "
+                    "t0 + k dt, dt = %.12g s)",
+                    times[k], expected, r.dt);
+      return fail(path, rows[k], 1, message);
     }
   }
   return {std::move(r), std::nullopt};
