@@ -2,6 +2,11 @@
 // versions. The C functions forward to glibc's exported __libc_* implementations (no dlsym, so
 // no allocation during interposition); operator new / delete forward to the same, so a pointer
 // from either family may be released by the other as glibc allows.
+//
+// Under AddressSanitizer (NTN_SANITIZE, preset asan) nothing is replaced: ASan owns malloc and
+// operator new, and memory it did not hand out must never reach its free. The counts come from
+// its allocator hooks instead, which it calls for every allocation it makes (malloc & co. and
+// every operator new alike) and every release of a non-null pointer.
 #include "support/alloc_counter.hpp"
 
 #include <atomic>
@@ -9,6 +14,41 @@
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+
+#if defined(NTN_SANITIZE)
+
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+
+namespace {
+
+std::atomic<std::uint64_t> g_allocations{0};
+std::atomic<std::uint64_t> g_deallocations{0};
+
+void on_malloc(const volatile void*, std::size_t) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+}
+void on_free(const volatile void* p) {
+  if (p != nullptr) g_deallocations.fetch_add(1, std::memory_order_relaxed);
+}
+
+// Installed during static initialisation, before any test runs.
+const int g_hooks_installed = __sanitizer_install_malloc_and_free_hooks(on_malloc, on_free);
+
+}  // namespace
+
+namespace ntn_test {
+
+AllocationCounts allocation_counts() {
+  if (g_hooks_installed == 0) std::abort();  // no counts: a test relying on them must not pass
+  return {g_allocations.load(std::memory_order_relaxed),
+          g_deallocations.load(std::memory_order_relaxed)};
+}
+
+}  // namespace ntn_test
+
+#else  // !NTN_SANITIZE
 
 extern "C" {
 void* __libc_malloc(std::size_t size);
@@ -221,3 +261,5 @@ void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept 
 void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
   delete_impl(p);
 }
+
+#endif  // NTN_SANITIZE

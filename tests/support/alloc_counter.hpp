@@ -1,7 +1,8 @@
 // Counts every heap allocation of the process: malloc, calloc, realloc, reallocarray,
 // aligned_alloc, posix_memalign, memalign, valloc, pvalloc and every global operator new.
 // alloc_counter.cpp replaces those functions (forwarding to glibc's __libc_* entry points), so
-// link it (target ntn_alloc_counter) into the one test that needs it.
+// link it (target ntn_alloc_counter) into the one test that needs it. Under AddressSanitizer it
+// counts through ASan's allocator hooks instead (see alloc_counter.cpp).
 #pragma once
 
 #include <cstdint>

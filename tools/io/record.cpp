@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 namespace ntn::io {
 
@@ -18,13 +19,18 @@ std::string lower(std::string s) {
   return s;
 }
 
-// Splits a file into lines, accepting \n, \r\n, \r\r\n (seen in PEER files) and lone \r.
-bool read_lines(const std::string& path, std::vector<std::string>& lines) {
+bool read_file(const std::string& path, std::string& text) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::stringstream ss;
   ss << in.rdbuf();
-  const std::string text = ss.str();
+  text = ss.str();
+  return true;
+}
+
+// Splits text into lines, accepting \n, \r\n, \r\r\n (seen in PEER files) and lone \r.
+std::vector<std::string> split_lines(std::string_view text) {
+  std::vector<std::string> lines;
   std::string line;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
@@ -44,7 +50,7 @@ bool read_lines(const std::string& path, std::vector<std::string>& lines) {
     }
   }
   if (!line.empty()) lines.push_back(line);
-  return true;
+  return lines;
 }
 
 // Parses numbers from one line, also where Fortran fixed-width fields run together
@@ -119,8 +125,13 @@ double Record::peak_abs() const {
 }
 
 ReadResult read_at2(const std::string& path) {
-  std::vector<std::string> lines;
-  if (!read_lines(path, lines)) return fail(path, 0, 0, "cannot open the file");
+  std::string text;
+  if (!read_file(path, text)) return fail(path, 0, 0, "cannot open the file");
+  return read_at2_text(text, path);
+}
+
+ReadResult read_at2_text(std::string_view content, const std::string& path) {
+  const std::vector<std::string> lines = split_lines(content);
   if (lines.size() < 4) return fail(path, 1, 1, "an AT2 file needs 4 header lines");
 
   Record r;
@@ -156,7 +167,9 @@ ReadResult read_at2(const std::string& path) {
   if (!(r.dt > 0) || !std::isfinite(r.dt)) return fail(path, 4, 1, "DT must be positive");
 
   const auto n = static_cast<std::size_t>(npts);
-  r.values.reserve(n);
+  // NPTS comes from the file: reserve no more than the text could hold (a value takes at least
+  // one character), so a header claiming 10^8 points does not allocate 800 MB up front.
+  r.values.reserve(std::min(n, content.size()));
   for (std::size_t k = 4; k < lines.size(); ++k) {
     const std::size_t before = r.values.size();
     if (const int col = parse_numbers(lines[k], r.values); col != 0) {
@@ -177,8 +190,14 @@ ReadResult read_at2(const std::string& path) {
 }
 
 ReadResult read_csv(const std::string& path, const std::string& column) {
-  std::vector<std::string> lines;
-  if (!read_lines(path, lines)) return fail(path, 0, 0, "cannot open the file");
+  std::string text;
+  if (!read_file(path, text)) return fail(path, 0, 0, "cannot open the file");
+  return read_csv_text(text, column, path);
+}
+
+ReadResult read_csv_text(std::string_view content, const std::string& column,
+                         const std::string& path) {
+  const std::vector<std::string> lines = split_lines(content);
   if (lines.size() < 3) return fail(path, 1, 1, "a CSV record needs a header row and 2 rows");
 
   std::vector<std::string> names;

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ntn::io {
@@ -39,10 +40,14 @@ struct ReadResult {
 // Fortran fixed format. CR/LF line endings of any mix are accepted. Units come from the header
 // ("UNITS OF G", "units are (g)").
 ReadResult read_at2(const std::string& path);
+// The same from text in memory; `source` stands for the file name in the record and errors.
+ReadResult read_at2_text(std::string_view text, const std::string& source);
 
 // CSV with a header row; `column` names the channel (or is empty for the second column).
 // The first column is time in s and must be uniformly spaced (to 1e-6 relative).
 ReadResult read_csv(const std::string& path, const std::string& column);
+ReadResult read_csv_text(std::string_view text, const std::string& column,
+                         const std::string& source);
 
 // By extension: .AT2/.at2 -> read_at2, anything else -> read_csv.
 ReadResult read_record(const std::string& path, const std::string& column = {});

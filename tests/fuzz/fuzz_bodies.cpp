@@ -1,0 +1,113 @@
+#include "fuzz_bodies.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "ntn/hil/gate.hpp"
+#include "ntn/hil/packet.hpp"
+#include "ntn/modelc/load_model.hpp"
+#include "record.hpp"
+
+namespace ntn_fuzz {
+
+namespace {
+
+// A broken invariant is a finding: abort so that libFuzzer keeps the input.
+void require(bool ok) {
+  if (!ok) std::abort();
+}
+
+std::string_view text(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+void check_record(const ntn::io::ReadResult& r) {
+  require(r.record.has_value() != r.error.has_value());  // exactly one of the two
+  if (r.record) {
+    require(r.record->dt > 0 && std::isfinite(r.record->dt));
+    for (double v : r.record->values)
+      require(std::isfinite(v));
+    (void)r.record->at(0.5 * r.record->duration());
+  } else {
+    (void)r.error->format();
+  }
+}
+
+}  // namespace
+
+void modelc(const std::uint8_t* data, std::size_t size) {
+  const ntn::modelc::LoadResult r = ntn::modelc::load_model_from_string(text(data, size), "fuzz");
+  require(r.ok() == r.errors.empty());  // a model exactly when there is no error
+  for (const auto& d : r.errors)
+    (void)d.format();
+}
+
+void at2(const std::uint8_t* data, std::size_t size) {
+  check_record(ntn::io::read_at2_text(text(data, size), "fuzz.AT2"));
+}
+
+void csv(const std::uint8_t* data, std::size_t size) {
+  // Odd-sized inputs ask for a column by name: the header's last name, up to any '[' (so the
+  // named-column path is taken, found or not); even-sized ones take the default column.
+  const std::string_view all = text(data, size);
+  std::string column;
+  if (size % 2 == 1) {
+    std::string_view head = all.substr(0, all.find_first_of("\r\n"));
+    if (const auto comma = head.rfind(','); comma != std::string_view::npos)
+      head = head.substr(comma + 1);
+    head = head.substr(0, head.find('['));
+    while (!head.empty() && (head.front() == ' ' || head.front() == '"'))
+      head.remove_prefix(1);
+    column = std::string(head);
+  }
+  check_record(ntn::io::read_csv_text(all, column, "fuzz.csv"));
+}
+
+void packet(const std::uint8_t* data, std::size_t size) {
+  const std::span<const std::byte> bytes(reinterpret_cast<const std::byte*>(data), size);
+
+  // decode: only a datagram of exactly packet_size(count) with a good checksum decodes, and
+  // re-encoding what it gave decodes to the same packet.
+  ntn::hil::Packet p;
+  const ntn::hil::DecodeError e = ntn::hil::decode(bytes, p);
+  if (e == ntn::hil::DecodeError::kOk) {
+    require(p.count <= ntn::hil::kMaxChannels && size == ntn::hil::packet_size(p.count));
+    std::array<std::byte, ntn::hil::kMaxPacketBytes> out{};
+    const std::size_t n = ntn::hil::encode(p, out);
+    require(n == size);
+    ntn::hil::Packet q;
+    require(ntn::hil::decode(std::span<const std::byte>(out.data(), n), q) ==
+            ntn::hil::DecodeError::kOk);
+    require(q.kind == p.kind && q.frame == p.frame && q.sequence == p.sequence &&
+            q.count == p.count && q.flags == p.flags);
+  }
+  (void)ntn::hil::to_string(e);
+  ntn::hil::Packet typed;
+  (void)ntn::hil::decode(bytes, typed, ntn::hil::PacketKind::kInput);
+
+  // The input gate, 3 channels in [-1, 1]: whatever is offered, what comes out is finite and in
+  // range. The datagram is offered at frame 0 and again (a duplicate) at the packet's own frame
+  // when that is close, so the early / current / late paths all see it.
+  ntn::hil::InputGate gate(3);
+  for (int c = 0; c < 3; ++c)
+    require(gate.set_range(c, -1.0, 1.0));
+  std::array<double, 3> values{};
+  std::uint16_t flags = 0;
+  require(gate.begin_frame(0));
+  const ntn::hil::OfferResult first = gate.offer(bytes);
+  gate.end_frame(values, flags);
+  std::int64_t next = 1;
+  if (first.status == ntn::hil::OfferStatus::kBuffered && first.frame > 0 && first.frame < 64)
+    next = first.frame;
+  require(gate.begin_frame(next));
+  (void)gate.offer(bytes);
+  gate.end_frame(values, flags);
+  for (double v : values)
+    require(std::isfinite(v) && v >= -1.0 && v <= 1.0);
+}
+
+}  // namespace ntn_fuzz

@@ -1,0 +1,10 @@
+// libFuzzer entry point of the modelc target (see fuzz_bodies.hpp).
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_bodies.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  ntn_fuzz::modelc(data, size);
+  return 0;
+}
