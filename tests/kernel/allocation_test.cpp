@@ -71,7 +71,13 @@ TEST(AllocationCounter, CountsCAllocatorsAndEveryNewForm) {
   delete n;
   const ntn_test::AllocationCounts c = scope.counts();
   EXPECT_EQ(c.allocations, 8U);  // malloc, realloc, calloc, aligned, posix, new[], new(al), nothrow
+#if defined(NTN_SANITIZE)
+  // Under ASan the counts come from its allocator hooks, and ASan's realloc always moves the
+  // block: it releases the old one, which its free hook counts.
+  EXPECT_EQ(c.deallocations, 8U);
+#else
   EXPECT_EQ(c.deallocations, 7U);  // realloc released nothing separately
+#endif
 }
 
 // Allocations made inside shared libraries are counted too (strdup allocates inside glibc).
