@@ -1,7 +1,10 @@
 // Dense global matrices of a model, for reference solutions in tests (heap and exceptions
 // allowed here, never in the kernel). Built with the kernel's own element functions
-// (ntn::beam_geometry, ntn::beam_stiffness, ntn::beam_global_stiffness,
-// ntn::assemble_lumped_mass) so that what is compared is the kernel's discrete model.
+// (ntn::beam_geometry, ntn::beam_stiffness, ntn::beam_global_stiffness through
+// ntn::modal::for_each_element_stiffness, and ntn::assemble_lumped_mass) so that what is compared
+// is the kernel's discrete model. The eigenproblems and hinge rows below are written here from
+// the equations, independently of the modal analysis library (tools/modal), which the tests
+// check against them.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "ntn/beam.hpp"
+#include "ntn/modal/assembly.hpp"
 #include "ntn/model.hpp"
 #include "ntn/model_spec.hpp"
 
@@ -24,29 +28,14 @@ inline Eigen::Index dofs_of(const ntn::SpecView& spec) {
   return static_cast<Eigen::Index>(ntn::kDofsPerNode * spec.nodes.size());
 }
 
-// K = sum over elements of the 12x12 T^T K_L T scattered to the elements' nodes.
+// K = sum over elements of the 12x12 T^T K_L T scattered to the elements' nodes (the element
+// visitor ntn::modal::for_each_element_stiffness, shared with the modal analysis library).
 inline Eigen::MatrixXd global_stiffness(const ntn::SpecView& spec) {
   const Eigen::Index n = dofs_of(spec);
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-  for (const ntn::ElementSpec& e : spec.elements) {
-    const ntn::BeamGeometry g =
-        ntn::beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
-                           spec.nodes[static_cast<std::size_t>(e.node_j)], e);
-    if (g.check != ntn::ElementCheck::kOk) throw std::invalid_argument("bad element geometry");
-    ntn::BeamData b;
-    b.node_i = e.node_i, b.node_j = e.node_j;
-    b.rotation = g.rotation;
-    b.k = ntn::beam_stiffness(e, g.length);
-    const ntn::Matrix12 Ke = ntn::beam_global_stiffness(b);
-    const int node[2] = {e.node_i, e.node_j};
-    for (int r = 0; r < 12; ++r) {
-      for (int c = 0; c < 12; ++c) {
-        const Eigen::Index gr = ntn::kDofsPerNode * node[r / 6] + r % 6;
-        const Eigen::Index gc = ntn::kDofsPerNode * node[c / 6] + c % 6;
-        K(gr, gc) += Ke[static_cast<std::size_t>(r * 12 + c)];
-      }
-    }
-  }
+  const int bad =
+      ntn::modal::for_each_element_stiffness(spec, [&K](int r, int c, double v) { K(r, c) += v; });
+  if (bad >= 0) throw std::invalid_argument("bad element geometry or properties");
   return K;
 }
 
