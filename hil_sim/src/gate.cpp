@@ -166,14 +166,20 @@ OfferResult InputGate::place(std::int64_t frame, std::span<const double> values)
     ++counters_.late;
     pending_flags_ |= flag::kLate;
     const std::size_t bit = static_cast<std::size_t>(frame & (kMissingWindow - 1));
-    if (current_ - frame <= kMissingWindow && missing_.test(bit)) {
+    // Differences of frame indices in unsigned arithmetic: any int64 frame may arrive (a fuzzer
+    // sent INT64_MIN), and the true difference, though it may not fit int64, fits uint64.
+    const std::uint64_t behind =
+        static_cast<std::uint64_t>(current_) - static_cast<std::uint64_t>(frame);
+    if (behind <= static_cast<std::uint64_t>(kMissingWindow) && missing_.test(bit)) {
       ++counters_.late_for_missing;
       missing_.reset(bit);
     }
     r.status = OfferStatus::kLate;
     return r;
   }
-  if (frame - current_ > kJitterFrames) {
+  const std::uint64_t ahead =
+      static_cast<std::uint64_t>(frame) - static_cast<std::uint64_t>(current_);
+  if (ahead > static_cast<std::uint64_t>(kJitterFrames)) {
     ++counters_.too_early;
     pending_flags_ |= flag::kTooEarly;
     r.status = OfferStatus::kTooEarly;

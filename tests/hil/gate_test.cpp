@@ -173,6 +173,23 @@ TEST(Gate, LatePacketIsDroppedAndReconciled) {
   EXPECT_EQ(n.reordered, 0u);  // 0, 1, 2, 1000: late, but never behind the newest sequence
 }
 
+// Frame indices at the ends of int64 (found by the packet fuzzer: INT64_MIN overflowed the
+// late-packet arithmetic, UB caught by UBSan): a packet from the far past is late, one from the
+// far future too early, and the stream goes on unchanged.
+TEST(Gate, ExtremeFrameIndicesAreLateOrTooEarly) {
+  InputGate g = make_gate();
+  run_frame(g, 0, {clean_packet(0)});
+  const Frame f =
+      run_frame(g, 1,
+                {clean_packet(1), input(2, std::numeric_limits<std::int64_t>::min(), {0, 0, 0}),
+                 input(3, std::numeric_limits<std::int64_t>::max(), {0, 0, 0})});
+  EXPECT_EQ(f.v[0], clean(0, 1));
+  EXPECT_EQ(f.flags, flag::kLate | flag::kTooEarly);
+  EXPECT_EQ(g.counters().late, 1u);
+  EXPECT_EQ(g.counters().too_early, 1u);
+  EXPECT_EQ(g.counters().late_for_missing, 0u);
+}
+
 TEST(Gate, DuplicatesAreDropped) {
   InputGate g = make_gate();
   const Datagram p0 = clean_packet(0);

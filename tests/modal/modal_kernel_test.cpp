@@ -12,12 +12,11 @@
 // max |u - q phi| below 1e-9 of the initial amplitude (1 mm). A wrong tie or effective mass in
 // either code leaks energy into other modes and shifts the frequency by 1e-3 or more.
 //
-// Known kernel discrepancy, measured and printed here, not asserted: in the eccentric chain the
-// beam ends are the hinges' node 2 and the plate (node 1) is the root, so the kernel's forest
-// eliminates node 2 from node 1. Its link for that case, Y = T X(-e), ties T (u2 - phi2 x e) to
-// T u1, where DESIGN §7's d_L = T [u2 - u1 - phi1 x e; ...] ties T (u2 - phi1 x e): the two differ
-// when the hinge is eccentric and a rotation is released (phi2 != phi1). The same structure with
-// every direction rigid, and the hinges written the other way round, agree (asserted below).
+// The eccentric chain is checked both ways round. With the beam ends as the hinges' node 2 and
+// the plate (node 1) as the root, the kernel's forest first tied T (u2 - phi2 x e) to T u1, where
+// DESIGN §7's d_L = T [u2 - u1 - phi1 x e; ...] ties T (u2 - phi1 x e): the two differ when the
+// hinge is eccentric and a rotation is released (phi2 != phi1). This test found it; the forest
+// now puts the lever arm on node 1's side whichever node is the child.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -132,9 +131,9 @@ TEST(ModalKernel, EccentricHingesWithReleasedRotations) {
   for (ntn::HingeSpec& h : eccentric.spec.hinges)
     h.behaviour.fill(ntn::HingeBehaviour::kRigid);
   check("eccentric chain, all rigid", eccentric);
-  // Beam ends as node 2 with released rotations: the kernel's discrepancy (file comment).
+  // Beam ends as node 2 with released rotations (the case the file comment describes).
   modal_test::build_eccentric_chain(eccentric.spec);
-  check("eccentric chain, beam ends as node 2", eccentric, false);
+  check("eccentric chain, beam ends as node 2", eccentric);
 }
 
 }  // namespace

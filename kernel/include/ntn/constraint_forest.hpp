@@ -331,8 +331,12 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
       if (edges[static_cast<std::size_t>(j)].parent == e.child)
         mc += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
     }
+    // d_L = T [u2 - u1 - phi1 x e; phi2 - phi1] (DESIGN §7): the lever arm e turns with node 1.
+    // So the link X(e) sits on node 1's side: on the child when it is node 1 (q = T X(e) a_c,
+    // tied to T a_p), on the parent when the child is node 2 (q = T a_c, tied to T X(e) a_p).
     const M6 t6 = detail::frame6(h);
-    const M6 x = detail::link(h.eccentricity, static_cast<double>(e.sign));
+    const M6 x = e.sign > 0 ? detail::link(h.eccentricity, 1.0) : M6::Identity();
+    const M6 tp = t6 * (e.sign > 0 ? M6::Identity() : detail::link(h.eccentricity, 1.0));
     const M6 y = t6 * x;
     M6 xinv = M6::Identity();
     xinv.topRightCorner<3, 3>() = -x.topRightCorner<3, 3>();
@@ -358,11 +362,11 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     }
     const M6 id = M6::Identity();
     const M6 s = g * (mq - mq * ainv * mq) * g;
-    mass_up[static_cast<std::size_t>(k)] = detail::to_mat6(t6.transpose() * s * t6);
-    e.up = detail::to_mat6(t6.transpose() * g * (id - mq * ainv) * yinv.transpose());
-    e.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * t6);
+    mass_up[static_cast<std::size_t>(k)] = detail::to_mat6(tp.transpose() * s * tp);
+    e.up = detail::to_mat6(tp.transpose() * g * (id - mq * ainv) * yinv.transpose());
+    e.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * tp);
     e.down_r = detail::to_mat6(yinv * ainv * yinv.transpose());
-    e.proj_p = detail::to_mat6(yinv * g * t6);
+    e.proj_p = detail::to_mat6(yinv * g * tp);
     e.proj_c = detail::to_mat6(yinv * g * y);
     e.force_a = detail::to_mat6(g * mq * y);
     e.force_r = detail::to_mat6(g * yinv.transpose());
