@@ -173,8 +173,12 @@ void print_row(const Row& r) {
   std::fflush(stdout);
 }
 
-// Column and beam members in 3 elements (dt ~ 160 us, 7 substeps) on a growing 4 x 4 grid, then
-// 5 x 5; the 9 900-element frame of bench_kernel (4 elements per member, 12 substeps).
+// Column and beam members in 3 elements (dt ~ 160 us, 7 substeps): two small frames (1 x 1 bay,
+// 2 storeys; 2 x 2 bays, 4 storeys) that separate the platform's stalls from compute, a growing
+// 4 x 4 grid, then 5 x 5; the 9 900-element frame of bench_kernel (4 elements per member, 12
+// substeps).
+constexpr Grid kG48{1, 1, 2, 3, 3};
+constexpr Grid kG252{2, 2, 4, 3, 3};
 constexpr Grid kG975{4, 4, 5, 3, 3};
 constexpr Grid kG1950{4, 4, 10, 3, 3};
 constexpr Grid kG2535{4, 4, 13, 3, 3};
@@ -217,6 +221,8 @@ int main(int argc, char** argv) {
     print_row(r);
     rows.push_back(r);
   };
+  go(run_size<kG48>(o));
+  go(run_size<kG252>(o));
   go(run_size<kG975>(o));
   go(run_size<kG1950>(o));
   go(run_size<kG2535>(o));
