@@ -232,10 +232,12 @@ void for_each_node(const Model<S>& m, const ClampPart& p, Fn&& fn) {
 // Only the trees of the hinge's two nodes (or the nodes themselves) respond, so an event costs
 // the size of those trees, not of the model. Then S 35-37. Uses w.f and w.r there as workspace
 // (the outputs were taken before the update).
-// One sweep over the hinges with rigid branches; returns the largest excess it corrected,
-// relative to the branch start (absolute where the branch starts at zero).
+// One sweep over the hinges with rigid branches; returns the largest excess it found, relative
+// to the branch start (absolute where the branch starts at zero). The first sweep of a step
+// checks every stop hinge (the update moved every node); a later one only those with a node that
+// a clamp moved since the hinge was last checked, because nothing else changes d.
 template <Sizes S>
-double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first) {
   double largest = 0;
   // node_tree is -1 everywhere but under ntn_exact, so every part is then a lone node.
   for (int i = 0; i < m.num_branch_hinges; ++i) {
@@ -244,6 +246,11 @@ double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
     const bool ground = h.node2 == kGround;
     const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+    std::int64_t& checked = w.clamp_checked[static_cast<std::size_t>(i)];
+    if (!first && w.clamp_moved[static_cast<std::size_t>(h.node1)] <= checked &&
+        (ground || w.clamp_moved[static_cast<std::size_t>(h.node2)] <= checked)) {
+      continue;
+    }
     ClampPart parts[2] = {clamp_part(m, h.node1), clamp_part(m, h.node2)};
     if (parts[1].tree >= 0 && parts[1].tree == parts[0].tree) parts[1] = {};  // one tree
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
@@ -296,8 +303,10 @@ double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w) {
       }
       if (!(mobility > 0)) continue;  // both sides held: nothing can move
       const double scale = -excess / mobility;
+      const std::int64_t event = ++w.clamp_events;
       for (const ClampPart& p : parts) {
         for_each_node(m, p, [&](int n) {
+          w.clamp_moved[static_cast<std::size_t>(n)] = event;
           for (std::size_t c = 0; c < 6; ++c) {
             const auto j = static_cast<std::size_t>(kDofsPerNode * n) + c;
             const double du = scale * w.f[j];
@@ -308,6 +317,7 @@ double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w) {
         });
       }
     }
+    checked = w.clamp_events;
   }
   return largest;
 }
@@ -324,7 +334,7 @@ inline constexpr double kClampTolerance = 1e-12;
 template <Sizes S>
 void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   for (int sweep = 0; sweep < kClampSweeps; ++sweep) {
-    if (!(momentum_clamp_sweep(m, s, w) > kClampTolerance)) break;
+    if (!(momentum_clamp_sweep(m, s, w, sweep == 0) > kClampTolerance)) break;
   }
 }
 

@@ -28,6 +28,11 @@ struct Scratch {
   std::array<double, kDofs> a{};                       // acceleration a_n
   std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};  // R_n - C v, coupled (models with hinges)
   std::array<double, S.outputs> outputs{};             // output channels at t_n
+  // Momentum clamp bookkeeping (integrator.hpp): the event count when each node was last moved
+  // by a clamp and when each stop hinge was last checked; only their order within a step counts.
+  std::array<std::int64_t, (S.hinges > 0 ? S.nodes : 0)> clamp_moved{};
+  std::array<std::int64_t, S.hinges> clamp_checked{};
+  std::int64_t clamp_events = 0;
   std::array<double, 3> ground{};  // m/s^2, ground acceleration a_g at t_n (x, y, z)
   double time = 0;                 // s, t_n of `outputs`
 };

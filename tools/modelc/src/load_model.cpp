@@ -1940,14 +1940,14 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
                                 "these DOFs at zero");
   }
 
-  // Time step (DESIGN §6): the element eigenvalue bound and the hinges' two-node springs, with
-  // damping, for the model's hinge method.
+  // Time step (DESIGN §6, kernel/README.md "Stable time step"): the element eigenvalue bound and
+  // the node-by-node bound of the hinge springs, with damping, for the model's hinge method.
   d.stable = stable_time_step(d.view(), mass);
   auto governing = [&](const StableStepReport& r) {
     if (r.governing_hinge >= 0) {
       return d.describe_hinge(r.governing_hinge) + ", direction " +
              std::string(kDofNames[static_cast<std::size_t>(r.hinge_direction)]) +
-             " (a two-node spring, DESIGN §6)";
+             " (the spring with the largest share of the governing node's bound)";
     }
     return d.describe_element(r.governing_element);
   };

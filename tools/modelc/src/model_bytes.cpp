@@ -107,13 +107,16 @@ std::size_t state_size(const Sizes& s) {
 std::size_t scratch_size(const Sizes& s) {
   const int dofs = kDofsPerNode * s.nodes;
   Layout l;
-  l.array<double>(dofs);                     // p
-  l.array<double>(dofs);                     // f
-  l.array<double>(dofs);                     // a
-  l.array<double>(s.hinges > 0 ? dofs : 0);  // r (models with hinges)
-  l.array<double>(s.outputs);                // outputs
-  l.array<double>(3);                        // ground
-  l.scalar<double>();                        // time
+  l.array<double>(dofs);                              // p
+  l.array<double>(dofs);                              // f
+  l.array<double>(dofs);                              // a
+  l.array<double>(s.hinges > 0 ? dofs : 0);           // r (models with hinges)
+  l.array<double>(s.outputs);                         // outputs
+  l.array<std::int64_t>(s.hinges > 0 ? s.nodes : 0);  // clamp_moved
+  l.array<std::int64_t>(s.hinges);                    // clamp_checked
+  l.scalar<std::int64_t>();                           // clamp_events
+  l.array<double>(3);                                 // ground
+  l.scalar<double>();                                 // time
   return l.size();
 }
 
@@ -130,14 +133,14 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Scratch: p, f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 8 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
   // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
-  // places in the lists of hinges with springs, with branches and of projected edges, and a
-  // tree slot (a forest has at most one tree per hinge).
+  // places in the lists of hinges with springs, with branches and of projected edges, a
+  // tree slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestRoot) + sizeof(Mat6) +
-                4 * sizeof(std::int32_t) + sizeof(ForestTree);
+                4 * sizeof(std::int32_t) + sizeof(ForestTree) + sizeof(std::int64_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
-  // held) and the coupled force of its 6 DOFs (Scratch::r).
-  f.per_node_with_hinges =
-      sizeof(std::int32_t) + sizeof(std::uint8_t) + kDofsPerNode * sizeof(double);
+  // held), the coupled force of its 6 DOFs (Scratch::r) and its clamp move mark (Scratch).
+  f.per_node_with_hinges = sizeof(std::int32_t) + sizeof(std::uint8_t) +
+                           kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
   f.per_curve_point = sizeof(CurvePoint);
   return f;
 }

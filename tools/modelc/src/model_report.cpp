@@ -167,7 +167,8 @@ std::string info_text(const ModelDescription& m) {
                         f("%.6g", st.omega_max / (2.0 * std::numbers::pi)) + " Hz)");
   if (st.governing_hinge >= 0) {
     line("", "set by " + m.describe_hinge(st.governing_hinge) + ", direction " +
-                 kDofName[st.hinge_direction] + " (a two-node spring)");
+                 kDofName[st.hinge_direction] +
+                 " (the spring with the largest share of the governing node's bound)");
   } else {
     line("", "set by " + m.describe_element(st.governing_element));
   }
