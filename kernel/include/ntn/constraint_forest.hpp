@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -464,27 +465,36 @@ inline void forest_down(std::span<const ForestRoot> roots, int root_count,
   }
 }
 
+// The change of the child's x (u or v) that gives its rigid components of q its parent's:
+// delta = P_p x_parent - P_c x_child (a 0/1 diagonal for an aligned edge).
+inline void edge_delta(const ForestEdge& e, const double* x, double* delta) {
+  double to[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
+  const double* xc = x + 6 * e.child;
+  if (e.aligned) {
+    if (e.parent != kGround) diag6_madd(e.rigid_d, x + 6 * e.parent, to);
+    diag6_madd(e.rigid_d, xc, back);
+  } else {
+    if (e.parent != kGround) mat6_madd(e.proj_p, x + 6 * e.parent, to);
+    mat6_madd(e.proj_c, xc, back);
+  }
+  for (int d = 0; d < 6; ++d)
+    delta[d] = to[d] - back[d];
+}
+
 // Projection of one edge, after its parent's: the child's rigid components of q are set from its
 // parent's (generalizes S 30-31), and v, a of the changed DOFs follow (S 35-37): a change du of
 // u_{n+1} changes v_{n+1/2} by du / dt and a_n by du / dt^2.
 inline void project_edge(const ForestEdge& e, double* u, double* v, double* a, double inv_dt) {
-  double du[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
+  double delta[6];
+  edge_delta(e, u, delta);
   double* uc = u + 6 * e.child;
-  if (e.aligned) {
-    if (e.parent != kGround) diag6_madd(e.rigid_d, u + 6 * e.parent, du);
-    diag6_madd(e.rigid_d, uc, back);
-  } else {
-    if (e.parent != kGround) mat6_madd(e.proj_p, u + 6 * e.parent, du);
-    mat6_madd(e.proj_c, uc, back);
-  }
   double* vc = v + 6 * e.child;
   double* ac = a + 6 * e.child;
   double nu[6], nv[6], na[6];  // loads before stores, as in diag6_madd
   for (int d = 0; d < 6; ++d) {
-    const double delta = du[d] - back[d];
-    nu[d] = uc[d] + delta;
-    nv[d] = vc[d] + delta * inv_dt;
-    na[d] = ac[d] + delta * inv_dt * inv_dt;
+    nu[d] = uc[d] + delta[d];
+    nv[d] = vc[d] + delta[d] * inv_dt;
+    na[d] = ac[d] + delta[d] * inv_dt * inv_dt;
   }
   for (int d = 0; d < 6; ++d)
     uc[d] = nu[d];
@@ -502,36 +512,6 @@ inline void forest_project(std::span<const ForestEdge> edges, std::span<const st
     project_edge(edges[static_cast<std::size_t>(list[static_cast<std::size_t>(k)])], u, v, a,
                  inv_dt);
   }
-}
-
-// Which edges the step re-projects (DESIGN §7.1); returns their number, indices in `out`.
-// In a tree whose edges are all aligned, the downward pass sets a child's rigid accelerations to
-// its parent's exactly (a product by 1 plus products by 0), and the update then moves child and
-// parent alike, so their rigid components stay equal with no projection: projecting would
-// change at most the sign of a zero. A tree with a rotated or eccentric edge rounds, so all its
-// edges are re-projected every step; so is every tree when the S 33 clamp (`all`), which moves
-// single nodes, is in use. The edges of one tree are contiguous (build_forest places them tree
-// by tree), and node_tree gives each child's tree.
-inline int select_projected_edges(std::span<const ForestEdge> edges,
-                                  std::span<const std::int32_t> node_tree, bool all,
-                                  std::span<std::int32_t> out) {
-  int n = 0;
-  std::size_t begin = 0;
-  while (begin < edges.size()) {
-    const std::int32_t tree = node_tree[static_cast<std::size_t>(edges[begin].child)];
-    std::size_t end = begin;
-    bool aligned = true;
-    while (end < edges.size() && node_tree[static_cast<std::size_t>(edges[end].child)] == tree) {
-      aligned = aligned && edges[end].aligned;
-      ++end;
-    }
-    if (all || !aligned) {
-      for (std::size_t k = begin; k < end; ++k)
-        out[static_cast<std::size_t>(n++)] = static_cast<std::int32_t>(k);
-    }
-    begin = end;
-  }
-  return n;
 }
 
 // One rigid tree: its edges [first_edge, end_edge) (contiguous: build_forest places the trees
@@ -563,6 +543,27 @@ inline int forest_trees(std::span<const ForestEdge> edges, std::span<const std::
   return n;
 }
 
+// Which edges the step re-projects (DESIGN §7.1); returns their number, indices in `out`.
+// In a tree whose edges are all aligned, the downward pass sets a child's rigid accelerations to
+// its parent's exactly (a product by 1 plus products by 0), and the update then moves child and
+// parent alike, so their rigid components stay equal with no projection: projecting would
+// change at most the sign of a zero. A tree with a rotated or eccentric edge rounds, so all its
+// edges are re-projected every step; so is every tree when the S 33 clamp (`all`), which moves
+// single nodes, is in use.
+inline int select_projected_edges(std::span<const ForestEdge> edges,
+                                  std::span<const ForestTree> trees, bool all,
+                                  std::span<std::int32_t> out) {
+  int n = 0;
+  for (const ForestTree& t : trees) {
+    const auto begin = edges.begin() + t.first_edge, end = edges.begin() + t.end_edge;
+    if (all || !std::all_of(begin, end, [](const ForestEdge& e) { return e.aligned; })) {
+      for (std::int32_t k = t.first_edge; k < t.end_edge; ++k)
+        out[static_cast<std::size_t>(n++)] = k;
+    }
+  }
+  return n;
+}
+
 // The initial conditions onto the constraints, root to leaves, every edge: u_0 and v_0 of each
 // child take their parent's rigid components (start() does this once, so that the step need
 // only re-project the trees that round).
@@ -571,12 +572,10 @@ inline void forest_project_initial(std::span<const ForestEdge> edges, int count,
   for (int k = 0; k < count; ++k) {
     const ForestEdge& e = edges[static_cast<std::size_t>(k)];
     for (double* x : {u, v}) {
-      double to[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
-      double* xc = x + 6 * e.child;
-      if (e.parent != kGround) mat6_madd(e.proj_p, x + 6 * e.parent, to);
-      mat6_madd(e.proj_c, xc, back);
+      double delta[6];
+      edge_delta(e, x, delta);
       for (int d = 0; d < 6; ++d)
-        xc[d] += to[d] - back[d];
+        x[6 * e.child + d] += delta[d];
     }
   }
 }

@@ -215,12 +215,14 @@ template <Sizes S>
       }
       const bool any_branch = std::any_of(model.hinges.begin(), model.hinges.end(),
                                           [](const HingeData& h) { return h.branches != 0; });
+      const auto edges =
+          std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges));
+      model.num_trees = forest_trees(edges, model.node_tree, model.trees);
       model.num_project_edges = select_projected_edges(
-          std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges)),
-          model.node_tree, model.clamp == ClampRule::kPaper && any_branch, model.project_edges);
-      model.num_trees = forest_trees(
-          std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges)),
-          model.node_tree, model.trees);
+          edges,
+          std::span<const ForestTree>(model.trees.data(),
+                                      static_cast<std::size_t>(model.num_trees)),
+          model.clamp == ClampRule::kPaper && any_branch, model.project_edges);
     } else if (model.hinge_method == HingeMethod::kNtnPaper) {
       paper_masses(model.hinges, eff);
     }
