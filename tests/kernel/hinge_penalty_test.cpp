@@ -24,6 +24,7 @@
 #include "ntn/kernel.hpp"
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
+#include "support/hinged_models.hpp"
 #include "support/hinges.hpp"
 #include "support/no_heap.hpp"
 
@@ -52,86 +53,30 @@ void pulse_at(ntn::ModelSpec<S>& s, int first_load, int n, double f) {
     s.loads[static_cast<std::size_t>(first_load + d)] = {n, d, f * load[d], 0};
 }
 
-// ---- Star joint: node 0 is the joint (a small point mass: the penalty springs need a mass on
-// both sides), members along +x, +y, -x and +z, each from its own end node at the joint to a
-// clamped far end, two elements each. Four hinge frames, four sets of releases.
-constexpr ntn::Sizes kStar{
-    .nodes = 13, .elements = 8, .time_functions = 1, .time_points = 3, .loads = 12, .hinges = 4};
+// ---- Star joint (support/hinged_models.hpp): four members, four hinge frames on one node, with
+// a pulse at the joint (node 0) and at the middle of member 1 (node 3).
+constexpr ntn::Sizes kStar =
+    ntn_test::star_joint_sizes({.time_functions = 1, .time_points = 3, .loads = 12});
 
 void build_star(ntn::ModelSpec<kStar>& s) {
-  s = {};
-  ntn_test::FrameBuilder<kStar> f(s);
-  const int joint = f.add_node({0, 0, 0});
-  s.nodes[static_cast<std::size_t>(joint)].added = {20, 20, 20, 0.2, 0.2, 0.2};
-  const Vec3 far[4] = {{2, 0, 0}, {0, 1.8, 0}, {-2.2, 0, 0}, {0, 0, 2}};
-  const Vec3 ref[4] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}};
-  int end[4];
-  for (int m = 0; m < 4; ++m) {
-    end[m] = f.add_node({0, 0, 0});
-    const int tip = f.add_node(far[m], ntn_test::kFixedAll);
-    f.add_member(end[m], tip, 2, ntn_test::kSteel, kMember, ref[m]);
-  }
-  EXPECT_TRUE(f.complete());
-  Mat3 frame[4];
-  for (int m = 0; m < 4; ++m)
-    frame[m] = ntn_test::member_frame({0, 0, 0}, far[m], ref[m]);
-  // 1: rigid in all six, member frame.
-  s.hinges[0] = ntn_test::hinge(end[0], joint, frame[0]);
-  // 2: pinned about local y, frame turned 25 degrees about the member axis.
-  s.hinges[1] = ntn_test::hinge(
-      end[1], joint,
-      ntn_test::rotate_frame(frame[1], ntn_test::rotation(far[1], 25 * ntn_test::kDegree)),
-      ntn_test::released(1U << ntn::kRy));
-  // 3: free about local z, a torsion spring about local x, frame turned -40 degrees about the
-  // member axis and 15 about global z.
-  Mat3 f3 = ntn_test::rotate_frame(frame[2], ntn_test::rotation(far[2], -40 * ntn_test::kDegree));
-  f3 = ntn_test::rotate_frame(f3, ntn_test::rotation({0, 0, 1}, 15 * ntn_test::kDegree));
-  s.hinges[2] = ntn_test::hinge(end[2], joint, f3, ntn_test::released(1U << ntn::kRz));
-  s.hinges[2].behaviour[ntn::kRx] = B::kLinear;
-  s.hinges[2].stiffness[ntn::kRx] = 2e5;  // N m/rad
-  // 4: free about local x and y, the skewed frame (30 + 20 degrees).
-  s.hinges[3] = ntn_test::hinge(end[3], joint, ntn_test::skewed_frame(frame[3]),
-                                ntn_test::released((1U << ntn::kRx) | (1U << ntn::kRy)));
+  EXPECT_TRUE(ntn_test::star_joint(s, kMember));
   s.time_points = ntn_test::triangle_pulse(0.004);
   s.time_functions[0] = {0, 3};
-  pulse_at(s, 0, joint, 1.0);
-  pulse_at(s, 6, 3, -0.5);  // the middle of member 1
+  pulse_at(s, 0, 0, 1.0);
+  pulse_at(s, 6, 3, -0.5);
 }
 
-// ---- Chain: four coincident nodes at (2, 0, 0): A (end of a beam from the clamped origin),
-// B and C (connector plates: point masses), D (end of a beam to the clamped (4, 0, 0)).
-// Hinges A-B (pinned about local y), C-B (free about a turned local z) and D-C (a rotational
-// spring about local x, rigid otherwise). B is the root (most rigid hinges, heavier than C), so
-// D hangs two hinges below it.
-constexpr ntn::Sizes kChain{
-    .nodes = 8, .elements = 4, .time_functions = 1, .time_points = 3, .loads = 12, .hinges = 3};
+// ---- Chain (support/hinged_models.hpp): B (node 2) is the root, D hangs two hinges below it;
+// a pulse at A (node 1, the left beam's end at the hinges) and at the plate B.
+constexpr ntn::Sizes kChain =
+    ntn_test::hinge_chain_sizes({.time_functions = 1, .time_points = 3, .loads = 12});
 
 void build_chain(ntn::ModelSpec<kChain>& s) {
-  s = {};
-  ntn_test::FrameBuilder<kChain> f(s);
-  const int left = f.add_node({0, 0, 0}, ntn_test::kFixedAll);
-  const int a = f.add_node({2, 0, 0});
-  const int b = f.add_node({2, 0, 0});
-  const int c = f.add_node({2, 0, 0});
-  const int d = f.add_node({2, 0, 0});
-  const int right = f.add_node({4, 0, 0}, ntn_test::kFixedAll);
-  s.nodes[static_cast<std::size_t>(b)].added = {30, 30, 30, 0.3, 0.3, 0.3};
-  s.nodes[static_cast<std::size_t>(c)].added = {15, 15, 15, 0.15, 0.15, 0.15};
-  f.add_member(left, a, 2, ntn_test::kSteel, kMember, {0, 0, 1});
-  f.add_member(d, right, 2, ntn_test::kSteel, kMember, {0.3, 0, 1});
-  EXPECT_TRUE(f.complete());
-  const Mat3 member = ntn_test::member_frame({0, 0, 0}, {1, 0, 0}, {0, 0, 1});
-  s.hinges[0] = ntn_test::hinge(a, b, member, ntn_test::released(1U << ntn::kRy));
-  s.hinges[1] = ntn_test::hinge(
-      c, b, ntn_test::rotate_frame(member, ntn_test::rotation({1, 0, 0}, 35 * ntn_test::kDegree)),
-      ntn_test::released(1U << ntn::kRz));
-  s.hinges[2] = ntn_test::hinge(d, c, ntn_test::skewed_frame(member));
-  s.hinges[2].behaviour[ntn::kRx] = B::kLinear;
-  s.hinges[2].stiffness[ntn::kRx] = 5e4;  // N m/rad
+  EXPECT_TRUE(ntn_test::hinge_chain(s, kMember));
   s.time_points = ntn_test::triangle_pulse(0.004);
   s.time_functions[0] = {0, 3};
-  pulse_at(s, 0, 1, 1.0);   // the middle of the left beam
-  pulse_at(s, 6, b, -0.7);  // the plate
+  pulse_at(s, 0, 1, 1.0);
+  pulse_at(s, 6, 2, -0.7);
 }
 
 // ---- Eccentric rigid hinge: a beam whose end A sits 0.15 m above and 0.1 m beside the column

@@ -14,6 +14,7 @@
 #include "ntn/modal/modal.hpp"
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
+#include "support/hinged_models.hpp"
 #include "support/hinges.hpp"
 
 namespace modal_test {
@@ -49,42 +50,11 @@ inline double compare_with_reference(const char* name, const ntn::modal::ModalRe
   return d;
 }
 
-// ---- Star joint (as in tests/kernel/hinge_penalty_test.cpp): node 0 is the joint (a point mass
-// with rotary inertia), members along +x, +y, -x and +z, each from its own end node at the joint
-// to a clamped far end, two elements each. Four hinge frames, four sets of behaviours: rigid in
-// all six, pinned about a turned local y, free about local z with a torsion spring, free about
-// local x and y in the skewed frame.
-inline constexpr ntn::Sizes kStar{.nodes = 13, .elements = 8, .hinges = 4};
+// ---- Star joint (support/hinged_models.hpp): four members, four hinge frames on one node.
+inline constexpr ntn::Sizes kStar = ntn_test::star_joint_sizes();
 
 inline void build_star(ntn::ModelSpec<kStar>& s) {
-  s = {};
-  ntn_test::FrameBuilder<kStar> f(s);
-  const int joint = f.add_node({0, 0, 0});
-  s.nodes[static_cast<std::size_t>(joint)].added = {20, 20, 20, 0.2, 0.2, 0.2};
-  const Vec3 far[4] = {{2, 0, 0}, {0, 1.8, 0}, {-2.2, 0, 0}, {0, 0, 2}};
-  const Vec3 ref[4] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}};
-  int end[4];
-  for (int m = 0; m < 4; ++m) {
-    end[m] = f.add_node({0, 0, 0});
-    const int tip = f.add_node(far[m], ntn_test::kFixedAll);
-    f.add_member(end[m], tip, 2, ntn_test::kSteel, kMember, ref[m]);
-  }
-  EXPECT_TRUE(f.complete());
-  Mat3 frame[4];
-  for (int m = 0; m < 4; ++m)
-    frame[m] = ntn_test::member_frame({0, 0, 0}, far[m], ref[m]);
-  s.hinges[0] = ntn_test::hinge(end[0], joint, frame[0]);
-  s.hinges[1] = ntn_test::hinge(
-      end[1], joint,
-      ntn_test::rotate_frame(frame[1], ntn_test::rotation(far[1], 25 * ntn_test::kDegree)),
-      ntn_test::released(1U << ntn::kRy));
-  Mat3 f3 = ntn_test::rotate_frame(frame[2], ntn_test::rotation(far[2], -40 * ntn_test::kDegree));
-  f3 = ntn_test::rotate_frame(f3, ntn_test::rotation({0, 0, 1}, 15 * ntn_test::kDegree));
-  s.hinges[2] = ntn_test::hinge(end[2], joint, f3, ntn_test::released(1U << ntn::kRz));
-  s.hinges[2].behaviour[ntn::kRx] = B::kLinear;
-  s.hinges[2].stiffness[ntn::kRx] = 2e5;  // N m/rad
-  s.hinges[3] = ntn_test::hinge(end[3], joint, ntn_test::skewed_frame(frame[3]),
-                                ntn_test::released((1U << ntn::kRx) | (1U << ntn::kRy)));
+  EXPECT_TRUE(ntn_test::star_joint(s, kMember));
 }
 
 // ---- Eccentric chain: a connector plate P (point mass and inertia) at (2.1, 0, 0.05) between
@@ -123,34 +93,12 @@ inline void build_eccentric_chain(ntn::ModelSpec<kEccentricChain>& s) {
   s.hinges[1].stiffness[ntn::kRx] = 5e4;  // N m/rad
 }
 
-// ---- Chain of three hinges on coincident nodes (as in hinge_penalty_test): A (end of a beam
-// from the clamped origin), plates B and C, D (end of a beam to the clamped (4, 0, 0)); hinges
-// A-B pinned about local y, C-B free about a turned local z, D-C a torsion spring, rigid
-// otherwise. B is the root; D hangs two hinges below it.
-inline constexpr ntn::Sizes kChain{.nodes = 8, .elements = 4, .hinges = 3};
+// ---- Chain of three hinges on coincident nodes (support/hinged_models.hpp): B is the root; D
+// hangs two hinges below it.
+inline constexpr ntn::Sizes kChain = ntn_test::hinge_chain_sizes();
 
 inline void build_chain(ntn::ModelSpec<kChain>& s) {
-  s = {};
-  ntn_test::FrameBuilder<kChain> f(s);
-  const int left = f.add_node({0, 0, 0}, ntn_test::kFixedAll);
-  const int a = f.add_node({2, 0, 0});
-  const int b = f.add_node({2, 0, 0});
-  const int c = f.add_node({2, 0, 0});
-  const int d = f.add_node({2, 0, 0});
-  const int right = f.add_node({4, 0, 0}, ntn_test::kFixedAll);
-  s.nodes[static_cast<std::size_t>(b)].added = {30, 30, 30, 0.3, 0.3, 0.3};
-  s.nodes[static_cast<std::size_t>(c)].added = {15, 15, 15, 0.15, 0.15, 0.15};
-  f.add_member(left, a, 2, ntn_test::kSteel, kMember, {0, 0, 1});
-  f.add_member(d, right, 2, ntn_test::kSteel, kMember, {0.3, 0, 1});
-  EXPECT_TRUE(f.complete());
-  const Mat3 member = ntn_test::member_frame({0, 0, 0}, {1, 0, 0}, {0, 0, 1});
-  s.hinges[0] = ntn_test::hinge(a, b, member, ntn_test::released(1U << ntn::kRy));
-  s.hinges[1] = ntn_test::hinge(
-      c, b, ntn_test::rotate_frame(member, ntn_test::rotation({1, 0, 0}, 35 * ntn_test::kDegree)),
-      ntn_test::released(1U << ntn::kRz));
-  s.hinges[2] = ntn_test::hinge(d, c, ntn_test::skewed_frame(member));
-  s.hinges[2].behaviour[ntn::kRx] = B::kLinear;
-  s.hinges[2].stiffness[ntn::kRx] = 5e4;  // N m/rad
+  EXPECT_TRUE(ntn_test::hinge_chain(s, kMember));
 }
 
 // ---- Supports through hinges: a column (3 m, 3 elements) on an inclined roller, and a beam
