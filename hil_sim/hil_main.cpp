@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ using Inputs = std::array<double, kS.inputs>;
 ntn::Model<kS> g_model;
 ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
+ntn::State<kS> g_checkpoint;  // the end of the last good frame (the loop's safe state)
 
 // Recorded inputs (AT2, CSV), sampled at frame times, through the gate (NaN, range).
 struct FileSource {
@@ -445,14 +447,16 @@ int main(int argc, char** argv) {
       source.period_ns = static_cast<std::int64_t>(std::llround(period * 1e9));
       source.first_wait_ns = static_cast<std::int64_t>(first_wait_s * 1e9);
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
-                                  log_path.empty() ? nullptr : &recorder, config, alarms, times);
+                                  log_path.empty() ? nullptr : &recorder, config, alarms, times,
+                                  &g_checkpoint);
       udp_timeouts = source.timeouts;
       first_frame = source.first_frame;
       first_waited_ns = source.waited_ns;
     } else {
       FileSource source{&records, &gate, period};
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
-                                  log_path.empty() ? nullptr : &recorder, config, alarms, times);
+                                  log_path.empty() ? nullptr : &recorder, config, alarms, times,
+                                  &g_checkpoint);
     }
   };
   if (virtual_clock) {
@@ -541,9 +545,23 @@ int main(int argc, char** argv) {
                   std::string(mdl::kOutputUnits[c]).c_str(),
                   static_cast<double>(sink.peak_frame[c]) * period);
     }
+    if (result.kinetic_limit < std::numeric_limits<double>::infinity()) {
+      std::printf(
+          "  divergence check: kinetic energy limit %.4g J; peak %.4g J (%.3g of it) at %.3f s\n",
+          result.kinetic_limit, result.peak_kinetic, result.peak_kinetic / result.kinetic_limit,
+          static_cast<double>(result.peak_kinetic_frame) * period);
+    } else {
+      std::printf("  divergence check: non-finite state only (the model has no energy bound)\n");
+    }
     if (result.diverged_frame >= 0) {
-      std::printf("  DIVERGED at frame %lld: outputs held at the last good frame and flagged\n",
-                  static_cast<long long>(result.diverged_frame));
+      const long long kd = static_cast<long long>(result.diverged_frame);
+      std::printf("  DIVERGED at frame %lld (t = %.3f s, kernel step %lld): %s (%.4g J)\n", kd,
+                  static_cast<double>(kd) * period, static_cast<long long>(result.diverged_step),
+                  ntn::hil::to_string(result.reason), result.kinetic_at_detection);
+      std::printf(
+          "  SAFE STATE from frame %lld: no more steps; outputs held at frame %lld's values and "
+          "flagged diverged (bit 14); state kept at the end of frame %lld\n",
+          kd, kd - 1, kd - 1);
     }
     if (udp_in && !virtual_clock && first_frame >= 0) {
       std::printf(
@@ -588,7 +606,24 @@ int main(int argc, char** argv) {
     for (std::size_t c = 0; c < kS.outputs; ++c) {
       js << (c == 0 ? "" : ", ") << "\"" << mdl::kOutputNames[c] << "\": " << sink.peak[c];
     }
+    const auto number = [](double x) {
+      if (!(x - x == 0)) return std::string("null");  // JSON has no Inf / NaN
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", x);
+      return std::string(text);
+    };
     js << "}"
+       << ",\n  \"divergence\": {\"kinetic_limit_J\": " << number(result.kinetic_limit)
+       << ", \"peak_kinetic_J\": " << number(result.peak_kinetic)
+       << ", \"peak_kinetic_frame\": " << result.peak_kinetic_frame
+       << ", \"diverged_frame\": " << result.diverged_frame << ", \"reason\": \""
+       << ntn::hil::to_string(result.reason) << "\""
+       << ", \"step\": " << result.diverged_step
+       << ", \"kinetic_at_detection_J\": " << number(result.kinetic_at_detection)
+       << ", \"safe_state\": " << (result.diverged_frame >= 0 ? "true" : "false")
+       << ", \"last_good_frame\": "
+       << (result.diverged_frame >= 0 ? result.diverged_frame - 1 : result.frames - 1)
+       << ", \"state_restored\": " << (result.state_restored ? "true" : "false") << "}"
        << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"output_hash\": \""
        << std::hex << run_hash << std::dec << "\"\n}\n";
   }

@@ -1,11 +1,14 @@
 // The frame loop (hil_sim/include/ntn/hil/loop.hpp): no allocation once running, the real-time
 // and the virtual clock give the same outputs for the same accepted inputs, inputs through the
-// gate never carry a NaN into the state, a diverging model goes to a safe state, and a long
+// gate never carry a NaN into the state, a diverging model is caught within its bound and goes to
+// a safe state, the check raises no false alarm, and a long
 // virtual run repeats bit for bit (soak).
 #include <gtest/gtest.h>
 #include <xxhash.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -13,6 +16,7 @@
 #include "ntn/hil/loop.hpp"
 #include "ntn/kernel.hpp"
 #include "support/alloc_counter.hpp"
+#include "support/assemble.hpp"
 #include "support/frames.hpp"
 
 namespace {
@@ -22,6 +26,7 @@ ntn::ModelSpec<kS> spec;
 ntn::Model<kS> model;
 ntn::State<kS> state;
 ntn::Scratch<kS> scratch;
+ntn::State<kS> checkpoint;
 
 // Deterministic inputs through the gate; every `nan_every`-th frame channel 0 is NaN.
 struct SyntheticSource {
@@ -158,36 +163,196 @@ TEST_F(Loop, NanBurstGivesNoNanOutput) {
   EXPECT_EQ(nan_outputs, 0);
 }
 
-// A model driven unstable on purpose (dt at least 1.3 x the stable step, with the explicit
-// override) is caught within the frame its state stops being finite; the outputs are then the last
-// good ones, flagged, and the loop carries on without a NaN.
-TEST_F(Loop, DivergenceGoesToASafeState) {
-  ASSERT_TRUE(ntn_test::feature_frame(spec));
+// Per frame: flags and outputs; per step: the kinetic energy 1/2 v^T M v (divergence tests).
+struct TraceSink : HashSink {
+  std::vector<std::uint16_t> flags;
+  std::vector<std::array<double, kS.outputs>> outputs;
+  std::vector<double> kinetic;  // after each kernel step
+  void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t f) {
+    HashSink::frame_outputs(k, v, f);
+    flags.push_back(f);
+    std::array<double, kS.outputs> row{};
+    std::copy(v.begin(), v.end(), row.begin());
+    outputs.push_back(row);
+  }
+  void after_step(const ntn::State<kS>& s, const ntn::Scratch<kS>&) {
+    kinetic.push_back(ntn::hil::kinetic_energy(model, s));
+  }
+};
+
+// The feature frame with dt at least `factor` x the stable step (with the explicit override),
+// a whole number of steps per 1 ms frame: n = floor(1 ms / (factor dt_stable)), dt = 1 ms / n.
+int make_unstable(double factor) {
+  EXPECT_TRUE(ntn_test::feature_frame(spec));
   const double stable = ntn::stable_time_step(ntn::view(spec)).dt_stable;
-  // The frame must hold a whole number of steps: n = floor(1 ms / (1.3 dt_stable)) steps of
-  // dt = 1 ms / n >= 1.3 dt_stable.
-  const int n = std::max(1, static_cast<int>(1e-3 / (1.3 * stable)));
+  const int n = std::max(1, static_cast<int>(1e-3 / (factor * stable)));
   spec.settings.dt = 1e-3 / n;
   spec.settings.allow_unstable = true;
-  ASSERT_TRUE(ntn::init(spec, model).ok());
-  ASSERT_GT(model.dt, stable);
+  EXPECT_TRUE(ntn::init(spec, model).ok());
+  EXPECT_GT(model.dt, stable);
+  return n;
+}
+
+ntn::hil::LoopResult run_unstable(TraceSink& sink, int substeps, double kinetic_limit,
+                                  std::int64_t frames = 3'000) {
   state = {};
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
   SyntheticSource source{&gate, 0};
-  HashSink sink;
   ntn::hil::LoopConfig config;
-  config.frames = 3'000;
+  config.frames = frames;
+  config.substeps = substeps;
+  config.kinetic_limit = kinetic_limit;
+  ntn::hil::VirtualClock clock;
+  ntn::hil::FrameTimes times;
+  std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+  sink.kinetic.reserve(static_cast<std::size_t>(frames * substeps));
+  return ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config, alarms,
+                            times, &checkpoint);
+}
+
+// |lambda| of central difference with C = alpha M for a mode omega at dt, omega dt > 2: the real
+// root of l^2 - (2 - alpha dt - w^2 dt^2) l + (1 - alpha dt) = 0 of largest size (DESIGN §5: v
+// and u updates with the damping force at v_{n-1/2}).
+double amplification(double omega, double alpha, double dt) {
+  const double b = 2 - alpha * dt - omega * omega * dt * dt;
+  const double c = 1 - alpha * dt;
+  return (std::abs(b) + std::sqrt(b * b - 4 * c)) / 2;
+}
+
+// A model driven unstable on purpose (dt >= 1.5 dt_stable, with the explicit override) is caught
+// by the kinetic-energy check, before anything overflows; from that frame on the loop is in its
+// safe state: every frame flagged kDiverged, the outputs bit for bit the last good frame's, no
+// NaN, no step taken, and the state put back to the end of the last good frame (the same bits as
+// a run stopped there).
+TEST_F(Loop, DivergenceGoesToASafeState) {
+  const int n = make_unstable(1.5);
+  TraceSink sink;
+  const auto result = run_unstable(sink, n, -1);  // the model's own limit
+  ASSERT_GE(result.diverged_frame, 1) << "dt / dt_stable = " << model.dt / model.stable.dt_stable;
+  EXPECT_EQ(result.reason, ntn::hil::DivergenceReason::kEnergy);
+  EXPECT_TRUE(std::isfinite(result.kinetic_limit));
+  EXPECT_GT(result.kinetic_at_detection, result.kinetic_limit);
+  EXPECT_TRUE(std::isfinite(result.kinetic_at_detection));
+  EXPECT_EQ(result.frames, 3'000);
+  EXPECT_EQ(sink.nan_outputs, 0);
+  const auto kd = static_cast<std::size_t>(result.diverged_frame);
+  ASSERT_EQ(sink.flags.size(), 3'000U);
+  for (std::size_t k = 0; k < sink.flags.size(); ++k) {
+    EXPECT_EQ((sink.flags[k] & ntn::hil::flag::kDiverged) != 0, k >= kd) << "frame " << k;
+    if (k >= kd) {
+      EXPECT_EQ(
+          std::memcmp(sink.outputs[k].data(), sink.outputs[kd - 1].data(), sizeof sink.outputs[k]),
+          0)
+          << "frame " << k;
+    }
+  }
+  // No step after the diverged frame.
+  EXPECT_EQ(static_cast<std::int64_t>(sink.kinetic.size()), result.diverged_step);
+  // The state is that at the end of frame kd - 1: a run of kd frames ends with the same bits.
+  EXPECT_TRUE(result.state_restored);
+  const ntn::State<kS> kept = state;
+  TraceSink upto;
+  const auto short_run = run_unstable(upto, n, -1, result.diverged_frame);
+  EXPECT_EQ(short_run.diverged_frame, -1);
+  EXPECT_EQ(std::memcmp(kept.u.data(), state.u.data(), sizeof kept.u), 0);
+  EXPECT_EQ(std::memcmp(kept.v.data(), state.v.data(), sizeof kept.v), 0);
+  EXPECT_EQ(kept.tick, state.tick);
+  EXPECT_EQ(kept.tick, result.diverged_frame * n);
+}
+
+// The detection bound (hil_sim/README.md, "Divergence"). The model's fastest mode omega_max (the
+// dense eigenproblem of its K and lumped M, tests/support) grows by |lambda| per step at
+// omega_max dt > 2, its kinetic energy by |lambda|^2. Once the energy has passed E_max (the
+// bound no stable run exceeds), the check fires at the end of the frame in which it passes the
+// limit kKineticLimitFactor x E_max, so within ceil(ln(1000) / (2 ln|lambda|)) + substeps steps.
+// A check of non-finite values alone fires only when 1/2 v^T M v overflows, about
+// ln(DBL_MAX / T_detect) / (2 ln|lambda|) steps later.
+TEST_F(Loop, DetectionWithinTheBound) {
+  const int n = make_unstable(1.5);
+  const ntn_test::Modes modes = ntn_test::modes(ntn::view(spec));
+  const double omega_max = modes.omega(modes.omega.size() - 1);
+  const double lambda = amplification(omega_max, spec.settings.alpha, model.dt);
+  const double e_max = ntn::hil::response_energy_bound(model);
+  ASSERT_TRUE(std::isfinite(e_max));
+
+  TraceSink sink;
+  const auto result = run_unstable(sink, n, -1);
+  ASSERT_GE(result.diverged_frame, 0);
+  const std::int64_t n_detect = result.diverged_step;  // steps taken when caught
+  // The growth per step at the end is |lambda|^2: the amplification of the fastest mode.
+  ASSERT_GE(sink.kinetic.size(), 4U);
+  const std::size_t last = sink.kinetic.size() - 1;
+  const double growth = sink.kinetic[last] / sink.kinetic[last - 1];
+  EXPECT_NEAR(growth / (lambda * lambda), 1.0, 0.02)
+      << "omega_max dt = " << omega_max * model.dt << ", |lambda| = " << lambda;
+  // The first step whose energy passed E_max, and the bound from there.
+  std::int64_t n_cross = -1;
+  for (std::size_t i = 0; i < sink.kinetic.size() && n_cross < 0; ++i)
+    if (sink.kinetic[i] > e_max) n_cross = static_cast<std::int64_t>(i) + 1;
+  ASSERT_GE(n_cross, 0);
+  const auto bound = static_cast<std::int64_t>(
+      std::ceil(std::log(ntn::hil::kKineticLimitFactor) / (2 * std::log(lambda))) + n);
+  EXPECT_LE(n_detect - n_cross, bound);
+
+  // Non-finite check only (no limit): caught when 1/2 v^T M v overflows.
+  TraceSink nan_only;
+  const auto late = run_unstable(nan_only, n, std::numeric_limits<double>::infinity());
+  ASSERT_GE(late.diverged_frame, result.diverged_frame);
+  EXPECT_EQ(late.reason, ntn::hil::DivergenceReason::kNonFinite);
+  const double predicted =
+      std::log(std::numeric_limits<double>::max() / result.kinetic_at_detection) /
+      (2 * std::log(lambda));
+  // Both are seen at frame ends: +- one frame.
+  EXPECT_NEAR(static_cast<double>(late.diverged_step - n_detect), predicted, n + 1.0);
+  std::printf(
+      "divergence at dt = %.4g dt_stable (omega_max dt = %.3f, |lambda| = %.3f, %d steps per "
+      "frame): energy passes E_max = %.4g J at step %lld, caught at step %lld (frame %lld, bound "
+      "%lld steps after the crossing); non-finite check alone at step %lld (frame %lld; predicted "
+      "%.1f steps after the energy check)\n",
+      model.dt / model.stable.dt_stable, omega_max * model.dt, lambda, n, e_max,
+      static_cast<long long>(n_cross), static_cast<long long>(n_detect),
+      static_cast<long long>(result.diverged_frame), static_cast<long long>(bound),
+      static_cast<long long>(late.diverged_step), static_cast<long long>(late.diverged_frame),
+      predicted);
+}
+
+// No false alarm: the stable model (dt = 0.9 dt_stable) under its inputs at the full range,
+// flipped in sign at the first mode's half period (the input that pumps the first mode hardest)
+// for 20 000 frames, stays below the limit, and below E_max itself.
+TEST_F(Loop, NoFalseAlarmAtFullRangeResonance) {
+  const ntn_test::Modes modes = ntn_test::modes(ntn::view(spec));
+  const double omega1 = modes.omega(0);
+  struct BangBang {
+    ntn::hil::InputGate* gate;
+    double omega;
+    void frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
+      const double sign = std::cos(omega * static_cast<double>(k) * 1e-3) >= 0 ? 1.0 : -1.0;
+      const std::array<double, kS.inputs> x{5 * sign, 5 * sign, 100 * sign};
+      gate->begin_frame(k);
+      (void)gate->accept_values(k, x);
+      gate->end_frame(v, flags);
+    }
+  };
+  state = {};
+  ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
+  BangBang source{&gate, omega1};
+  TraceSink sink;
+  ntn::hil::LoopConfig config;
+  config.frames = 20'000;
   config.substeps = static_cast<int>(std::llround(1e-3 / model.dt));
   ntn::hil::VirtualClock clock;
   ntn::hil::FrameTimes times;
   std::vector<ntn::hil::Alarm> alarms(kS.outputs);
   const auto result = ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr,
-                                         config, alarms, times);
-  ASSERT_GE(result.diverged_frame, 0) << "dt / dt_stable = " << model.dt / stable;
-  EXPECT_EQ(result.frames, 3'000);
-  EXPECT_EQ(sink.nan_outputs, 0);
-  EXPECT_NE(sink.flags_or & ntn::hil::flag::kDiverged, 0);
-  EXPECT_NE(state.faults & ntn::kFaultDiverged, 0U);
+                                         config, alarms, times, &checkpoint);
+  EXPECT_EQ(result.diverged_frame, -1);
+  const double e_max = ntn::hil::response_energy_bound(model);
+  EXPECT_LT(result.peak_kinetic, e_max);
+  std::printf(
+      "full-range input flipped at %.3f Hz: peak kinetic %.4g J = %.3g E_max (limit %.0f "
+      "E_max)\n",
+      omega1 / (2 * std::acos(-1.0)), result.peak_kinetic, result.peak_kinetic / e_max,
+      ntn::hil::kKineticLimitFactor);
 }
 
 // Soak: 10^6 frames on the virtual clock, no allocation after the start, and a second run gives

@@ -6,6 +6,12 @@
 // accepted inputs; a late frame is followed at once by the next one, without sleeping, until
 // the loop is back on its deadlines. No frame is ever skipped, so the response is a function
 // of the accepted inputs alone, however late the computer was (and a replay reproduces it).
+//
+// Divergence (divergence.hpp): after each frame's substeps the loop checks the kinetic energy
+// 1/2 v^T M v against `LoopConfig::kinetic_limit`; a frame that fails it, or whose state stopped
+// being finite (step() says kDiverged), is the diverged frame. From it on the loop is in its
+// safe state: no more steps, the outputs are the last good frame's, flagged kDiverged, and the
+// state is put back to the end of the last good frame (when a checkpoint is given).
 #pragma once
 
 #include <algorithm>
@@ -15,6 +21,7 @@
 #include <vector>
 
 #include "ntn/hil/clock.hpp"
+#include "ntn/hil/divergence.hpp"
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/recorder.hpp"
 #include "ntn/kernel.hpp"
@@ -23,10 +30,12 @@ namespace ntn::hil {
 
 struct LoopConfig {
   std::int64_t frames = 0;
-  int substeps = 1;          // kernel steps per frame: period = substeps x dt
-  bool interpolate = false;  // linear between the previous and this frame's value (one frame
-                             // of delay, since the next sample is not known yet); else hold
-  double period = 1e-3;      // s
+  int substeps = 1;           // kernel steps per frame: period = substeps x dt
+  bool interpolate = false;   // linear between the previous and this frame's value (one frame
+                              // of delay, since the next sample is not known yet); else hold
+  double period = 1e-3;       // s
+  double kinetic_limit = -1;  // J: a frame whose 1/2 v^T M v passes it is diverged; < 0: the
+                              // model's kinetic_energy_limit (+Inf where it has no bound)
 };
 
 // A limit alarm on one output channel: on when |value| > limit, off again when
@@ -55,7 +64,14 @@ struct FrameTimes {
 struct LoopResult {
   std::int64_t frames = 0;
   std::int64_t epoch_ns = 0;         // deadline of frame 0 (real clock: monotonic ns)
-  std::int64_t diverged_frame = -1;  // first frame whose state became non-finite, or -1
+  std::int64_t diverged_frame = -1;  // first frame that failed the divergence check, or -1
+  DivergenceReason reason = DivergenceReason::kNone;
+  std::int64_t diverged_step = -1;  // kernel step (tick) at which it was caught
+  double kinetic_at_detection = 0;  // J, 1/2 v^T M v then (NaN / Inf for kNonFinite)
+  double kinetic_limit = 0;         // J, the limit the loop used (+Inf: none)
+  double peak_kinetic = 0;          // J, largest 1/2 v^T M v at the end of a good frame
+  std::int64_t peak_kinetic_frame = -1;
+  bool state_restored = false;  // the state was put back to the end of the last good frame
   std::uint64_t input_held_frames = 0;
 };
 
@@ -81,17 +97,25 @@ std::int64_t source_epoch_ns(const Source& source) {
 // std::span<const double> v, std::uint16_t flags)` gets the outputs with the gate's bits and
 // the loop's (flag::kAlarm, kOverrun, kDiverged).
 // Outputs of frame k are the channels at t_k = k period (after the frame's first substep).
+// A sink may also have `void after_step(const State<S>&, const Scratch<S>&)`, called after every
+// kernel step (soak tests measure energy and constraints there).
+// `checkpoint`, when given, holds the state at the end of the last good frame (at the start
+// before frame 0); after a divergence `state` is set back to it, so the run can be inspected or
+// restarted from there. It is caller storage, as `state`: no heap, no large stack frame.
 // Nothing here allocates after the vectors in `times` were reserved.
 template <Sizes S, class Clock, class Source, class Sink>
 LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch, Clock& clock,
                     Source& source, Sink& sink, Recorder* recorder, const LoopConfig& config,
-                    std::span<Alarm> alarms, FrameTimes& times) {
+                    std::span<Alarm> alarms, FrameTimes& times, State<S>* checkpoint = nullptr) {
   LoopResult result;
+  result.kinetic_limit =
+      config.kinetic_limit < 0 ? kinetic_energy_limit(model) : config.kinetic_limit;
   std::array<double, S.inputs> current{}, previous{}, step_in{};
   std::array<double, S.outputs> out{}, last_good{};
   std::uint16_t in_flags = 0;
   source.frame_inputs(0, current, in_flags);
   (void)start(model, state, scratch, current);
+  if (checkpoint != nullptr) *checkpoint = state;
   previous = current;
   const auto period_ns = static_cast<std::int64_t>(config.period * 1e9 + 0.5);
   const std::int64_t asked = Clock::kVirtual ? -1 : source_epoch_ns(source);
@@ -117,12 +141,35 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
           step_in = current;
         }
         const StepStatus st = step(model, state, scratch, step_in);
+        if constexpr (requires { sink.after_step(state, scratch); }) {
+          sink.after_step(state, scratch);
+        }
         if (i == 0) out = scratch.outputs;
         if (st == StepStatus::kDiverged) {
           diverged = true;
-          result.diverged_frame = k;
+          result.reason = DivergenceReason::kNonFinite;
           break;
         }
+      }
+      // The frame's check (divergence.hpp): T above the limit, or T not finite.
+      const double kinetic = kinetic_energy(model, state);
+      if (!diverged && (!(kinetic <= result.kinetic_limit) || !(kinetic - kinetic == 0))) {
+        diverged = true;
+        result.reason =
+            kinetic - kinetic == 0 ? DivergenceReason::kEnergy : DivergenceReason::kNonFinite;
+      }
+      if (diverged) {
+        result.diverged_frame = k;
+        result.diverged_step = state.tick;
+        result.kinetic_at_detection = kinetic;
+        if (checkpoint != nullptr) {
+          state = *checkpoint;  // the end of the last good frame
+          result.state_restored = true;
+        }
+      } else {
+        if (kinetic > result.peak_kinetic)
+          result.peak_kinetic = kinetic, result.peak_kinetic_frame = k;
+        if (checkpoint != nullptr) *checkpoint = state;
       }
     }
     if (diverged) {

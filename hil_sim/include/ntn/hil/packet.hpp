@@ -61,7 +61,7 @@ inline constexpr std::uint16_t kTooEarly = 1U << 10;  // a packet beyond the jit
 inline constexpr std::uint16_t kGateMask = 0x07FF;    // bits the gate owns
 inline constexpr std::uint16_t kAlarm = 1U << 12;     // loop: an output limit alarm is active
 inline constexpr std::uint16_t kOverrun = 1U << 13;   // loop: the frame missed its deadline
-inline constexpr std::uint16_t kDiverged = 1U << 14;  // loop: the state became non-finite
+inline constexpr std::uint16_t kDiverged = 1U << 14;  // loop: diverged, outputs held
 }  // namespace flag
 
 struct Packet {
