@@ -100,6 +100,44 @@ std::vector<std::string> feeder(std::uint16_t port, std::uint16_t own, std::int6
           "--record", kElCentro, "--frames",           std::to_string(frames)};
 }
 
+// Starts ntn-hil on two free ports with `hil_args`, waits until it listens, then runs the feeder
+// with `feeder_args` and waits for both (`timeout` each). Their screens go to hil.txt and
+// feeder.txt in `dir`, their JSON summaries to hil.json and feeder.json.
+struct PairRun {
+  int hil_rc = -1, feeder_rc = -1;
+  std::string hil_json, feeder_json, hil_text, feeder_text;
+};
+
+PairRun run_pair(const TempDir& dir, std::int64_t frames, const std::vector<std::string>& hil_args,
+                 const std::vector<std::string>& feeder_args, std::chrono::seconds timeout) {
+  PairRun r;
+  const auto ports = ntn_test::free_ports(2);
+  if (ports.size() != 2U) {
+    ADD_FAILURE() << "no two free UDP ports";
+    return r;
+  }
+  std::vector<std::string> h = hil_run(ports[0], ports[1], frames);
+  h.insert(h.end(), hil_args.begin(), hil_args.end());
+  h.insert(h.end(), {"--summary-json", dir / "hil.json"});
+  Child hil(h, dir / "hil.txt");
+  if (!hil.started() || !ntn_test::wait_port_bound(ports[0], 10s)) {
+    ADD_FAILURE() << "ntn-hil did not start: " << read_file(dir / "hil.txt");
+    return r;
+  }
+  std::vector<std::string> f = feeder(ports[0], ports[1], frames);
+  f.insert(f.end(), feeder_args.begin(), feeder_args.end());
+  f.insert(f.end(), {"--summary-json", dir / "feeder.json"});
+  Child feed(f, dir / "feeder.txt");
+  if (feed.started()) r.feeder_rc = feed.wait(timeout);
+  r.hil_rc = hil.wait(timeout);
+  r.hil_json = read_file(dir / "hil.json");
+  r.feeder_json = read_file(dir / "feeder.json");
+  r.hil_text = read_file(dir / "hil.txt");
+  r.feeder_text = read_file(dir / "feeder.txt");
+  std::printf("%s%s", r.hil_text.c_str(), r.feeder_text.c_str());
+  return r;
+}
+
 // Real time, 3000 frames at 1 kHz: the loop's deadlines follow the feeder's stream (frame k due
 // half a period after packet k is expected), so packets do not come after their frame ran.
 // Before the loop took its deadlines from the first packet, ~90 % of them were late here.
@@ -112,22 +150,11 @@ std::vector<std::string> feeder(std::uint16_t port, std::uint16_t own, std::int6
 TEST(HilE2E, RealTimeDeadlinesFollowTheSender) {
   constexpr std::int64_t kFrames = 3000;
   const TempDir dir("hil_e2e_rt_aligned");
-  const auto ports = ntn_test::free_ports(2);
-  ASSERT_EQ(ports.size(), 2U);
-  std::vector<std::string> h = hil_run(ports[0], ports[1], kFrames);
-  h.insert(h.end(), {"--clock", "real", "--fifo", "--summary-json", dir / "hil.json"});
-  Child hil(h, dir / "hil.txt");
-  ASSERT_TRUE(hil.started());
-  ASSERT_TRUE(ntn_test::wait_port_bound(ports[0], 10s)) << read_file(dir / "hil.txt");
-  std::vector<std::string> f = feeder(ports[0], ports[1], kFrames);
-  f.insert(f.end(), {"--fifo", "70", "--summary-json", dir / "feeder.json"});
-  Child feed(f, dir / "feeder.txt");
-  ASSERT_TRUE(feed.started());
-  EXPECT_EQ(feed.wait(30s), 0) << read_file(dir / "feeder.txt");
-  ASSERT_EQ(hil.wait(30s), 0) << read_file(dir / "hil.txt");
-  const std::string js = read_file(dir / "hil.json");
-  const std::string fs = read_file(dir / "feeder.json");
-  std::printf("%s%s", read_file(dir / "hil.txt").c_str(), read_file(dir / "feeder.txt").c_str());
+  const PairRun pair = run_pair(dir, kFrames, {"--clock", "real", "--fifo"}, {"--fifo", "70"}, 30s);
+  EXPECT_EQ(pair.feeder_rc, 0) << pair.feeder_text;
+  ASSERT_EQ(pair.hil_rc, 0) << pair.hil_text;
+  const std::string& js = pair.hil_json;
+  const std::string& fs = pair.feeder_json;
 
   EXPECT_EQ(json_number(js, "frames"), kFrames);
   EXPECT_EQ(json_number(js, "first_packet_frame"), 0);
@@ -227,25 +254,15 @@ TEST(HilE2E, LockStepEveryFaultKind) {
     faults += ",nan@" + std::to_string(k);
   const FaultPlan plan = plan_of(faults, kFrames);
   const TempDir dir("hil_e2e_lockstep");
-  const auto ports = ntn_test::free_ports(2);
-  ASSERT_EQ(ports.size(), 2U);
-  std::vector<std::string> h = hil_run(ports[0], ports[1], kFrames);
-  h.insert(h.end(), {"--clock", "virtual", "--out", dir / "hil.csv", "--summary-json",
-                     dir / "hil.json", "--record", dir / "run.ntnlog"});
-  Child hil(h, dir / "hil.txt");
-  ASSERT_TRUE(hil.started());
-  ASSERT_TRUE(ntn_test::wait_port_bound(ports[0], 10s)) << read_file(dir / "hil.txt");
-  std::vector<std::string> f = feeder(ports[0], ports[1], kFrames);
-  f.insert(f.end(), {"--virtual", "--fault", faults, "--out", dir / "feeder.csv", "--summary-json",
-                     dir / "feeder.json"});
-  Child feed(f, dir / "feeder.txt");
-  ASSERT_TRUE(feed.started());
-  ASSERT_EQ(feed.wait(60s), 0) << read_file(dir / "feeder.txt");
-  ASSERT_EQ(hil.wait(60s), 0) << read_file(dir / "hil.txt");
-  const std::string hil_out = read_file(dir / "hil.txt");
-  const std::string js = read_file(dir / "hil.json");
-  const std::string fs = read_file(dir / "feeder.json");
-  std::printf("%s%s", hil_out.c_str(), read_file(dir / "feeder.txt").c_str());
+  const PairRun pair =
+      run_pair(dir, kFrames,
+               {"--clock", "virtual", "--out", dir / "hil.csv", "--record", dir / "run.ntnlog"},
+               {"--virtual", "--fault", faults, "--out", dir / "feeder.csv"}, 60s);
+  ASSERT_EQ(pair.feeder_rc, 0) << pair.feeder_text;
+  ASSERT_EQ(pair.hil_rc, 0) << pair.hil_text;
+  const std::string& hil_out = pair.hil_text;
+  const std::string& js = pair.hil_json;
+  const std::string& fs = pair.feeder_json;
 
   // The feeder injected the plan the library makes from the same list.
   const auto injected = [&](FaultKind k) { return json_number(fs, to_string(k), "faults"); };
@@ -330,23 +347,13 @@ TEST(HilE2E, RealTimeWithFaults) {
   constexpr std::int64_t kFrames = 2000;
   const std::string faults = "corrupt@300,duplicate@600,lost@700,nan@900,corrupt@1100";
   const TempDir dir("hil_e2e_rt_faults");
-  const auto ports = ntn_test::free_ports(2);
-  ASSERT_EQ(ports.size(), 2U);
-  std::vector<std::string> h = hil_run(ports[0], ports[1], kFrames);
-  h.insert(h.end(), {"--clock", "real", "--fifo", "--summary-json", dir / "hil.json", "--record",
-                     dir / "run.ntnlog"});
-  Child hil(h, dir / "hil.txt");
-  ASSERT_TRUE(hil.started());
-  ASSERT_TRUE(ntn_test::wait_port_bound(ports[0], 10s)) << read_file(dir / "hil.txt");
-  std::vector<std::string> f = feeder(ports[0], ports[1], kFrames);
-  f.insert(f.end(), {"--fifo", "70", "--fault", faults, "--summary-json", dir / "feeder.json"});
-  Child feed(f, dir / "feeder.txt");
-  ASSERT_TRUE(feed.started());
-  EXPECT_EQ(feed.wait(30s), 0) << read_file(dir / "feeder.txt");
-  ASSERT_EQ(hil.wait(30s), 0) << read_file(dir / "hil.txt");
-  const std::string js = read_file(dir / "hil.json");
-  const std::string fs = read_file(dir / "feeder.json");
-  std::printf("%s%s", read_file(dir / "hil.txt").c_str(), read_file(dir / "feeder.txt").c_str());
+  const PairRun pair =
+      run_pair(dir, kFrames, {"--clock", "real", "--fifo", "--record", dir / "run.ntnlog"},
+               {"--fifo", "70", "--fault", faults}, 30s);
+  EXPECT_EQ(pair.feeder_rc, 0) << pair.feeder_text;
+  ASSERT_EQ(pair.hil_rc, 0) << pair.hil_text;
+  const std::string& js = pair.hil_json;
+  const std::string& fs = pair.feeder_json;
   ASSERT_FALSE(js.empty());
 
   const auto counted = [&](const char* key) { return json_number(js, key, "inputs"); };
