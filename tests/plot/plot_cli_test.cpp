@@ -1,0 +1,192 @@
+// ntn-plot end to end: histories and spectra from CSV files the test writes (and, when the runner
+// is built, from a real ntn-run-frame3d run with the model's hinge force channels), exit codes
+// and messages for bad input and a missing gnuplot. Exact comparisons: exit codes, pixel sizes,
+// label strings.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "ntn/plot/plot.hpp"
+#include "plot_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ntn::plot::test::parse_svg;
+using ntn::plot::test::png_size;
+using ntn::plot::test::run;
+using ntn::plot::test::TempDir;
+using ntn::plot::test::write_file;
+
+const std::string kCli = NTN_PLOT_CLI;
+
+// 0 ... 0.99 s at 100 Hz, the runner's header style, a flags column like ntn-hil's.
+std::string history_csv(const std::string& bad_row = {}) {
+  std::string csv = "time[s],roof_ux[m],pin_A1_1_V[N],pin_A1_1_N[N],flags\n";
+  for (int i = 0; i < 100; ++i) {
+    const double t = 0.01 * i;
+    csv += std::to_string(t) + "," + std::to_string(0.01 * t) + "," + std::to_string(100 * t) +
+           "," + std::to_string(-50 * t) + ",0\n";
+    if (i == 40 && !bad_row.empty()) csv += bad_row + "\n";
+  }
+  return csv;
+}
+
+TEST(PlotCli, HistoryOnePanelPerGroup) {
+  TempDir dir;
+  write_file(dir / "run.csv", history_csv());
+  const auto r = run(kCli + " history " + (dir / "run.csv") +
+                         " --channels roof_ux,pin_A1_1_V+pin_A1_1_N --out " + (dir / "h"),
+                     dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, (dir / "h.png") + "\n" + (dir / "h.svg") + "\n");
+  const auto size = png_size(dir / "h.png");
+  ASSERT_TRUE(size);
+  EXPECT_EQ(size->width, 1200u);
+  EXPECT_EQ(size->height, static_cast<std::uint32_t>(ntn::plot::default_height(2)));
+  const auto svg = parse_svg(dir / "h.svg");
+  ASSERT_EQ(svg.error, "");
+  for (const char* text : {"run.csv", "time [s]", "roof_ux [m]", "pin_A1_1_V, pin_A1_1_N [N]",
+                           "pin_A1_1_V", "pin_A1_1_N"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+  EXPECT_FALSE(svg.has_text("flags"));
+}
+
+TEST(PlotCli, HistoryDefaultsToEveryChannelAndTakesASize) {
+  TempDir dir;
+  write_file(dir / "run.csv", history_csv());
+  const auto r = run(kCli + " history " + (dir / "run.csv") + " --size 900x700 --title 'a run'" +
+                         " --from 0.2 --to 0.5 --no-svg --out " + (dir / "all"),
+                     dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "all.svg"));
+  const auto size = png_size(dir / "all.png");
+  ASSERT_TRUE(size);
+  EXPECT_EQ(size->width, 900u);
+  EXPECT_EQ(size->height, 700u);
+  const auto svg_run =
+      run(kCli + " history " + (dir / "run.csv") + " --no-png --out " + (dir / "all"), dir);
+  ASSERT_EQ(svg_run.status, 0) << svg_run.err;
+  const auto svg = parse_svg(dir / "all.svg");
+  ASSERT_EQ(svg.error, "");
+  for (const char* text : {"roof_ux [m]", "pin_A1_1_V [N]", "pin_A1_1_N [N]"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+}
+
+// Exit 2 with a message that names the problem, and no plot written.
+void expect_bad_input(const TempDir& dir, const std::string& args, const std::string& message) {
+  const auto r = run(kCli + " " + args + " --out " + (dir / "bad"), dir);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+  EXPECT_NE(r.err.find(message), std::string::npos) << args << "\nstderr: " << r.err;
+  EXPECT_FALSE(fs::exists(dir / "bad.png")) << args;
+}
+
+TEST(PlotCli, BadInputExitsTwoWithAMessage) {
+  TempDir dir;
+  write_file(dir / "run.csv", history_csv());
+  write_file(dir / "nan.csv", history_csv("0.405,1e-3,nan,0,0"));
+  write_file(dir / "short.csv", history_csv("0.41,1e-3,1,0"));
+  write_file(dir / "back.csv", history_csv("0.1,1e-3,1,0,0"));
+  write_file(dir / "text.csv", history_csv("0.405,1e-3,abc,0,0"));
+  write_file(dir / "empty.csv", "");
+  expect_bad_input(dir, "history " + (dir / "run.csv") + " --channels roof_ux,nope",
+                   "no channel 'nope' (channels: roof_ux, pin_A1_1_V, pin_A1_1_N)");
+  expect_bad_input(dir, "history " + (dir / "missing.csv"), "missing.csv:0:0: error: cannot open");
+  expect_bad_input(dir, "history " + (dir / "empty.csv"), "the file is empty");
+  expect_bad_input(dir, "history " + (dir / "nan.csv"),
+                   "nan.csv:43:1: error: channel 'pin_A1_1_V' is NaN at time = 0.405 s");
+  expect_bad_input(dir, "history " + (dir / "short.csv"), "short.csv:43:1: error: expected 5");
+  expect_bad_input(dir, "history " + (dir / "back.csv"), "'time' does not increase");
+  expect_bad_input(dir, "history " + (dir / "text.csv"),
+                   "'abc' in column 'pin_A1_1_V[N]' is not a number");
+  expect_bad_input(dir, "history " + (dir / "run.csv") + " --channels roof_ux+pin_A1_1_V",
+                   "one panel mixes units: roof_ux [m] and pin_A1_1_V [N]");
+  expect_bad_input(dir, "history " + (dir / "run.csv") + " --from 5", "fewer than 2 rows");
+  expect_bad_input(dir, "history " + (dir / "run.csv") + " --size 12", "--size wants");
+  expect_bad_input(dir, "psd " + (dir / "run.csv"), "the first column must be in Hz, not 's'");
+  expect_bad_input(dir, "history " + (dir / "run.csv") + " --model /nonexistent.toml --kind drift",
+                   "the model does not load");
+  expect_bad_input(dir, "history " + (dir / "run.csv") + " --bogus", "bogus");
+  // An output directory that does not exist.
+  const auto r = run(kCli + " history " + (dir / "run.csv") + " --out " + (dir / "no/such/x"), dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+}
+
+TEST(PlotCli, PsdWithMarks) {
+  TempDir dir;
+  std::string csv = "frequency[Hz],roof_ux[m^2/Hz],floor1_ux[m^2/Hz]\n";
+  for (int k = 0; k <= 100; ++k) {
+    const double f = 0.1 * k;
+    const double r = f / 1.6;
+    const double h = 1 / ((1 - r * r) * (1 - r * r) + (0.04 * r) * (0.04 * r));
+    char row[96];
+    std::snprintf(row, sizeof row, "%.9g,%.9g,%.9g\n", f, 1e-6 * h, 3e-7 * h);
+    csv += row;
+  }
+  write_file(dir / "spectrum.csv", csv);
+  const auto r = run(kCli + " psd " + (dir / "spectrum.csv") +
+                         " --marks '1.6,mode 2=5.25,20' --out " + (dir / "psd"),
+                     dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("marker '20 Hz' at 20 lies outside the x extent 0 ... 10: not drawn"),
+            std::string::npos)
+      << r.err;
+  const auto svg = parse_svg(dir / "psd.svg");
+  ASSERT_EQ(svg.error, "");
+  for (const char* text : {"frequency [Hz]", "PSD [m^2/Hz]", "roof_ux [m^2/Hz]",
+                           "floor1_ux [m^2/Hz]", "1.6 Hz", "mode 2  5.25 Hz"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+  EXPECT_FALSE(svg.has_text("20 Hz"));
+  ASSERT_TRUE(png_size(dir / "psd.png"));
+
+  expect_bad_input(dir, "psd " + (dir / "spectrum.csv") + " --marks 1.6,x", "'x' is not a number");
+  expect_bad_input(dir, "psd " + (dir / "spectrum.csv") + " --columns nope", "no channel 'nope'");
+}
+
+TEST(PlotCli, MissingGnuplotExitsThreeAndNamesThePackage) {
+  TempDir dir;
+  write_file(dir / "run.csv", history_csv());
+  for (const std::string& how :
+       {"/usr/bin/env PATH= " + kCli + " history", kCli + " history --gnuplot /nonexistent/gp"}) {
+    const auto r = run(how + " " + (dir / "run.csv") + " --out " + (dir / "x"), dir);
+    EXPECT_EQ(r.status, 3) << how << "\n" << r.err;
+    EXPECT_NE(r.err.find("gnuplot not found"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("apt-get install gnuplot-nox"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+  }
+}
+
+#if defined(NTN_RUNNER)
+// The README's example: a frame3d run on El Centro (2 s of it), then its roof displacement,
+// drifts and the model's hinge force channels (kind hinge_force in config/frame3d.toml).
+TEST(PlotCli, Frame3dHingeForces) {
+  TempDir dir;
+  const auto sim = run(std::string(NTN_RUNNER) + " -q --input ag_x=" + NTN_CONFIG_DIR +
+                           "/ground-motions/elCentro.AT2 --duration 2 --out " + (dir / "x.csv"),
+                       dir);
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const auto r =
+      run(kCli + " history " + (dir / "x.csv") + " --channels roof_ux,drift1_x+drift2_x --model " +
+              NTN_CONFIG_DIR + "/frame3d.toml --kind hinge_force --out " + (dir / "frame3d"),
+          dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto size = png_size(dir / "frame3d.png");
+  ASSERT_TRUE(size);
+  EXPECT_EQ(size->height, static_cast<std::uint32_t>(ntn::plot::default_height(4)));
+  const auto svg = parse_svg(dir / "frame3d.svg");
+  ASSERT_EQ(svg.error, "");
+  for (const char* text :
+       {"roof_ux [m]", "drift1_x", "drift2_x", "pin_A1_1_V [N]", "pin_A1_1_N [N]"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+  // The ground motion itself, from the AT2 file.
+  const auto at2 = run(kCli + " history " + NTN_CONFIG_DIR + "/ground-motions/elCentro.AT2" +
+                           " --no-svg --out " + (dir / "ag"),
+                       dir);
+  EXPECT_EQ(at2.status, 0) << at2.err;
+  EXPECT_TRUE(png_size(dir / "ag.png"));
+}
+#endif
+
+}  // namespace

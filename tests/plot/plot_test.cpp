@@ -1,0 +1,256 @@
+// ntn::plot (tools/plot): what gnuplot writes is read back with independent readers — the PNG's
+// IHDR for the pixel size, expat for the SVG (well-formed, and the text a person reads: titles,
+// axis labels, legend entries, marker labels). Sizes are integers and texts strings: every
+// comparison is exact. Needs gnuplot-nox (tools/common.sh installs it).
+#include "ntn/plot/plot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include "plot_support.hpp"
+
+namespace {
+
+namespace pl = ntn::plot;
+namespace fs = std::filesystem;
+using ntn::plot::test::parse_svg;
+using ntn::plot::test::png_size;
+using ntn::plot::test::read_file;
+using ntn::plot::test::TempDir;
+
+constexpr double kPi = 3.14159265358979323846;
+
+pl::Series sine(const std::string& name, double f, std::size_t n, double dt, double a = 1) {
+  pl::Series s{name, {}, {}};
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    s.x.push_back(t);
+    s.y.push_back(a * std::sin(2 * kPi * f * t));
+  }
+  return s;
+}
+
+// Two stacked panels, names with gnuplot markup characters ('_', '^', a quote).
+pl::Figure two_panels() {
+  pl::Figure fig;
+  fig.title = "frame3d, El Centro";
+  fig.width = 800;
+  fig.height = 600;
+  pl::Panel& a = fig.panels.emplace_back();
+  a.title = "roof";
+  a.x_label = "time [s]";
+  a.y_label = "roof_ux [m]";
+  a.series.push_back(sine("roof_ux", 1.6, 500, 0.01));
+  a.series.push_back(sine("floor1_ux", 1.6, 500, 0.01, 0.4));
+  pl::Panel& b = fig.panels.emplace_back();
+  b.x_label = "time [s]";
+  b.y_label = "pin_A1_1_V [N]";
+  b.series.push_back(sine("pin's V^2", 3.2, 500, 0.01, 1e4));
+  b.markers.push_back({2.0, "t_peak 2 s"});
+  return fig;
+}
+
+TEST(Plot, WritesPngOfTheAskedSizeAndWellFormedSvgWithEveryLabel) {
+  TempDir dir;
+  const pl::Rendered r = pl::render(two_panels(), dir / "fig");
+  EXPECT_EQ(r.png, dir / "fig.png");
+  EXPECT_EQ(r.svg, dir / "fig.svg");
+  const auto size = png_size(r.png);
+  ASSERT_TRUE(size) << "no PNG signature and IHDR in " << r.png;
+  EXPECT_EQ(size->width, 800u);
+  EXPECT_EQ(size->height, 600u);
+
+  const auto svg = parse_svg(r.svg);
+  ASSERT_EQ(svg.error, "") << r.svg << " is not well-formed XML";
+  EXPECT_EQ(svg.root, "svg");
+  EXPECT_EQ(svg.width, "800");
+  EXPECT_EQ(svg.height, "600");
+  for (const char* text : {"frame3d, El Centro", "roof", "time [s]", "roof_ux [m]", "roof_ux",
+                           "floor1_ux", "pin_A1_1_V [N]", "pin's V^2", "t_peak 2 s"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+  // The script and the data file are gone: only the two plots are left.
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path()))
+    ++files;
+  EXPECT_EQ(files, 2u);
+  EXPECT_FALSE(fs::exists(r.script));
+  EXPECT_FALSE(fs::exists(r.data));
+}
+
+TEST(Plot, DefaultHeightGrowsWithThePanels) {
+  TempDir dir;
+  pl::Figure fig;
+  for (int i = 0; i < 3; ++i) {
+    pl::Panel& p = fig.panels.emplace_back();
+    p.series.push_back(sine("s" + std::to_string(i), 1, 100, 0.01));
+  }
+  pl::RenderOptions o;
+  o.svg = false;
+  const pl::Rendered r = pl::render(fig, dir / "three", o);
+  EXPECT_EQ(r.svg, "");
+  EXPECT_FALSE(fs::exists(dir / "three.svg"));
+  const auto size = png_size(r.png);
+  ASSERT_TRUE(size);
+  EXPECT_EQ(size->width, 1200u);
+  EXPECT_EQ(size->height, static_cast<std::uint32_t>(pl::default_height(3)));
+  EXPECT_EQ(pl::default_height(3), 720);
+  EXPECT_EQ(pl::default_height(1), 480);
+}
+
+// A PSD: log y with a zero line at DC (left out, not an error) and marked model frequencies.
+TEST(Plot, LogPsdWithMarkers) {
+  TempDir dir;
+  pl::Figure fig;
+  fig.width = 640;
+  fig.height = 480;
+  pl::Panel& p = fig.panels.emplace_back();
+  p.x_label = "frequency [Hz]";
+  p.y_label = "PSD [m^2/Hz]";
+  p.y_scale = pl::Scale::kLog;
+  pl::Series s{"roof_ux", {}, {}};
+  for (int k = 0; k <= 200; ++k) {
+    const double f = 0.05 * k;
+    s.x.push_back(f);
+    const double r = f / 1.6;  // a damped mode at 1.6 Hz, zeta 2 %
+    s.y.push_back(k == 0 ? 0.0 : 1e-6 / ((1 - r * r) * (1 - r * r) + (0.04 * r) * (0.04 * r)));
+  }
+  p.series.push_back(s);
+  p.markers.push_back({1.6, "mode 1  1.600 Hz"});
+  p.markers.push_back({5.1, "mode 2  5.100 Hz"});
+  p.markers.push_back({50.0, "beyond the data"});  // outside the x extent: not drawn
+  const pl::Rendered r = pl::render(fig, dir / "psd");
+  const auto svg = parse_svg(r.svg);
+  ASSERT_EQ(svg.error, "");
+  EXPECT_TRUE(svg.has_text("mode 1  1.600 Hz"));
+  EXPECT_TRUE(svg.has_text("mode 2  5.100 Hz"));
+  EXPECT_FALSE(svg.has_text("beyond the data"));
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_NE(r.notes[0].find("marker 'beyond the data' at 50 lies outside the x extent 0.05 ... 10"),
+            std::string::npos)
+      << r.notes[0];
+  EXPECT_TRUE(svg.has_text("PSD [m^2/Hz]"));
+  const auto size = png_size(r.png);
+  ASSERT_TRUE(size);
+  EXPECT_EQ(size->width, 640u);
+  EXPECT_EQ(size->height, 480u);
+}
+
+// Decimation keeps what a pixel column shows: a one-sample spike among 200 000 samples survives.
+TEST(Plot, DecimationKeepsTheEnvelope) {
+  TempDir dir;
+  pl::Figure fig;
+  fig.width = 400;
+  pl::Panel& p = fig.panels.emplace_back();
+  pl::Series s = sine("long", 0.37, 200000, 0.001);
+  s.y[123457] = 5;
+  p.series.push_back(s);
+  pl::RenderOptions o;
+  o.keep_script = true;
+  o.png = false;
+  const pl::Rendered r = pl::render(fig, dir / "long", o);
+  ASSERT_TRUE(fs::exists(r.data));
+  ASSERT_TRUE(fs::exists(r.script));
+  const std::string data = read_file(r.data);
+  std::size_t rows = 0;
+  double y_max = -1;
+  std::istringstream in(data);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    ++rows;
+    y_max = std::max(y_max, std::stod(line.substr(line.find(' ') + 1)));
+  }
+  EXPECT_LE(rows, 2u * 400u);  // at most a minimum and a maximum per bucket (width 400 px)
+  EXPECT_GE(rows, 400u);       // a sine has a distinct minimum and maximum in most buckets
+  EXPECT_EQ(y_max, 5.0);
+  // The kept script names its files by absolute path, so it can be run again from anywhere.
+  const std::string gp = read_file(r.script);
+  EXPECT_NE(gp.find("'" + fs::absolute(dir / "long.dat").string() + "'"), std::string::npos);
+  EXPECT_NE(gp.find("'" + fs::absolute(dir / "long.svg").string() + "'"), std::string::npos);
+}
+
+pl::Error::Kind kind_of(const pl::Figure& fig, const std::string& base, const pl::RenderOptions& o,
+                        std::string* message = nullptr) {
+  try {
+    pl::render(fig, base, o);
+  } catch (const pl::Error& e) {
+    if (message != nullptr) *message = e.what();
+    return e.kind();
+  }
+  ADD_FAILURE() << "render() did not throw";
+  return pl::Error::Kind::kIo;
+}
+
+TEST(Plot, BadFiguresAreInputErrorsThatSayWhat) {
+  TempDir dir;
+  std::string m;
+  {
+    pl::Figure fig = two_panels();
+    fig.panels[1].series[0].y[17] = std::nan("");
+    EXPECT_EQ(kind_of(fig, dir / "x", {}, &m), pl::Error::Kind::kInput);
+    EXPECT_NE(m.find("panel 2, series 'pin's V^2': y[17] is NaN"), std::string::npos) << m;
+  }
+  {
+    pl::Figure fig = two_panels();
+    fig.panels[0].series[1].x.pop_back();
+    EXPECT_EQ(kind_of(fig, dir / "x", {}, &m), pl::Error::Kind::kInput);
+    EXPECT_NE(m.find("499 x values but 500 y values"), std::string::npos) << m;
+  }
+  {
+    pl::Figure fig = two_panels();
+    fig.panels[0].y_scale = pl::Scale::kLog;
+    for (double& y : fig.panels[0].series[0].y)
+      y = -std::abs(y);
+    EXPECT_EQ(kind_of(fig, dir / "x", {}, &m), pl::Error::Kind::kInput);
+    EXPECT_NE(m.find("no value above 0 to draw on a log axis"), std::string::npos) << m;
+  }
+  {
+    pl::Figure fig = two_panels();
+    fig.panels[0].x_range = {3.0, 1.0};
+    EXPECT_EQ(kind_of(fig, dir / "x", {}, &m), pl::Error::Kind::kInput);
+    EXPECT_NE(m.find("is empty"), std::string::npos) << m;
+  }
+  EXPECT_EQ(kind_of(pl::Figure{}, dir / "x", {}, &m), pl::Error::Kind::kInput);
+  EXPECT_NE(m.find("no panel"), std::string::npos) << m;
+  EXPECT_EQ(kind_of(two_panels(), dir / "no-such-dir/x", {}, &m), pl::Error::Kind::kIo);
+  EXPECT_NE(m.find("does not exist"), std::string::npos) << m;
+  EXPECT_TRUE(fs::is_empty(dir.path()));  // nothing written for a figure that was refused
+}
+
+TEST(Plot, MissingGnuplotSaysWhichPackageToInstall) {
+  TempDir dir;
+  std::string m;
+  pl::RenderOptions o;
+  o.gnuplot = (dir / "no-gnuplot-here");
+  EXPECT_EQ(kind_of(two_panels(), dir / "x", o, &m), pl::Error::Kind::kGnuplotMissing);
+  EXPECT_NE(m.find("gnuplot-nox"), std::string::npos) << m;
+  EXPECT_NE(m.find("not an executable file"), std::string::npos) << m;
+
+  // An empty PATH finds nothing (the current directory is not searched either).
+  const std::string path = std::getenv("PATH") != nullptr ? std::getenv("PATH") : "";
+  ::setenv("PATH", "", 1);
+  EXPECT_EQ(pl::find_program("gnuplot"), "");
+  EXPECT_EQ(kind_of(two_panels(), dir / "x", {}, &m), pl::Error::Kind::kGnuplotMissing);
+  ::setenv("PATH", path.c_str(), 1);
+  EXPECT_NE(m.find("apt-get install gnuplot-nox"), std::string::npos) << m;
+  EXPECT_NE(pl::find_program("gnuplot"), "");
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+// A program that runs but fails (/bin/false exits 1) is reported with its status, and no script
+// or data file is left behind.
+TEST(Plot, FailingGnuplotIsReported) {
+  TempDir dir;
+  std::string m;
+  pl::RenderOptions o;
+  o.gnuplot = "/bin/false";
+  EXPECT_EQ(kind_of(two_panels(), dir / "x", o, &m), pl::Error::Kind::kGnuplotFailed);
+  EXPECT_NE(m.find("exited with status 1"), std::string::npos) << m;
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+}  // namespace
