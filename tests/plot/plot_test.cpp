@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "plot_support.hpp"
 
@@ -158,14 +159,22 @@ TEST(Plot, DecimationKeepsTheEnvelope) {
   const std::string data = read_file(r.data);
   std::size_t rows = 0;
   double y_max = -1;
+  std::vector<double> xs;
   std::istringstream in(data);
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '#') continue;
     ++rows;
+    xs.push_back(std::stod(line));
     y_max = std::max(y_max, std::stod(line.substr(line.find(' ') + 1)));
   }
-  EXPECT_LE(rows, 2u * 400u);  // at most a minimum and a maximum per bucket (width 400 px)
-  EXPECT_GE(rows, 400u);       // a sine has a distinct minimum and maximum in most buckets
+  // At most a minimum and a maximum per bucket (width 400 px), and the first and last point.
+  EXPECT_LE(rows, 2u * 400u + 2u);
+  ASSERT_FALSE(xs.empty());
+  // The data file prints 10 significant digits: x within 1e-9 relative.
+  EXPECT_NEAR(xs.front(), s.x.front(), 1e-9);
+  EXPECT_NEAR(xs.back(), s.x.back(), 1e-9 * s.x.back());
+  EXPECT_TRUE(std::is_sorted(xs.begin(), xs.end()));
+  EXPECT_GE(rows, 400u);  // a sine has a distinct minimum and maximum in most buckets
   EXPECT_EQ(y_max, 5.0);
   // The kept script names its files by absolute path, so it can be run again from anywhere.
   const std::string gp = read_file(r.script);

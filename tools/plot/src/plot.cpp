@@ -113,7 +113,7 @@ void check(const Figure& f) {
 }
 
 // Indices to draw: all, or the minimum and the maximum of each of `buckets` equal index ranges
-// in index order (the envelope a pixel column shows).
+// in index order (the envelope a pixel column shows), and the first and last index.
 std::vector<std::size_t> keep(const Series& s, std::size_t limit, std::size_t buckets) {
   const std::size_t n = s.y.size();
   std::vector<std::size_t> idx;
@@ -133,8 +133,11 @@ std::vector<std::size_t> keep(const Series& s, std::size_t limit, std::size_t bu
       if (s.y[i] < s.y[lo]) lo = i;
       if (s.y[i] > s.y[hi]) hi = i;
     }
-    idx.push_back(std::min(lo, hi));
-    if (lo != hi) idx.push_back(std::max(lo, hi));
+    // The first and the last point are kept too, so every panel spans the same x.
+    const std::size_t first = std::min(lo, hi), last = std::max(lo, hi);
+    for (std::size_t i : {b == 0 ? i0 : first, first, last, b + 1 == buckets ? i1 - 1 : last}) {
+      if (idx.empty() || i > idx.back()) idx.push_back(i);
+    }
   }
   return idx;
 }
@@ -223,6 +226,10 @@ std::string body(const Figure& f, const std::string& data) {
     s << (panel.x_scale == Scale::kLog ? "set logscale x\n" : "unset logscale x\n");
     s << (panel.y_scale == Scale::kLog ? "set logscale y\n" : "unset logscale y\n");
     s << "set format y " << (panel.y_scale == Scale::kLog ? "'10^{%L}'" : "'%g'") << "\n";
+    // 5 % of air above and below the data on a linear y axis, so a peak does not hide in the
+    // frame (autoscaling then rounds out to the next tic).
+    s << (panel.y_scale == Scale::kLinear ? "set offsets 0, 0, graph 0.05, graph 0.05\n"
+                                          : "set offsets 0, 0, 0, 0\n");
     s << "set xrange " << range(panel.x_range) << "\n";
     s << "set yrange " << range(panel.y_range) << "\n";
     const auto extent = x_extent(panel);
