@@ -395,7 +395,8 @@ Rendered render(const Figure& f, const std::string& base, const RenderOptions& o
     throw Error(Error::Kind::kGnuplotMissing,
                 "gnuplot not found (" + where_looked +
                     "). Install the Debian package gnuplot-nox (apt-get install gnuplot-nox; "
-                    "tools/common.sh lists it), or name the program to run");
+                    "tools/common.sh lists it), or name the program to run (ntn-plot --gnuplot "
+                    "PROG, RenderOptions::gnuplot)");
   }
 
   Rendered r;
