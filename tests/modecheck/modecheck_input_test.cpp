@@ -1,0 +1,182 @@
+// Bad input to ntn-check-modes: exit code 2 and a message that says what is wrong and where, for
+// each case of tools/modecheck/README.md ("Exit codes"). The program runs as a subprocess; the
+// records are small CSVs written here with the test model's channel names
+// (tests/modecheck/frame3d_sensors.toml), so nothing is simulated. Too short a record for the
+// resolution is checked in modecheck_e2e_test against the real response.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ntn/modecheck/modecheck.hpp"
+#include "test_files.hpp"
+
+namespace {
+
+namespace mc = ntn::modecheck;
+
+class ModeCheckInput : public ::testing::Test {
+ protected:
+  ModeCheckInput() : dir_("ntn_modecheck_input") {}
+
+  // 10 s at `fs` (100 Hz) of two tones in the test model's channels; `nan_row` (1-based data row)
+  // gets a NaN in roof_uy.
+  std::string record(const std::string& name, int nan_row = 0, int fs = 100) {
+    std::string s = "time[s],roof_ux[m],roof_uy[m]\n";
+    for (int k = 0; k < 10 * fs; ++k) {
+      const double t = k / static_cast<double>(fs);
+      char row[128];
+      std::snprintf(row, sizeof row, "%.9g,%.17g,%.17g\n", t, std::sin(2 * M_PI * 1.7388 * t),
+                    std::sin(2 * M_PI * 1.6046 * t));
+      s += row;
+      if (k + 1 == nan_row) {
+        s.resize(s.rfind(',') + 1);
+        s += "nan\n";
+      }
+    }
+    const std::string path = dir_.file(name);
+    ntn_test::write_text(path, s);
+    return path;
+  }
+
+  ntn_test::ProgramResult run(const std::string& args) {
+    return ntn_test::run_program(ntn_test::quoted(NTN_CHECK_MODES) + " " + args);
+  }
+
+  static std::string model() { return NTN_MODECHECK_MODEL; }
+
+  ntn_test::TempDir dir_;
+};
+
+TEST_F(ModeCheckInput, MissingResponseFile) {
+  const std::string missing = dir_.file("no_such.csv");
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(missing));
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("error: cannot read the response file '" + missing + "': no such file"),
+            std::string::npos)
+      << p.output;
+}
+
+TEST_F(ModeCheckInput, MissingModelFile) {
+  const std::string missing = dir_.file("no_such.toml");
+  const auto p = run(ntn_test::quoted(missing) + " " + ntn_test::quoted(record("r.csv")));
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("error: cannot read the model file '" + missing + "': no such file"),
+            std::string::npos)
+      << p.output;
+}
+
+TEST_F(ModeCheckInput, ADirectoryIsNotAFile) {
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(dir_.path().string()));
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("': it is a directory"), std::string::npos) << p.output;
+}
+
+// The model compiler's own diagnostic, file:line:column, passed through.
+TEST_F(ModeCheckInput, BadModelGivesTheCompilersFileLineColumn) {
+  std::string text = ntn_test::read_text(model());
+  const auto at = text.find("E = 210e9");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 9, "E = -210e9");
+  const std::string bad = dir_.file("bad_model.toml");
+  ntn_test::write_text(bad, text);
+  // The line of E in the file, 1-based.
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+  const auto p = run(ntn_test::quoted(bad) + " " + ntn_test::quoted(record("r.csv")));
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find(bad + ":" + std::to_string(line) + ":"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("error: key 'materials[0].E'"), std::string::npos) << p.output;
+}
+
+// NaN in the data: the reader names the file line (the header is line 1, so data row 250 is
+// line 251), the channel and the time.
+TEST_F(ModeCheckInput, NanNamesTheChannelAndRow) {
+  const std::string path = record("nan.csv", 250);
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(path));
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find(path + ":251:"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("channel 'roof_uy' is NaN at t = 2.49 s"), std::string::npos) << p.output;
+}
+
+TEST_F(ModeCheckInput, InfinityNamesTheChannelAndRow) {
+  std::string text = ntn_test::read_text(record("r.csv"));
+  const auto line5 = [&text] {
+    std::size_t at = 0;
+    for (int k = 0; k < 5; ++k)
+      at = text.find('\n', at) + 1;
+    return at;  // start of file line 6 (data row 5)
+  }();
+  const auto comma = text.find(',', line5);
+  const auto comma2 = text.find(',', comma + 1);
+  text.replace(comma + 1, comma2 - comma - 1, "inf");
+  const std::string path = dir_.file("inf.csv");
+  ntn_test::write_text(path, text);
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(path));
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find(path + ":6:"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("channel 'roof_ux' is infinite at t = 0.04 s"), std::string::npos)
+      << p.output;
+}
+
+TEST_F(ModeCheckInput, UnknownChannelListsTheFilesChannels) {
+  const std::string path = record("r.csv");
+  const auto p =
+      run(ntn_test::quoted(model()) + " " + ntn_test::quoted(path) + " --channels roof_ux,roof_z");
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("error: unknown channel 'roof_z': " + path +
+                          " has the channels roof_ux, roof_uy"),
+            std::string::npos)
+      << p.output;
+}
+
+// 10 s at 100 Hz: the default resolution (1 % x 1.6 Hz / 2 = 0.008 Hz, 125 s) does not fit, so the
+// whole record is one segment, with a note; an explicit 0.05 Hz needs 20 s: exit 2.
+TEST_F(ModeCheckInput, TooShortForAnExplicitResolution) {
+  const std::string path = record("r.csv");
+  const auto p =
+      run(ntn_test::quoted(model()) + " " + ntn_test::quoted(path) + " --resolution 0.05");
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("too short for a resolution of 0.05 Hz: it is 10 s (1000 samples at "
+                          "100 Hz), and one segment of 20 s (2000 samples) is needed"),
+            std::string::npos)
+      << p.output;
+}
+
+// A mode above the record's Nyquist frequency cannot be checked: the frame's mode 7 (5.9 Hz) is
+// above the 5 Hz of a 10 Hz record.
+TEST_F(ModeCheckInput, ModesAboveNyquist) {
+  const auto p =
+      run(ntn_test::quoted(model()) + " " + ntn_test::quoted(record("r10.csv", 0, 10)) + " -n 7");
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("model mode 7 ("), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("is not below the record's Nyquist frequency 5 Hz"), std::string::npos)
+      << p.output;
+}
+
+TEST_F(ModeCheckInput, BadOptions) {
+  const std::string args = ntn_test::quoted(model()) + " " + ntn_test::quoted(record("r.csv"));
+  auto p = run(args + " --window triangle");
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("triangle"), std::string::npos) << p.output;
+  p = run(args + " --direction w");
+  EXPECT_EQ(p.exit_code, 2);
+  p = run(args + " --tolerance -1");
+  EXPECT_EQ(p.exit_code, 2);
+}
+
+// The same cases through the library: InputError, nothing else.
+TEST_F(ModeCheckInput, LibraryThrowsInputError) {
+  const std::string path = record("r.csv");
+  mc::Options o;
+  EXPECT_THROW((void)mc::check_files(dir_.file("none.toml"), path, o), mc::InputError);
+  EXPECT_THROW((void)mc::check_files(model(), dir_.file("none.csv"), o), mc::InputError);
+  EXPECT_THROW((void)mc::check_files(model(), record("nan.csv", 3), o), mc::InputError);
+  o.channels = {"nope"};
+  EXPECT_THROW((void)mc::check_files(model(), path, o), mc::InputError);
+  o.channels = {};
+  o.resolution_hz = 0.01;
+  EXPECT_THROW((void)mc::check_files(model(), path, o), mc::InputError);
+}
+
+}  // namespace

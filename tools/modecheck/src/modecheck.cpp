@@ -1,0 +1,494 @@
+#include "ntn/modecheck/modecheck.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <tuple>
+
+#include <Eigen/SVD>
+
+#include "ntn/modal/modal.hpp"
+#include "ntn/modelc/load_model.hpp"
+#include "ntn/spectral/error.hpp"
+#include "ntn/spectral/fdd.hpp"
+#include "ntn/spectral/welch.hpp"
+
+namespace ntn::modecheck {
+
+namespace {
+
+std::string num(double v, const char* f = "%.6g") {
+  char b[48];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+constexpr std::array<const char*, 6> kDofNames = {"ux", "uy", "uz", "rx", "ry", "rz"};
+constexpr std::array<const char*, 3> kAxes = {"x", "y", "z"};
+
+Kind kind_of(OutputKind k) {
+  switch (k) {
+    case OutputKind::kDisplacement:
+      return Kind::kDisplacement;
+    case OutputKind::kVelocity:
+      return Kind::kVelocity;
+    case OutputKind::kAcceleration:
+    case OutputKind::kAbsoluteAcceleration:
+      return Kind::kAcceleration;
+    default:
+      return Kind::kOther;
+  }
+}
+
+// Samples in one segment for a line spacing df (as Welch's ceil(fs / df), guarded against
+// rounding up a ratio that is an integer in exact arithmetic).
+std::size_t segment_samples(double fs, double df) {
+  return static_cast<std::size_t>(std::ceil(fs / df * (1 - 1e-12)));
+}
+
+std::string list_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names)
+    s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace
+
+const char* to_string(Kind kind) {
+  switch (kind) {
+    case Kind::kDisplacement:
+      return "displacement";
+    case Kind::kVelocity:
+      return "velocity";
+    case Kind::kAcceleration:
+      return "acceleration";
+    case Kind::kOther:
+      break;
+  }
+  return "other";
+}
+
+Selection select_channels(const modelc::ModelDescription* model, const spectral::Channels& data,
+                          const std::vector<std::string>& names) {
+  // What each channel of the file is, by the model output of the same name.
+  std::vector<ChannelInfo> all(data.names.size());
+  for (std::size_t c = 0; c < data.names.size(); ++c) {
+    all[c].name = data.names[c];
+    all[c].column = c;
+    if (model == nullptr) continue;
+    for (std::size_t o = 0; o < model->output_names.size(); ++o) {
+      if (model->output_names[o] != data.names[c]) continue;
+      const OutputSpec& spec = model->outputs[o];
+      all[c].kind = kind_of(spec.kind);
+      if (all[c].kind != Kind::kOther) {
+        all[c].node = spec.node;
+        all[c].dof = spec.dof;
+        all[c].location =
+            model->describe_node(spec.node) + " " + kDofNames[static_cast<std::size_t>(spec.dof)];
+      }
+    }
+  }
+
+  Selection sel;
+  if (!names.empty()) {
+    for (const std::string& n : names) {
+      const auto it = std::find(data.names.begin(), data.names.end(), n);
+      if (it == data.names.end()) {
+        throw InputError("unknown channel '" + n + "': " + data.source + " has the channels " +
+                         list_names(data.names));
+      }
+      const auto c = static_cast<std::size_t>(it - data.names.begin());
+      for (const ChannelInfo& s : sel.channels)
+        if (s.column == c) throw InputError("channel '" + n + "' is given twice");
+      sel.channels.push_back(all[c]);
+    }
+  } else {
+    // The most common kind among the channels that map to a node DOF.
+    std::array<int, 3> count{};
+    for (const ChannelInfo& ci : all)
+      if (ci.kind != Kind::kOther) ++count[static_cast<std::size_t>(ci.kind)];
+    const auto best =
+        static_cast<std::size_t>(std::max_element(count.begin(), count.end()) - count.begin());
+    if (count[best] == 0) {
+      sel.channels = all;
+      if (model != nullptr) {
+        sel.notes.push_back(
+            "no channel of the response maps to a node DOF of the model: every "
+            "channel used, no mode shapes (no MAC)");
+      }
+    } else {
+      for (const ChannelInfo& ci : all)
+        if (static_cast<std::size_t>(ci.kind) == best) sel.channels.push_back(ci);
+      for (std::size_t k = 0; k < count.size(); ++k) {
+        if (k != best && count[k] > 0) {
+          sel.notes.push_back(std::to_string(count[k]) + " " + to_string(static_cast<Kind>(k)) +
+                              " channel(s) left out: one kind at a time (give --channels)");
+        }
+      }
+    }
+  }
+
+  bool mapped = sel.channels.size() >= 2;
+  for (const ChannelInfo& ci : sel.channels)
+    mapped = mapped && ci.kind != Kind::kOther && ci.kind == sel.channels.front().kind;
+  sel.shapes = mapped;
+  if (!mapped && sel.channels.size() >= 2 && model != nullptr) {
+    sel.notes.push_back(
+        "no MAC: the channels are not all node DOFs of one kind (displacement, velocity or "
+        "acceleration)");
+  }
+  if (sel.channels.size() == 1) sel.notes.push_back("one channel: its PSD, no mode shapes");
+  return sel;
+}
+
+ModelModes model_modes(const modelc::ModelDescription& model, const Selection& selection,
+                       const Options& options) {
+  if (options.modes < 1) throw InputError("the number of modes to check must be at least 1");
+  const int n = options.modes;
+  ModelModes out;
+  // The lowest few modes first; all of them when a direction filter leaves too few.
+  for (const int wanted : {std::max(12, 4 * n), 0}) {
+    modal::ModalOptions mo;
+    mo.modes = wanted;
+    const modal::ModalResult r = modal::modal_analysis(model.view(), mo);
+    if (!r.ok()) throw InputError("modal analysis of the model failed: " + r.error);
+    out = {};
+    std::vector<int> skipped;
+    for (int m = 0; m < r.modes() && static_cast<int>(out.number.size()) < n; ++m) {
+      double mass = 0;
+      if (options.direction >= 0) {
+        mass = r.mass_fraction(m, options.direction);
+        if (mass < options.min_mass_fraction) {
+          skipped.push_back(m + 1);
+          continue;
+        }
+      } else {
+        for (int d = 0; d < 3; ++d)
+          mass = std::max(mass, r.mass_fraction(m, d));
+      }
+      out.number.push_back(m + 1);
+      out.frequency.push_back(r.frequency(m));
+      out.damping.push_back(r.damping_ratio.size() > m ? r.damping_ratio(m) : 0.0);
+      out.mass_percent.push_back(100 * mass);
+    }
+    if (static_cast<int>(out.number.size()) == n || wanted == 0 || r.modes() < wanted) {
+      if (!skipped.empty()) {
+        std::string s;
+        for (int k : skipped)
+          s += (s.empty() ? "" : ", ") + std::to_string(k);
+        out.notes.push_back("model mode(s) " + s + " left out: effective mass along " +
+                            kAxes[static_cast<std::size_t>(options.direction)] + " below " +
+                            num(100 * options.min_mass_fraction) + " %");
+      }
+      if (static_cast<int>(out.number.size()) < n) {
+        throw InputError("the model has only " + std::to_string(out.number.size()) + " mode(s)" +
+                         (options.direction >= 0
+                              ? std::string(" with effective mass along ") +
+                                    kAxes[static_cast<std::size_t>(options.direction)] +
+                                    " of at least " + num(100 * options.min_mass_fraction) + " %"
+                              : std::string()) +
+                         "; " + std::to_string(n) + " asked for");
+      }
+      if (selection.shapes) {
+        std::vector<modal::Channel> ch;
+        for (const ChannelInfo& ci : selection.channels)
+          ch.push_back({ci.node, ci.dof});
+        const Eigen::MatrixXd at = modal::shapes_at(r, ch);
+        out.shapes.resize(at.rows(), n);
+        for (int k = 0; k < n; ++k)
+          out.shapes.col(k) = at.col(out.number[static_cast<std::size_t>(k)] - 1);
+      }
+      return out;
+    }
+  }
+  return out;  // not reached
+}
+
+double resolve_resolution(const spectral::Channels& data, double lowest_model_hz,
+                          const Options& options, std::vector<std::string>* notes) {
+  const double fs = data.fs;
+  const std::size_t n = data.samples();
+  if (options.resolution_hz > 0) {
+    const std::size_t seg = segment_samples(fs, options.resolution_hz);
+    if (n < seg) {
+      throw InputError("the record is too short for a resolution of " + num(options.resolution_hz) +
+                       " Hz: it is " + num(static_cast<double>(n) / fs) + " s (" +
+                       std::to_string(n) + " samples at " + num(fs) + " Hz), and one segment of " +
+                       num(static_cast<double>(seg) / fs) + " s (" + std::to_string(seg) +
+                       " samples) is needed; give a record of at least " +
+                       num(static_cast<double>(seg) / fs) + " s or a coarser --resolution");
+    }
+    return options.resolution_hz;
+  }
+  const double wanted = options.tolerance * lowest_model_hz / 2;
+  if (n >= segment_samples(fs, wanted)) return wanted;
+  const double df = fs / static_cast<double>(n);
+  if (notes != nullptr) {
+    notes->push_back("resolution " + num(df) + " Hz (the whole record, " +
+                     num(static_cast<double>(n) / fs) + " s, as one segment) is coarser than " +
+                     "tolerance x lowest frequency / 2 = " + num(wanted) + " Hz, which needs " +
+                     num(1 / wanted) + " s");
+  }
+  return df;
+}
+
+Identification identify(const spectral::Channels& data, const Selection& selection,
+                        double resolution_hz, double f_min, double f_max, const Options& options) {
+  if (selection.channels.empty()) throw InputError("no channels to analyse");
+  Identification id;
+  for (const ChannelInfo& ci : selection.channels)
+    id.channels.push_back(ci.name);
+  spectral::WelchOptions wo;
+  wo.segment = segment_samples(data.fs, resolution_hz);
+  wo.overlap = options.overlap;
+  wo.window = options.window;
+  id.f_min = std::max(0.0, f_min);
+  id.f_max = std::min(f_max, data.fs / 2);
+  spectral::PeakOptions po;
+  po.f_min = id.f_min;
+  po.f_max = id.f_max;
+  po.min_prominence = options.min_prominence;
+  po.relative_threshold = options.min_level;
+  try {
+    spectral::Welch welch(data.fs, wo);
+    if (selection.channels.size() == 1) {
+      id.method = "PSD";
+      id.spectrum = welch.psd(data.data[selection.channels.front().column]);
+      id.grid = id.spectrum.grid;
+      id.auto_psd.push_back(id.spectrum);
+      for (const spectral::Peak& p : spectral::find_peaks(id.spectrum, po))
+        id.peaks.push_back({p, spectral::half_power(id.spectrum, p), {}, 0});
+      return id;
+    }
+    std::vector<std::vector<double>> x;
+    for (const ChannelInfo& ci : selection.channels)
+      x.push_back(data.data[ci.column]);
+    const spectral::CrossSpectralMatrix g = welch.matrix(x);
+    const spectral::Fdd f = spectral::fdd(g);
+    id.method = "FDD";
+    id.grid = g.grid;
+    for (std::size_t i = 0; i < g.channels; ++i) {
+      id.auto_psd.push_back(g.auto_spectrum(i));
+      id.singular.push_back(f.singular_spectrum(i));
+    }
+    id.spectrum = id.singular.front();
+    for (const spectral::OperationalMode& m : spectral::fdd_modes(f, po))
+      id.peaks.push_back({m.peak, m.half_power, m.shape, 1});
+    // Closely spaced modes: where one mode's tail dominates s1, a weaker neighbour with another
+    // shape shows as a peak of s2 (Brincker et al. 2001). s2 peaks count when they reach
+    // min_level of the largest s1 value in the range and lie outside the half-power band (at
+    // least 2 lines either side) of every s1 peak, where s2 only echoes s1's mode.
+    if (g.channels >= 2) {
+      const spectral::Spectrum& s1 = id.singular[0];
+      const spectral::Spectrum& s2 = id.singular[1];
+      double s1_max = 0;
+      for (std::size_t k = 0; k < s1.values.size(); ++k) {
+        const double fk = id.grid.frequency(k);
+        if (fk >= po.f_min && fk <= po.f_max) s1_max = std::max(s1_max, s1.values[k]);
+      }
+      spectral::PeakOptions po2 = po;
+      po2.relative_threshold = 0;
+      const std::size_t first_count = id.peaks.size();
+      for (const spectral::Peak& p : spectral::find_peaks(s2, po2)) {
+        if (p.value < options.min_level * s1_max) continue;
+        bool echo = false;
+        for (std::size_t q = 0; q < first_count; ++q) {
+          const IdentifiedPeak& a = id.peaks[q];
+          const double two_lines = 2 * id.grid.df();
+          const double lo = std::min(a.peak.frequency - two_lines,
+                                     a.half_power ? a.half_power->f_low : a.peak.frequency);
+          const double hi = std::max(a.peak.frequency + two_lines,
+                                     a.half_power ? a.half_power->f_high : a.peak.frequency);
+          echo = echo || (p.frequency >= lo && p.frequency <= hi);
+        }
+        if (echo) continue;
+        Eigen::JacobiSVD<Eigen::MatrixXcd> svd(g.at(p.line), Eigen::ComputeFullU);
+        id.peaks.push_back(
+            {p, spectral::half_power(s2, p), spectral::real_shape(svd.matrixU().col(1)), 2});
+      }
+      std::stable_sort(id.peaks.begin(), id.peaks.end(),
+                       [](const IdentifiedPeak& a, const IdentifiedPeak& b) {
+                         return a.peak.frequency < b.peak.frequency;
+                       });
+    }
+  } catch (const spectral::Error& e) {
+    throw InputError(e.what());
+  }
+  return id;
+}
+
+std::vector<int> match_peaks(const std::vector<double>& model_hz,
+                             const std::vector<double>& peak_hz, double search_band) {
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;  // distance, mode, peak
+  for (std::size_t m = 0; m < model_hz.size(); ++m) {
+    for (std::size_t p = 0; p < peak_hz.size(); ++p) {
+      const double d = std::abs(peak_hz[p] - model_hz[m]) / model_hz[m];
+      if (d <= search_band) pairs.emplace_back(d, m, p);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());  // ties: lower mode, then lower peak first
+  std::vector<int> match(model_hz.size(), -1);
+  std::vector<bool> used(peak_hz.size(), false);
+  for (const auto& [d, m, p] : pairs) {
+    if (match[m] >= 0 || used[p]) continue;
+    match[m] = static_cast<int>(p);
+    used[p] = true;
+  }
+  return match;
+}
+
+Report compare(const ModelModes& model, const Identification& identification,
+               const Selection& selection, const Options& options) {
+  Report rep;
+  rep.selection = selection;
+  rep.identification = identification;
+  rep.model = model;
+  rep.options = options;
+  std::vector<double> peak_hz;
+  for (const IdentifiedPeak& p : identification.peaks)
+    peak_hz.push_back(p.peak.frequency);
+  const std::vector<int> match = match_peaks(model.frequency, peak_hz, options.search_band);
+  const bool shapes =
+      selection.shapes && model.shapes.cols() == static_cast<Eigen::Index>(model.frequency.size());
+  std::string failed;
+  int passed = 0;
+  for (std::size_t k = 0; k < model.frequency.size(); ++k) {
+    ModeCheck c;
+    c.number = model.number[k];
+    c.model_hz = model.frequency[k];
+    c.model_damping = model.damping[k];
+    c.mass_percent = model.mass_percent[k];
+    std::vector<std::string> why;
+    if (match[k] < 0) {
+      why.push_back("not found: no peak within +-" + num(100 * options.search_band, "%.3g") +
+                    " % (" + num(c.model_hz * (1 - options.search_band), "%.4f") + "-" +
+                    num(c.model_hz * (1 + options.search_band), "%.4f") + " Hz)");
+    } else {
+      const IdentifiedPeak& p = identification.peaks[static_cast<std::size_t>(match[k])];
+      c.found = true;
+      c.identified_hz = p.peak.frequency;
+      c.error = (c.identified_hz - c.model_hz) / c.model_hz;
+      c.frequency_ok = std::abs(c.error) <= options.tolerance;
+      if (p.half_power) {
+        c.damping = p.half_power->damping;
+        c.resolution_ratio = p.half_power->resolution_ratio;
+      }
+      if (!c.frequency_ok) {
+        why.push_back("frequency error " + num(100 * c.error, "%+.2f") + " % exceeds " +
+                      num(100 * options.tolerance, "%.3g") + " %");
+      }
+      if (shapes && p.shape.size() == model.shapes.rows()) {
+        c.mac = modal::mac(p.shape, model.shapes.col(static_cast<Eigen::Index>(k)));
+        c.mac_ok = *c.mac >= options.min_mac;
+        if (!c.mac_ok) {
+          why.push_back("MAC " + num(*c.mac, "%.3f") + " below " + num(options.min_mac, "%.3g"));
+        }
+      }
+    }
+    c.pass = why.empty();
+    if (c.pass) {
+      c.verdict = "ok";
+      ++passed;
+    } else {
+      std::string w;
+      for (const auto& s : why)
+        w += (w.empty() ? "" : "; ") + s;
+      c.verdict = w;
+      failed += (failed.empty() ? "" : ", ") + std::string("mode ") + std::to_string(c.number) +
+                " (" + w + ")";
+    }
+    rep.modes.push_back(c);
+  }
+  rep.pass = failed.empty();
+  const std::string n = std::to_string(model.frequency.size());
+  if (rep.pass) {
+    rep.summary = "PASS: " + n + " of " + n + " modes within " +
+                  num(100 * options.tolerance, "%.3g") + " %" +
+                  (shapes ? ", MAC >= " + num(options.min_mac, "%.3g") : std::string(", no MAC"));
+  } else {
+    rep.summary = "FAIL: " + std::to_string(passed) + " of " + n + " modes pass; " + failed;
+  }
+  return rep;
+}
+
+Report check_files(const std::string& model_path, const std::string& response_path,
+                   const Options& options) {
+  namespace fs = std::filesystem;
+  if (options.tolerance <= 0) throw InputError("the tolerance must be positive");
+  if (options.search_band <= 0) throw InputError("the search band must be positive");
+  for (const auto& [what, path] : {std::pair<const char*, const std::string&>{"model", model_path},
+                                   {"response", response_path}}) {
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+      throw InputError(std::string("cannot read the ") + what + " file '" + path +
+                       "': no such file");
+    if (fs::is_directory(path, ec))
+      throw InputError(std::string("cannot read the ") + what + " file '" + path +
+                       "': it is a directory");
+    std::ifstream probe(path);
+    if (!probe)
+      throw InputError(std::string("cannot read the ") + what + " file '" + path +
+                       "': permission denied or unreadable");
+  }
+  const modelc::LoadResult loaded = modelc::load_model(model_path);
+  if (!loaded.ok()) {
+    std::string s = modelc::format_all(loaded.errors);
+    while (!s.empty() && s.back() == '\n')
+      s.pop_back();
+    throw InputError(s);
+  }
+  const modelc::ModelDescription& model = *loaded.model;
+
+  spectral::Channels data;
+  try {
+    data = spectral::read_channels(response_path);
+  } catch (const spectral::Error& e) {
+    throw InputError(e.what());
+  }
+
+  Selection sel = select_channels(&model, data, options.channels);
+  ModelModes modes = model_modes(model, sel, options);
+
+  const double lowest = *std::min_element(modes.frequency.begin(), modes.frequency.end());
+  const double highest = *std::max_element(modes.frequency.begin(), modes.frequency.end());
+  const double nyquist = data.fs / 2;
+  if (highest * (1 + options.search_band) >= nyquist) {
+    throw InputError("model mode " +
+                     std::to_string(modes.number[static_cast<std::size_t>(
+                         std::max_element(modes.frequency.begin(), modes.frequency.end()) -
+                         modes.frequency.begin())]) +
+                     " (" + num(highest) + " Hz, search band up to " +
+                     num(highest * (1 + options.search_band)) +
+                     " Hz) is not below the record's Nyquist frequency " + num(nyquist) + " Hz");
+  }
+  std::vector<std::string> notes;
+  const double df = resolve_resolution(data, lowest, options, &notes);
+  const Identification id = identify(data, sel, df, lowest * (1 - options.search_band),
+                                     highest * (1 + options.search_band), options);
+  Report rep = compare(modes, id, sel, options);
+  rep.model_name = model.name;
+  rep.model_file = model_path;
+  rep.response_file = response_path;
+  rep.fs = data.fs;
+  rep.duration = data.duration();
+  rep.kind = sel.channels.front().kind;
+  rep.notes = sel.notes;
+  rep.notes.insert(rep.notes.end(), modes.notes.begin(), modes.notes.end());
+  rep.notes.insert(rep.notes.end(), notes.begin(), notes.end());
+  for (const ModeCheck& c : rep.modes) {
+    if (c.resolution_ratio && *c.resolution_ratio > 0.25) {
+      rep.notes.push_back("mode " + std::to_string(c.number) +
+                          ": damping marked * is not reliable: a line's bandwidth is " +
+                          num(100 * *c.resolution_ratio, "%.0f") +
+                          " % of the half-power band (below 25 % needs longer segments)");
+    }
+  }
+  return rep;
+}
+
+}  // namespace ntn::modecheck
