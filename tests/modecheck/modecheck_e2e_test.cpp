@@ -197,12 +197,36 @@ TEST_F(ModeCheckEndToEnd, ProgramPassesAndPrintsTheTable) {
   const std::string js = ntn_test::read_text(json);
   EXPECT_NE(js.find("\"pass\": true"), std::string::npos);
   EXPECT_NE(js.find("\"method\": \"FDD\""), std::string::npos);
-  // The spectrum file: comment lines with the model's frequencies, a header, one row per line.
+  // The spectrum file: a header and one row per line; the modes beside it.
   const std::string sp = ntn_test::read_text(psd);
-  EXPECT_NE(sp.find("# model_hz,1.604"), std::string::npos);
-  EXPECT_NE(sp.find("frequency[Hz],s1,s2,s3,s4,s5,s6,s7,s8,s9,s10,psd_roof_ux"), std::string::npos);
+  EXPECT_EQ(sp.rfind("frequency[Hz],s1[m^2/Hz],s2[m^2/Hz],", 0), 0u);
+  EXPECT_NE(sp.find(",psd_roof_B1_uy[m^2/Hz],"), std::string::npos);
   const auto rows = std::count(sp.begin(), sp.end(), '\n');
-  EXPECT_EQ(rows, 6 + 40000 / 2 + 1);  // 5 comments + header, nfft/2 + 1 lines
+  EXPECT_EQ(rows, 1 + 40000 / 2 + 1);  // header, nfft/2 + 1 lines
+  const std::string modes = ntn_test::read_text(dir_->file("spectrum_modes.csv"));
+  EXPECT_EQ(
+      modes.rfind("mode,model_hz,identified_hz,error_percent,damping_percent,mac,pass\n1,1.604", 0),
+      0u)
+      << modes;
+  EXPECT_EQ(std::count(modes.begin(), modes.end(), '\n'), 4);
+}
+
+// --plot: BASE.png (PNG signature) and BASE.svg (an <svg> element) through ntn::plot and gnuplot.
+// Skipped where gnuplot is not installed (tools/common.sh installs gnuplot-nox).
+TEST_F(ModeCheckEndToEnd, ProgramDrawsTheSpectrum) {
+  if (ntn_test::run_program("command -v gnuplot").exit_code != 0) GTEST_SKIP() << "no gnuplot";
+  const std::string base = dir_->file("spectrum_plot");
+  const auto p = ntn_test::run_program(
+      ntn_test::quoted(program()) + " " + ntn_test::quoted(model_path()) + " " +
+      ntn_test::quoted(csv_) + kProgramOptions + " --plot " + ntn_test::quoted(base));
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  EXPECT_NE(p.output.find("  plot: " + base + ".png"), std::string::npos) << p.output;
+  const std::string png = ntn_test::read_text(base + ".png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  const std::string svg = ntn_test::read_text(base + ".svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("mode 1  1.6046 Hz"), std::string::npos);
 }
 
 // Base excitation along x excites only the modes with mass along x: with --direction x the first

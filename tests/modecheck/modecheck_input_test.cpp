@@ -165,6 +165,17 @@ TEST_F(ModeCheckInput, BadOptions) {
   EXPECT_EQ(p.exit_code, 2);
 }
 
+// --plot into a directory that does not exist: the plot library's message, exit 2 (after the
+// table, which is still printed).
+TEST_F(ModeCheckInput, PlotIntoAMissingDirectory) {
+  const std::string base = dir_.file("no_such_dir") + "/plot";
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(record("r.csv")) +
+                     " --plot " + ntn_test::quoted(base));
+  EXPECT_EQ(p.exit_code, 2) << p.output;
+  EXPECT_NE(p.output.find("ntn-check-modes: error: the plot: "), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find(" mode   model Hz"), std::string::npos) << p.output;
+}
+
 // The same cases through the library: InputError, nothing else.
 TEST_F(ModeCheckInput, LibraryThrowsInputError) {
   const std::string path = record("r.csv");

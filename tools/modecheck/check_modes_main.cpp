@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Check a response's spectrum against a model's natural frequencies and mode shapes "
       "(exit 0 pass, 1 fail, 2 bad input)"};
-  std::string model_path, response_path, json_path, psd_path, window = "hann", direction;
+  std::string model_path, response_path, json_path, psd_path, plot_base, window = "hann", direction;
   mc::Options o;
   double tolerance_pct = 100 * o.tolerance, band_pct = 100 * o.search_band,
          min_mass_pct = 100 * o.min_mass_fraction;
@@ -70,7 +70,10 @@ int main(int argc, char** argv) {
   app.add_option("--json", json_path, "write the summary as JSON to FILE ('-': stdout, no table)");
   app.add_option("--psd-out", psd_path,
                  "write the spectrum used (frequency, singular values or PSD, each channel's "
-                 "PSD) and the model frequencies as CSV");
+                 "PSD) as CSV, and the checked modes beside it as FILE_modes.csv");
+  app.add_option("--plot", plot_base,
+                 "draw the spectrum with the model frequencies marked to BASE.png and BASE.svg "
+                 "(gnuplot)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -96,6 +99,13 @@ int main(int argc, char** argv) {
       }
     }
     if (!psd_path.empty()) mc::write_spectrum_csv(psd_path, report);
+    if (!plot_base.empty()) {
+      const auto files = mc::write_plot(plot_base, report);
+      if (json_path != "-") {
+        for (const std::string& f : files)
+          std::printf("  plot: %s\n", f.c_str());
+      }
+    }
     if (!report.pass) std::fprintf(stderr, "ntn-check-modes: %s\n", report.summary.c_str());
     return report.pass ? 0 : 1;
   } catch (const mc::InputError& e) {
@@ -103,6 +113,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const ntn::spectral::Error& e) {
     std::fprintf(stderr, "ntn-check-modes: error: %s\n", e.what());
+    return 2;
+  } catch (const mc::PlotError& e) {
+    std::fprintf(stderr, "ntn-check-modes: error: the plot: %s\n", e.what());
     return 2;
   }
 }

@@ -80,6 +80,7 @@ Selection select_channels(const modelc::ModelDescription* model, const spectral:
   for (std::size_t c = 0; c < data.names.size(); ++c) {
     all[c].name = data.names[c];
     all[c].column = c;
+    if (c < data.units.size()) all[c].unit = data.units[c];
     if (model == nullptr) continue;
     for (std::size_t o = 0; o < model->output_names.size(); ++o) {
       if (model->output_names[o] != data.names[c]) continue;

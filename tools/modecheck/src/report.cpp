@@ -163,37 +163,58 @@ std::string to_json(const Report& r) {
   return s;
 }
 
+std::string modes_csv_path(const std::string& spectrum_path) {
+  std::string stem = spectrum_path;
+  const auto slash = stem.find_last_of('/');
+  const auto dot = stem.find_last_of('.');
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) stem.resize(dot);
+  return stem + "_modes.csv";
+}
+
 void write_spectrum_csv(const std::string& path, const Report& r) {
   const Identification& id = r.identification;
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError("cannot write the spectrum file '" + path + "'");
-  out << "# ntn-check-modes spectrum: model " << r.model_name << ", response " << r.response_file
-      << "\n# " << spectrum_text(r) << "\n";
-  out << "# model_hz";
-  for (const ModeCheck& c : r.modes)
-    out << ',' << num(c.model_hz, "%.10g");
-  out << "\n# model_mode";
-  for (const ModeCheck& c : r.modes)
-    out << ',' << c.number;
-  out << "\n# identified_hz";
-  for (const ModeCheck& c : r.modes)
-    out << ',' << (c.found ? num(c.identified_hz, "%.10g") : std::string("nan"));
-  out << "\nfrequency[Hz]";
-  for (std::size_t i = 0; i < id.singular.size(); ++i)
-    out << ",s" << (i + 1);
-  for (const std::string& c : id.channels)
-    out << ",psd_" << c;
-  out << '\n';
-  const std::size_t lines = id.spectrum.values.size();
-  for (std::size_t k = 0; k < lines; ++k) {
-    out << num(id.grid.frequency(k), "%.10g");
-    for (const spectral::Spectrum& sv : id.singular)
-      out << ',' << num(sv.values[k], "%.9g");
-    for (const spectral::Spectrum& p : id.auto_psd)
-      out << ',' << num(p.values[k], "%.9g");
+  // Units: a PSD of a channel in u is in u^2/Hz; the singular values share the channels' unit
+  // when they all have the same.
+  std::string common = r.selection.channels.empty() ? "" : r.selection.channels.front().unit;
+  for (const ChannelInfo& c : r.selection.channels)
+    if (c.unit != common) common.clear();
+  const auto psd_unit = [](const std::string& u) {
+    return u.empty() ? std::string("1/Hz") : u + "^2/Hz";
+  };
+  {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw InputError("cannot write the spectrum file '" + path + "'");
+    out << "frequency[Hz]";
+    for (std::size_t i = 0; i < id.singular.size(); ++i)
+      out << ",s" << (i + 1) << '[' << psd_unit(common) << ']';
+    for (std::size_t c = 0; c < id.channels.size(); ++c) {
+      out << ",psd_" << id.channels[c] << '['
+          << psd_unit(c < r.selection.channels.size() ? r.selection.channels[c].unit : "") << ']';
+    }
     out << '\n';
+    const std::size_t lines = id.spectrum.values.size();
+    for (std::size_t k = 0; k < lines; ++k) {
+      out << num(id.grid.frequency(k), "%.10g");
+      for (const spectral::Spectrum& sv : id.singular)
+        out << ',' << num(sv.values[k], "%.9g");
+      for (const spectral::Spectrum& p : id.auto_psd)
+        out << ',' << num(p.values[k], "%.9g");
+      out << '\n';
+    }
+    if (!out) throw InputError("cannot write the spectrum file '" + path + "'");
   }
-  if (!out) throw InputError("cannot write the spectrum file '" + path + "'");
+  const std::string modes = modes_csv_path(path);
+  std::ofstream out(modes, std::ios::binary);
+  if (!out) throw InputError("cannot write the modes file '" + modes + "'");
+  out << "mode,model_hz,identified_hz,error_percent,damping_percent,mac,pass\n";
+  for (const ModeCheck& c : r.modes) {
+    out << c.number << ',' << num(c.model_hz, "%.10g") << ','
+        << (c.found ? num(c.identified_hz, "%.10g") : "") << ','
+        << (c.found ? num(100 * c.error, "%.6g") : "") << ','
+        << (c.damping ? num(100 * *c.damping, "%.6g") : "") << ','
+        << (c.mac ? num(*c.mac, "%.6g") : "") << ',' << (c.pass ? 1 : 0) << '\n';
+  }
+  if (!out) throw InputError("cannot write the modes file '" + modes + "'");
 }
 
 }  // namespace ntn::modecheck

@@ -62,6 +62,7 @@ struct ChannelInfo {
   int node = -1;         // model node index (kOther: -1)
   int dof = -1;          // 0..5
   std::string location;  // "node 201 ux" (empty for kOther)
+  std::string unit;      // the file's unit of the channel ("m"), may be empty
 };
 
 struct Selection {
@@ -168,8 +169,20 @@ Report check_files(const std::string& model_path, const std::string& response_pa
 
 std::string format_table(const Report& report);
 std::string to_json(const Report& report);
-// The spectrum used: frequency, s1..sn (FDD) and each channel's PSD, with the model's and the
-// identified frequencies as '#' comment lines. Throws InputError when it cannot write.
+// The spectrum used, as a table ntn-plot reads: frequency[Hz], s1..sn (FDD) and each channel's
+// PSD ("name[unit^2/Hz]"), one row per line; and beside it, at modes_csv_path(path), the checked
+// modes: mode, model_hz, identified_hz, error_percent, mac, pass. Throws InputError when it
+// cannot write.
 void write_spectrum_csv(const std::string& path, const Report& report);
+std::string modes_csv_path(const std::string& spectrum_path);  // "x.csv" -> "x_modes.csv"
+
+// BASE.png and BASE.svg (ntn::plot, gnuplot): the singular values (FDD) or the PSD, and below them
+// each channel's PSD, log scale, with the model's frequencies marked ("mode 1 1.6046 Hz"), from
+// 0 to 1.5 times the top of the searched range. Returns the two paths; throws PlotError.
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+std::vector<std::string> write_plot(const std::string& base, const Report& report);
 
 }  // namespace ntn::modecheck
