@@ -230,7 +230,7 @@ TEST_F(ModeCheckEndToEnd, ProgramDrawsTheSpectrum) {
 }
 
 // Base excitation along x excites only the modes with mass along x: with --direction x the first
-// such mode is mode 2 (the x sway); the pulse at A1 excites it as well, so it passes.
+// such mode is mode 2 (the x sway); the pulse at A1 excites it as well, so it passes (1 %).
 TEST_F(ModeCheckEndToEnd, DirectionSelectsModesWithMassAlongIt) {
   mc::Options o = e2e_options();
   o.modes = 1;
@@ -240,6 +240,15 @@ TEST_F(ModeCheckEndToEnd, DirectionSelectsModesWithMassAlongIt) {
   EXPECT_EQ(r.modes[0].number, 2);
   EXPECT_GT(r.modes[0].mass_percent, 50.0);
   EXPECT_TRUE(r.pass) << r.summary;
+  // Without the direction, the two ux channels of the default frame (corner A1) do not see mode
+  // 1, the sway of frame B along y (its ux there is zero to rounding): that mode fails as unseen,
+  // instead of being matched to whatever lies near 1.60 Hz in those channels.
+  o = e2e_options();
+  o.channels = {"roof_ux", "floor1_ux"};
+  const mc::Report u = mc::check_files(model_path(), csv_, o);
+  EXPECT_FALSE(u.pass);
+  EXPECT_NE(u.modes[0].verdict.find("not seen by the channels"), std::string::npos)
+      << u.modes[0].verdict;
 }
 
 // 3 % stiffer: each mode's peak is still the nearest (1.49 % is well under half the 8 % spacing of

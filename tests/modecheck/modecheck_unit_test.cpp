@@ -196,6 +196,23 @@ TEST(ModeCheckCompare, AWrongShapeFailsOnMac) {
   EXPECT_NE(r.summary.find("mode 3 (MAC 0.0"), std::string::npos) << r.summary;
 }
 
+// A mode the channels barely see (visibility below 5 %) fails as such, whatever peak lies near
+// its frequency, and takes no peak from the others.
+TEST(ModeCheckCompare, AModeTheChannelsDoNotSeeFails) {
+  mc::ModelModes m = true_model();
+  m.visibility = {1.0, 1.0, 0.01};
+  const mc::Report r = check_with_shapes(m, options());
+  EXPECT_FALSE(r.pass);
+  EXPECT_TRUE(r.modes[0].pass);
+  EXPECT_TRUE(r.modes[1].pass);
+  EXPECT_FALSE(r.modes[2].found);
+  EXPECT_NE(r.modes[2].verdict.find("not seen by the channels: they move 1 % of the mode's"),
+            std::string::npos)
+      << r.modes[2].verdict;
+  m.visibility = {1.0, 1.0, 0.06};
+  EXPECT_TRUE(check_with_shapes(m, options()).pass);
+}
+
 // A model mode with no peak within the band (4.4 Hz: the nearest peaks are 2.6 and 6.3 Hz, 41 %
 // and 43 % away) is reported as not found, with the band searched.
 TEST(ModeCheckCompare, AMissingModeIsNotFound) {

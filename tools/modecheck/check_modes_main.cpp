@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   std::string model_path, response_path, json_path, psd_path, plot_base, window = "hann", direction;
   mc::Options o;
   double tolerance_pct = 100 * o.tolerance, band_pct = 100 * o.search_band,
-         min_mass_pct = 100 * o.min_mass_fraction;
+         min_mass_pct = 100 * o.min_mass_fraction, min_visibility_pct = 100 * o.min_visibility;
   app.add_option("model", model_path, "model file (.toml)")->required();
   app.add_option("response", response_path,
                  "response: the CSV of ntn-run / ntn-hil (time column, then channels), a plain "
@@ -54,6 +54,11 @@ int main(int argc, char** argv) {
   app.add_option("--band", band_pct, "search band around each model frequency, +-%")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  app.add_option("--min-visibility", min_visibility_pct,
+                 "a mode fails as not seen when the channels move less than this % of its "
+                 "largest motion")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   app.add_option("--window", window, "hann, hamming, blackman, flattop, rectangular")
       ->capture_default_str();
   app.add_option("--overlap", o.overlap, "Welch segment overlap, fraction")
@@ -83,6 +88,7 @@ int main(int argc, char** argv) {
   o.tolerance = tolerance_pct / 100;
   o.search_band = band_pct / 100;
   o.min_mass_fraction = min_mass_pct / 100;
+  o.min_visibility = min_visibility_pct / 100;
   if (!direction.empty()) o.direction = direction[0] - 'x';
 
   try {

@@ -195,6 +195,28 @@ ModelModes model_modes(const modelc::ModelDescription& model, const Selection& s
                               : std::string()) +
                          "; " + std::to_string(n) + " asked for");
       }
+      bool all_mapped = !selection.channels.empty();
+      for (const ChannelInfo& ci : selection.channels)
+        all_mapped = all_mapped && ci.kind != Kind::kOther;
+      if (all_mapped) {
+        const int nodes = r.dofs / 6;
+        for (int k = 0; k < n; ++k) {
+          const int m = out.number[static_cast<std::size_t>(k)] - 1;
+          std::array<double, 2> largest{};  // translations, rotations
+          for (int node = 0; node < nodes; ++node) {
+            for (int d = 0; d < 6; ++d) {
+              double& l = largest[d < 3 ? 0 : 1];
+              l = std::max(l, std::abs(r.shape(m, node, d)));
+            }
+          }
+          double ratio = 0;
+          for (const ChannelInfo& ci : selection.channels) {
+            const double top = largest[ci.dof < 3 ? 0 : 1];
+            if (top > 0) ratio = std::max(ratio, std::abs(r.shape(m, ci.node, ci.dof)) / top);
+          }
+          out.visibility.push_back(ratio);
+        }
+      }
       if (selection.shapes) {
         std::vector<modal::Channel> ch;
         for (const ChannelInfo& ci : selection.channels)
@@ -353,7 +375,11 @@ Report compare(const ModelModes& model, const Identification& identification,
   std::vector<double> peak_hz;
   for (const IdentifiedPeak& p : identification.peaks)
     peak_hz.push_back(p.peak.frequency);
-  const std::vector<int> match = match_peaks(model.frequency, peak_hz, options.search_band);
+  // Modes the channels do not see take no peak from the others.
+  std::vector<double> seen_hz = model.frequency;
+  for (std::size_t k = 0; k < seen_hz.size() && k < model.visibility.size(); ++k)
+    if (model.visibility[k] < options.min_visibility) seen_hz[k] = std::nan("");
+  const std::vector<int> match = match_peaks(seen_hz, peak_hz, options.search_band);
   const bool shapes =
       selection.shapes && model.shapes.cols() == static_cast<Eigen::Index>(model.frequency.size());
   std::string failed;
@@ -365,7 +391,12 @@ Report compare(const ModelModes& model, const Identification& identification,
     c.model_damping = model.damping[k];
     c.mass_percent = model.mass_percent[k];
     std::vector<std::string> why;
-    if (match[k] < 0) {
+    const bool unseen = k < model.visibility.size() && model.visibility[k] < options.min_visibility;
+    if (unseen) {
+      why.push_back("not seen by the channels: they move " +
+                    num(100 * model.visibility[k], "%.2g") +
+                    " % of the mode's largest motion (choose other channels, or --direction)");
+    } else if (match[k] < 0) {
       why.push_back("not found: no peak within +-" + num(100 * options.search_band, "%.3g") +
                     " % (" + num(c.model_hz * (1 - options.search_band), "%.4f") + "-" +
                     num(c.model_hz * (1 + options.search_band), "%.4f") + " Hz)");

@@ -49,6 +49,7 @@ struct Options {
   double min_prominence = 1.25;  // peaks: value / higher base (1 dB on a power spectrum: the dip
                                  // between close damped modes is shallow)
   double min_level = 1e-4;       // peaks: value / the largest value in the searched range
+  double min_visibility = 0.05;  // a mode the channels see less of than this fails (below)
 };
 
 // How a response channel maps to the model.
@@ -84,6 +85,10 @@ struct ModelModes {
   std::vector<double> damping;       // the model's modal damping ratio (alpha / 2 omega)
   std::vector<double> mass_percent;  // effective mass along options.direction (or the largest)
   Eigen::MatrixXd shapes;            // channels x modes; empty without shapes
+  // How much of each mode the channels see: the largest |phi| at the channels' node DOFs over
+  // the largest |phi| of the same sort (translation or rotation) anywhere in the model. Empty
+  // when a channel does not map to a node DOF.
+  std::vector<double> visibility;
   std::vector<std::string> notes;
 };
 
@@ -139,6 +144,9 @@ struct ModeCheck {
   std::string verdict;  // "ok" or what failed
 };
 
+// A mode whose visibility (ModelModes) is below options.min_visibility fails as "not seen by the
+// channels": a peak near its frequency would belong to something else, and its MAC is noise.
+//
 // Matching: every (mode, peak) pair with |f_peak - f_model| <= search_band f_model, taken in
 // order of increasing relative distance; a mode and a peak are matched once each. Returns, per
 // model frequency, the index of its peak or -1.
