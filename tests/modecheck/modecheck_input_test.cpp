@@ -176,6 +176,21 @@ TEST_F(ModeCheckInput, PlotIntoAMissingDirectory) {
   EXPECT_NE(p.output.find(" mode   model Hz"), std::string::npos) << p.output;
 }
 
+// A PEER AT2 record reads as one channel named after the file, which maps to no output of the
+// model: its PSD, frequencies only, no visibility and no MAC (the verdict depends on the record,
+// here a ground motion, not a response, so only the path is checked).
+TEST_F(ModeCheckInput, AnAt2RecordIsOneUnmappedChannel) {
+  const mc::Report r = mc::check_files(model(), NTN_RECORDS_DIR "/elCentro.AT2", mc::Options{});
+  EXPECT_EQ(r.identification.method, "PSD");
+  ASSERT_EQ(r.selection.channels.size(), 1u);
+  EXPECT_EQ(r.selection.channels[0].name, "elCentro");
+  EXPECT_FALSE(r.selection.shapes);
+  EXPECT_DOUBLE_EQ(r.fs, 50.0);
+  for (const mc::ModeCheck& c : r.modes)
+    EXPECT_FALSE(c.mac.has_value());
+  EXPECT_TRUE(r.model.visibility.empty());
+}
+
 // The same cases through the library: InputError, nothing else.
 TEST_F(ModeCheckInput, LibraryThrowsInputError) {
   const std::string path = record("r.csv");
