@@ -74,12 +74,13 @@ std::vector<std::string> write_plot(const std::string& base, const Report& r) {
     top.series.push_back(series(id.channels.front(), id.spectrum, f_top));
   }
   if (id.method == "FDD") {
+    const auto x_range = top.x_range;  // `top` dangles once the vector grows
     pl::Panel& low = fig.panels.emplace_back();
     low.title = "PSD of each channel";
     low.x_label = "frequency [Hz]";
     low.y_label = "PSD [" + psd_unit(common) + "]";
     low.y_scale = pl::Scale::kLog;
-    low.x_range = top.x_range;
+    low.x_range = x_range;
     low.markers = marks;
     for (std::size_t c = 0; c < id.auto_psd.size(); ++c)
       low.series.push_back(series(id.channels[c], id.auto_psd[c], f_top));
