@@ -263,9 +263,13 @@ ReadResult read_csv_text(std::string_view content, const std::string& column,
   return {std::move(r), std::nullopt};
 }
 
-ReadResult read_record(const std::string& path, const std::string& column) {
+bool is_at2_path(const std::string& path) {
   const std::string l = lower(path);
-  if (l.size() > 4 && l.substr(l.size() - 4) == ".at2") return read_at2(path);
+  return l.size() > 4 && l.substr(l.size() - 4) == ".at2";
+}
+
+ReadResult read_record(const std::string& path, const std::string& column) {
+  if (is_at2_path(path)) return read_at2(path);
   return read_csv(path, column);
 }
 

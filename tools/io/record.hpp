@@ -51,5 +51,8 @@ ReadResult read_csv_text(std::string_view text, const std::string& column,
 
 // By extension: .AT2/.at2 -> read_at2, anything else -> read_csv.
 ReadResult read_record(const std::string& path, const std::string& column = {});
+// True when `path` ends in ".at2" in any case: read_record and the channel readers of
+// ntn::spectral and ntn::plot choose the AT2 reader by it.
+bool is_at2_path(const std::string& path);
 
 }  // namespace ntn::io
