@@ -1,7 +1,7 @@
 // Helpers for the tests that run ntn-feeder and ntn-hil-<model> as subprocesses: a child process
-// with its output in a file (killed if the test ends first), a wait with a time limit, a
-// temporary directory removed at the end of the test, free loopback ports, and a wait until a
-// process has bound its UDP port.
+// with its output in a file (killed if the test ends first), a wait with a time limit, free
+// loopback ports, and a wait until a process has bound its UDP port. The temporary directory and
+// read_file come from tests/support/temp_files.hpp.
 #pragma once
 
 #include <fcntl.h>
@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -21,6 +20,7 @@
 #include <vector>
 
 #include "ntn/hil/udp.hpp"
+#include "support/temp_files.hpp"
 
 extern char** environ;
 
@@ -81,35 +81,6 @@ class Child {
   pid_t pid_ = -1;
   bool ok_ = false;
   bool reaped_ = false;
-};
-
-inline std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A fresh directory under the test temp dir, removed with everything in it at the end of scope.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              ("ntn_" + name + "_" + std::to_string(getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string operator/(const std::string& file) const { return (path_ / file).string(); }
-  std::string str() const { return path_.string(); }
-
- private:
-  std::filesystem::path path_;
 };
 
 // `n` distinct loopback UDP ports that were free a moment ago: bound together (so the kernel

@@ -115,8 +115,8 @@ const char* kProgramOptions = " -n 3 --tolerance 1 --resolution 0.025";
 class ModeCheckEndToEnd : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = std::make_unique<ntn_test::TempDir>("ntn_modecheck_e2e");
-    csv_ = dir_->file("frame3d_impulse.csv");
+    dir_ = std::make_unique<ntn_test::TempDir>("modecheck_e2e");
+    csv_ = *dir_ / "frame3d_impulse.csv";
     simulated_ = simulate(csv_);
   }
   static void TearDownTestSuite() { dir_.reset(); }
@@ -128,7 +128,7 @@ class ModeCheckEndToEnd : public ::testing::Test {
   // The same model with E and G raised by `factor`: every stiffness term scales, the masses do
   // not, so every frequency is sqrt(factor) times the original.
   static std::string stiffened_model(double factor) {
-    std::string text = ntn_test::read_text(model_path());
+    std::string text = ntn_test::read_file(model_path());
     const auto replace = [&text](const std::string& from, const std::string& to) {
       const auto at = text.find(from);
       EXPECT_NE(at, std::string::npos) << from;
@@ -139,8 +139,8 @@ class ModeCheckEndToEnd : public ::testing::Test {
     std::snprintf(g, sizeof g, "G = %.17g", 81e9 * factor);
     replace("E = 210e9", e);
     replace("G = 81e9", g);
-    const std::string path = dir_->file("frame3d_stiffened.toml");
-    ntn_test::write_text(path, text);
+    const std::string path = *dir_ / "frame3d_stiffened.toml";
+    ntn_test::write_file(path, text);
     return path;
   }
 
@@ -182,8 +182,8 @@ TEST_F(ModeCheckEndToEnd, LibraryFindsTheFirstThreeModesWithinOnePercent) {
 }
 
 TEST_F(ModeCheckEndToEnd, ProgramPassesAndPrintsTheTable) {
-  const std::string json = dir_->file("check.json");
-  const std::string psd = dir_->file("spectrum.csv");
+  const std::string json = *dir_ / "check.json";
+  const std::string psd = *dir_ / "spectrum.csv";
   const auto p =
       ntn_test::run_program(ntn_test::quoted(program()) + " " + ntn_test::quoted(model_path()) +
                             " " + ntn_test::quoted(csv_) + kProgramOptions + " --json " +
@@ -194,16 +194,16 @@ TEST_F(ModeCheckEndToEnd, ProgramPassesAndPrintsTheTable) {
   EXPECT_NE(p.output.find("FDD: first singular value of the 10 x 10 cross-spectral matrix"),
             std::string::npos);
   EXPECT_NE(p.output.find("PASS: 3 of 3 modes within 1 %, MAC >= 0.9"), std::string::npos);
-  const std::string js = ntn_test::read_text(json);
+  const std::string js = ntn_test::read_file(json);
   EXPECT_NE(js.find("\"pass\": true"), std::string::npos);
   EXPECT_NE(js.find("\"method\": \"FDD\""), std::string::npos);
   // The spectrum file: a header and one row per line; the modes beside it.
-  const std::string sp = ntn_test::read_text(psd);
+  const std::string sp = ntn_test::read_file(psd);
   EXPECT_EQ(sp.rfind("frequency[Hz],s1[m^2/Hz],s2[m^2/Hz],", 0), 0u);
   EXPECT_NE(sp.find(",psd_roof_B1_uy[m^2/Hz],"), std::string::npos);
   const auto rows = std::count(sp.begin(), sp.end(), '\n');
   EXPECT_EQ(rows, 1 + 40000 / 2 + 1);  // header, nfft/2 + 1 lines
-  const std::string modes = ntn_test::read_text(dir_->file("spectrum_modes.csv"));
+  const std::string modes = ntn_test::read_file(*dir_ / "spectrum_modes.csv");
   EXPECT_EQ(
       modes.rfind("mode,model_hz,identified_hz,error_percent,damping_percent,mac,pass\n1,1.604", 0),
       0u)
@@ -215,16 +215,16 @@ TEST_F(ModeCheckEndToEnd, ProgramPassesAndPrintsTheTable) {
 // Skipped where gnuplot is not installed (tools/common.sh installs gnuplot-nox).
 TEST_F(ModeCheckEndToEnd, ProgramDrawsTheSpectrum) {
   if (ntn_test::run_program("command -v gnuplot").exit_code != 0) GTEST_SKIP() << "no gnuplot";
-  const std::string base = dir_->file("spectrum_plot");
+  const std::string base = *dir_ / "spectrum_plot";
   const auto p = ntn_test::run_program(
       ntn_test::quoted(program()) + " " + ntn_test::quoted(model_path()) + " " +
       ntn_test::quoted(csv_) + kProgramOptions + " --plot " + ntn_test::quoted(base));
   EXPECT_EQ(p.exit_code, 0) << p.output;
   EXPECT_NE(p.output.find("  plot: " + base + ".png"), std::string::npos) << p.output;
-  const std::string png = ntn_test::read_text(base + ".png");
+  const std::string png = ntn_test::read_file(base + ".png");
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
-  const std::string svg = ntn_test::read_text(base + ".svg");
+  const std::string svg = ntn_test::read_file(base + ".svg");
   EXPECT_NE(svg.find("<svg"), std::string::npos);
   EXPECT_NE(svg.find("mode 1  1.6046 Hz"), std::string::npos);
 }

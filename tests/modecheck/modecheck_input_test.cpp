@@ -18,7 +18,7 @@ namespace mc = ntn::modecheck;
 
 class ModeCheckInput : public ::testing::Test {
  protected:
-  ModeCheckInput() : dir_("ntn_modecheck_input") {}
+  ModeCheckInput() : dir_("modecheck_input") {}
 
   // 10 s at `fs` (100 Hz) of two tones in the test model's channels; `nan_row` (1-based data row)
   // gets a NaN in roof_uy.
@@ -35,8 +35,8 @@ class ModeCheckInput : public ::testing::Test {
         s += "nan\n";
       }
     }
-    const std::string path = dir_.file(name);
-    ntn_test::write_text(path, s);
+    const std::string path = dir_ / name;
+    ntn_test::write_file(path, s);
     return path;
   }
 
@@ -50,7 +50,7 @@ class ModeCheckInput : public ::testing::Test {
 };
 
 TEST_F(ModeCheckInput, MissingResponseFile) {
-  const std::string missing = dir_.file("no_such.csv");
+  const std::string missing = dir_ / "no_such.csv";
   const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(missing));
   EXPECT_EQ(p.exit_code, 2);
   EXPECT_NE(p.output.find("error: cannot read the response file '" + missing + "': no such file"),
@@ -59,7 +59,7 @@ TEST_F(ModeCheckInput, MissingResponseFile) {
 }
 
 TEST_F(ModeCheckInput, MissingModelFile) {
-  const std::string missing = dir_.file("no_such.toml");
+  const std::string missing = dir_ / "no_such.toml";
   const auto p = run(ntn_test::quoted(missing) + " " + ntn_test::quoted(record("r.csv")));
   EXPECT_EQ(p.exit_code, 2);
   EXPECT_NE(p.output.find("error: cannot read the model file '" + missing + "': no such file"),
@@ -68,19 +68,19 @@ TEST_F(ModeCheckInput, MissingModelFile) {
 }
 
 TEST_F(ModeCheckInput, ADirectoryIsNotAFile) {
-  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(dir_.path().string()));
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(dir_.str()));
   EXPECT_EQ(p.exit_code, 2);
   EXPECT_NE(p.output.find("': it is a directory"), std::string::npos) << p.output;
 }
 
 // The model compiler's own diagnostic, file:line:column, passed through.
 TEST_F(ModeCheckInput, BadModelGivesTheCompilersFileLineColumn) {
-  std::string text = ntn_test::read_text(model());
+  std::string text = ntn_test::read_file(model());
   const auto at = text.find("E = 210e9");
   ASSERT_NE(at, std::string::npos);
   text.replace(at, 9, "E = -210e9");
-  const std::string bad = dir_.file("bad_model.toml");
-  ntn_test::write_text(bad, text);
+  const std::string bad = dir_ / "bad_model.toml";
+  ntn_test::write_file(bad, text);
   // The line of E in the file, 1-based.
   const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
   const auto p = run(ntn_test::quoted(bad) + " " + ntn_test::quoted(record("r.csv")));
@@ -100,7 +100,7 @@ TEST_F(ModeCheckInput, NanNamesTheChannelAndRow) {
 }
 
 TEST_F(ModeCheckInput, InfinityNamesTheChannelAndRow) {
-  std::string text = ntn_test::read_text(record("r.csv"));
+  std::string text = ntn_test::read_file(record("r.csv"));
   const auto line5 = [&text] {
     std::size_t at = 0;
     for (int k = 0; k < 5; ++k)
@@ -110,8 +110,8 @@ TEST_F(ModeCheckInput, InfinityNamesTheChannelAndRow) {
   const auto comma = text.find(',', line5);
   const auto comma2 = text.find(',', comma + 1);
   text.replace(comma + 1, comma2 - comma - 1, "inf");
-  const std::string path = dir_.file("inf.csv");
-  ntn_test::write_text(path, text);
+  const std::string path = dir_ / "inf.csv";
+  ntn_test::write_file(path, text);
   const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(path));
   EXPECT_EQ(p.exit_code, 2);
   EXPECT_NE(p.output.find(path + ":6:"), std::string::npos) << p.output;
@@ -168,7 +168,7 @@ TEST_F(ModeCheckInput, BadOptions) {
 // --plot into a directory that does not exist: the plot library's message, exit 2 (after the
 // table, which is still printed).
 TEST_F(ModeCheckInput, PlotIntoAMissingDirectory) {
-  const std::string base = dir_.file("no_such_dir") + "/plot";
+  const std::string base = dir_ / "no_such_dir" + "/plot";
   const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(record("r.csv")) +
                      " --plot " + ntn_test::quoted(base));
   EXPECT_EQ(p.exit_code, 2) << p.output;
@@ -195,8 +195,8 @@ TEST_F(ModeCheckInput, AnAt2RecordIsOneUnmappedChannel) {
 TEST_F(ModeCheckInput, LibraryThrowsInputError) {
   const std::string path = record("r.csv");
   mc::Options o;
-  EXPECT_THROW((void)mc::check_files(dir_.file("none.toml"), path, o), mc::InputError);
-  EXPECT_THROW((void)mc::check_files(model(), dir_.file("none.csv"), o), mc::InputError);
+  EXPECT_THROW((void)mc::check_files(dir_ / "none.toml", path, o), mc::InputError);
+  EXPECT_THROW((void)mc::check_files(model(), dir_ / "none.csv", o), mc::InputError);
   EXPECT_THROW((void)mc::check_files(model(), record("nan.csv", 3), o), mc::InputError);
   o.channels = {"nope"};
   EXPECT_THROW((void)mc::check_files(model(), path, o), mc::InputError);

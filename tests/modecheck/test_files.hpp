@@ -1,42 +1,17 @@
-// Helpers of the modal check's tests: a temporary directory removed at the end, running
-// ntn-check-modes as a subprocess (exit code and everything it printed), writing small CSVs.
+// Helpers of the modal check's tests: running ntn-check-modes as a subprocess (exit code and
+// everything it printed). The temporary directory and whole-file read and write come from
+// tests/support/temp_files.hpp.
 #pragma once
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <vector>
+
+#include "support/temp_files.hpp"
 
 namespace ntn_test {
-
-// A directory under the system's temp dir, unique per process and name, deleted with its files
-// when the object goes out of scope.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              (name + "_" + std::to_string(static_cast<long>(::getpid())))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 struct ProgramResult {
   int exit_code = -1;
@@ -54,18 +29,6 @@ inline ProgramResult run_program(const std::string& command) {
   const int status = ::pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
-}
-
-inline std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-inline void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
 }
 
 inline std::string quoted(const std::string& s) {
