@@ -419,10 +419,10 @@ enum Stage : std::uint8_t {
   kInputsLoads,
   kElements,
   kHingeSprings,
-  kResidual,    // R_n - C v into w.r (with a = r / m in the same pass, except ntn_paper)
-  kCoupleUp,    // forest_up / paper_forces
-  kDivide,      // a = r / m
-  kForestDown,  // forest_down
+  kResidual,  // R_n - C v: into w.r (ntn_paper), into w.a scaled (ntn_exact)
+  kCoupleUp,  // paper_forces (S 17-21) / forest_up
+  kDivide,    // a = r / m (with the residual in one pass: no hinges, penalty)
+  kForest,    // the roots and forest_down (DESIGN 7.1)
   kOutputs,
   kUpdate,
   kClamps,   // momentum_clamp / paper_after_update
@@ -470,18 +470,19 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
       for (std::size_t j = 0; j < kDofs; ++j)
         w.a[j] = w.r[j] * m.inv_mass[j];
       lap(kDivide);
-    } else {
-      for (std::size_t j = 0; j < kDofs; ++j) {
-        w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
-        w.a[j] = w.r[j] * m.inv_mass[j];
-      }
+    } else if (m.hinge_method == HingeMethod::kNtnExact) {
+      for (std::size_t j = 0; j < kDofs; ++j)
+        w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.residual_scale[j];
       lap(kResidual);
-      if (m.hinge_method == HingeMethod::kNtnExact) forest_up(m.edges, m.num_edges, w.r.data());
+      forest_up(m.edges, m.edge_matrices, m.num_edges, w.a.data());
       lap(kCoupleUp);
-      if (m.hinge_method == HingeMethod::kNtnExact) {
-        forest_down(m.roots, m.num_roots, m.edges, m.num_edges, w.r.data(), w.a.data());
-      }
-      lap(kForestDown);
+      forest_down(m.roots, m.num_roots, m.edges, m.edge_matrices, m.num_edges, w.a.data(),
+                  w.a.data());
+      lap(kForest);
+    } else {
+      for (std::size_t j = 0; j < kDofs; ++j)
+        w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+      lap(kDivide);
     }
   }
   ntn::detail::sample_outputs(m, s, w, time);
@@ -497,8 +498,8 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
     }
     lap(kClamps);
     if (m.hinge_method == HingeMethod::kNtnExact) {
-      forest_project(m.edges, m.project_edges, m.num_project_edges, s.u.data(), s.v.data(),
-                     w.a.data(), m.inv_dt);
+      forest_project(m.edges, m.edge_matrices, m.project_edges, m.num_project_edges, s.u.data(),
+                     s.v.data(), w.a.data(), m.inv_dt);
     }
     lap(kProject);
   }

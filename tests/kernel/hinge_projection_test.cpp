@@ -93,7 +93,7 @@ TEST(HingeProjection, AlignedTreesStayExactWithoutProjection) {
   for (long n = 0; n < kSteps; ++n) {
     ASSERT_EQ(ntn::step(model, state, scratch, {}), ntn::StepStatus::kOk);
     ASSERT_EQ(ntn::step(twin, twin_state, twin_scratch, {}), ntn::StepStatus::kOk);
-    ntn::forest_project_initial(twin.edges, twin.num_edges, twin_state.u.data(),
+    ntn::forest_project_initial(twin.edges, twin.edge_matrices, twin.num_edges, twin_state.u.data(),
                                 twin_state.v.data());  // every edge, u and v
     for (const ntn::HingeData& h : model.hinges) {
       for (int d = 0; d < 6; ++d) {

@@ -55,9 +55,9 @@ TEST(ModelBytes, PerElementNodeAndHinge) {
   const auto f = ntn::modelc::memory_footprint(h2);
   EXPECT_EQ(ntn::modelc::model_bytes(h4) - ntn::modelc::model_bytes(h2), 2 * f.per_hinge);
   EXPECT_EQ(f.per_hinge, sizeof(ntn::HingeData) + sizeof(ntn::ForestEdge) +
-                             sizeof(ntn::ForestRoot) + sizeof(ntn::Mat6) +
-                             4 * sizeof(std::int32_t) + sizeof(ntn::ForestTree) +
-                             sizeof(std::int64_t));
+                             sizeof(ntn::ForestEdgeMatrices) + sizeof(ntn::ForestRoot) +
+                             sizeof(ntn::Mat6) + 4 * sizeof(std::int32_t) +
+                             sizeof(ntn::ForestTree) + sizeof(std::int64_t));
   // Eight more nodes in a model with hinges: the per-node arrays plus the hinge ones.
   constexpr ntn::Sizes hn{16, 8, 0, 0, 0, 0, 0, 2, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(hn) - ntn::modelc::model_bytes(h2),

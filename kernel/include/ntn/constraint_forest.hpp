@@ -57,6 +57,8 @@ inline void diag6_madd(const Diag6& m, const double* x, double* y) {
 
 inline constexpr std::array<double, 6> kZero6{};  // the ground's motion: a, u, v all zero
 
+// What the step's passes read of an edge (hot), kept apart from its 6x6 matrices (cold) so
+// that a pass over aligned edges streams 120 bytes an edge instead of 2 KiB.
 struct ForestEdge {
   std::int32_t child = 0;
   std::int32_t parent = kGround;
@@ -64,11 +66,15 @@ struct ForestEdge {
   std::int32_t sign = 1;  // +1: the child is the hinge's node 1; -1: its node 2
   // A centric hinge whose frame is aligned with the global axes (the common case in frames):
   // up, down_a, proj_p and proj_c are one diagonal matrix, the rigid directions in global axes
-  // (the seed's sums, S 20), and down_r is diagonal. The step then reads these 96 bytes instead
-  // of five 6x6 matrices.
+  // (the seed's sums, S 20), and down_r is diagonal. The passes then use these two diagonals
+  // and never read the edge's matrices.
   bool aligned = false;
   Diag6 rigid_d;
   Diag6 down_r_d;
+};
+
+// The general (rotated or eccentric) edge's matrices, one per edge at the edge's index.
+struct ForestEdgeMatrices {
   Mat6 up;      // r_parent += up r_child                         (upward pass)
   Mat6 down_a;  // a_child = down_a a_parent + down_r r_child     (downward pass)
   Mat6 down_r;
@@ -200,8 +206,9 @@ struct ForestBuild {
 // hinge that closes the cycle).
 inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<const NodeSpec> nodes,
                                 std::span<const double> mass, std::span<std::int32_t> node_tree,
-                                std::span<ForestEdge> edges, std::span<ForestRoot> roots,
-                                std::span<Mat6> mass_up, std::span<std::uint8_t> held) {
+                                std::span<ForestEdge> edges, std::span<ForestEdgeMatrices> mats,
+                                std::span<ForestRoot> roots, std::span<Mat6> mass_up,
+                                std::span<std::uint8_t> held) {
   using detail::M6;
   ForestBuild out;
   for (auto& t : node_tree)
@@ -326,6 +333,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
   // hand up (DESIGN §7.1).
   for (int k = written - 1; k >= 0; --k) {
     ForestEdge& e = edges[static_cast<std::size_t>(k)];
+    ForestEdgeMatrices& mx = mats[static_cast<std::size_t>(k)];
     const HingeData& h = hinges[static_cast<std::size_t>(e.hinge)];
     M6 mc = detail::own_mass(mass, e.child);
     for (int j = k + 1; j < written; ++j) {
@@ -364,22 +372,22 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     const M6 id = M6::Identity();
     const M6 s = g * (mq - mq * ainv * mq) * g;
     mass_up[static_cast<std::size_t>(k)] = detail::to_mat6(tp.transpose() * s * tp);
-    e.up = detail::to_mat6(tp.transpose() * g * (id - mq * ainv) * yinv.transpose());
-    e.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * tp);
-    e.down_r = detail::to_mat6(yinv * ainv * yinv.transpose());
-    e.proj_p = detail::to_mat6(yinv * g * tp);
-    e.proj_c = detail::to_mat6(yinv * g * y);
-    e.force_a = detail::to_mat6(g * mq * y);
-    e.force_r = detail::to_mat6(g * yinv.transpose());
-    if (e.parent == kGround) e.down_a = Mat6{}, e.proj_p = Mat6{};
+    mx.up = detail::to_mat6(tp.transpose() * g * (id - mq * ainv) * yinv.transpose());
+    mx.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * tp);
+    mx.down_r = detail::to_mat6(yinv * ainv * yinv.transpose());
+    mx.proj_p = detail::to_mat6(yinv * g * tp);
+    mx.proj_c = detail::to_mat6(yinv * g * y);
+    mx.force_a = detail::to_mat6(g * mq * y);
+    mx.force_r = detail::to_mat6(g * yinv.transpose());
+    if (e.parent == kGround) mx.down_a = Mat6{}, mx.proj_p = Mat6{};
     // Aligned: the matrices the step uses are diagonal, and up = down_a = proj_p = proj_c (a
     // ground edge uses only proj_c and down_r).
     Diag6 up_d, down_a_d, proj_p_d;
-    e.aligned = detail::diagonal_of(e.proj_c, e.rigid_d) &&
-                detail::diagonal_of(e.down_r, e.down_r_d) &&
+    e.aligned = detail::diagonal_of(mx.proj_c, e.rigid_d) &&
+                detail::diagonal_of(mx.down_r, e.down_r_d) &&
                 (e.parent == kGround ||
-                 (detail::diagonal_of(e.up, up_d) && detail::diagonal_of(e.down_a, down_a_d) &&
-                  detail::diagonal_of(e.proj_p, proj_p_d) && detail::same(up_d, e.rigid_d) &&
+                 (detail::diagonal_of(mx.up, up_d) && detail::diagonal_of(mx.down_a, down_a_d) &&
+                  detail::diagonal_of(mx.proj_p, proj_p_d) && detail::same(up_d, e.rigid_d) &&
                   detail::same(down_a_d, e.rigid_d) && detail::same(proj_p_d, e.rigid_d)));
   }
 
@@ -414,68 +422,90 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
 }
 
 // Upward pass, leaves to root: each child hands its parent T^T G (G^T R_q - ...) (DESIGN §7.1).
-inline void forest_up(std::span<const ForestEdge> edges, int count, double* r) {
-  for (int k = count - 1; k >= 0; --k) {
-    const ForestEdge& e = edges[static_cast<std::size_t>(k)];
-    if (e.parent == kGround) continue;
-    if (e.aligned) {
-      diag6_madd(e.rigid_d, r + 6 * e.child, r + 6 * e.parent);
-    } else {
-      mat6_madd(e.up, r + 6 * e.child, r + 6 * e.parent);
+// The edges of one parent are consecutive (build_forest places them breadth-first), so its sum
+// stays in registers while they add to it, in the same order as one edge at a time.
+inline void forest_up(std::span<const ForestEdge> edges, std::span<const ForestEdgeMatrices> mats,
+                      int count, double* r) {
+  int k = count - 1;
+  while (k >= 0) {
+    const std::int32_t parent = edges[static_cast<std::size_t>(k)].parent;
+    if (parent == kGround) {
+      --k;
+      continue;
     }
+    double* rp = r + 6 * parent;
+    double sum[6];
+    for (int d = 0; d < 6; ++d)
+      sum[d] = rp[d];
+    for (; k >= 0 && edges[static_cast<std::size_t>(k)].parent == parent; --k) {
+      const ForestEdge& e = edges[static_cast<std::size_t>(k)];
+      if (e.aligned) {
+        diag6_madd(e.rigid_d, r + 6 * e.child, sum);
+      } else {
+        mat6_madd(mats[static_cast<std::size_t>(k)].up, r + 6 * e.child, sum);
+      }
+    }
+    for (int d = 0; d < 6; ++d)
+      rp[d] = sum[d];
   }
 }
 
 // Roots, then the downward pass: a_root = M_root^-1 R_root; a_c = Y^-1 q (DESIGN §7.1).
+// `r` holds the forces of the upward pass; `a` receives the accelerations and may be `r` itself
+// (the step works in place: each node's forces are read before its accelerations are stored).
 inline void forest_down(std::span<const ForestRoot> roots, int root_count,
-                        std::span<const ForestEdge> edges, int count, const double* r, double* a) {
+                        std::span<const ForestEdge> edges, std::span<const ForestEdgeMatrices> mats,
+                        int count, const double* r, double* a) {
   for (int k = 0; k < root_count; ++k) {
     const ForestRoot& root = roots[static_cast<std::size_t>(k)];
-    double* ar = a + 6 * root.node;
+    double rr[6], ar[6] = {0, 0, 0, 0, 0, 0};
+    for (int d = 0; d < 6; ++d)
+      rr[d] = r[6 * root.node + d];
     if (root.diagonal) {
-      const double* rr = r + 6 * root.node;
       for (int d = 0; d < 6; ++d)
         ar[d] = root.inv_mass_d.d[static_cast<std::size_t>(d)] * rr[d];
     } else {
-      for (int d = 0; d < 6; ++d)
-        ar[d] = 0;
-      mat6_madd(root.inv_mass, r + 6 * root.node, ar);
+      mat6_madd(root.inv_mass, rr, ar);
     }
+    for (int d = 0; d < 6; ++d)
+      a[6 * root.node + d] = ar[d];
   }
   for (int k = 0; k < count; ++k) {
     const ForestEdge& e = edges[static_cast<std::size_t>(k)];
-    double* ac = a + 6 * e.child;
+    double rc[6], ac[6];
+    for (int d = 0; d < 6; ++d)
+      rc[d] = r[6 * e.child + d];
+    const double* ap = e.parent != kGround ? a + 6 * e.parent : kZero6.data();
     if (e.aligned) {
-      // a_c = G a_p + down_r r_c with G the 0/1 rigid diagonal, in one pass (loads before stores)
-      const double* rc = r + 6 * e.child;
-      const double* ap = e.parent != kGround ? a + 6 * e.parent : kZero6.data();
-      double t[6];
+      // a_c = G a_p + down_r r_c with G the 0/1 rigid diagonal, in one pass
       for (int d = 0; d < 6; ++d) {
         const auto i = static_cast<std::size_t>(d);
-        t[d] = e.rigid_d.d[i] * ap[d] + e.down_r_d.d[i] * rc[d];
+        ac[d] = e.rigid_d.d[i] * ap[d] + e.down_r_d.d[i] * rc[d];
       }
-      for (int d = 0; d < 6; ++d)
-        ac[d] = t[d];
     } else {
       for (int d = 0; d < 6; ++d)
         ac[d] = 0;
-      if (e.parent != kGround) mat6_madd(e.down_a, a + 6 * e.parent, ac);
-      mat6_madd(e.down_r, r + 6 * e.child, ac);
+      const ForestEdgeMatrices& mx = mats[static_cast<std::size_t>(k)];
+      if (e.parent != kGround) mat6_madd(mx.down_a, ap, ac);
+      mat6_madd(mx.down_r, rc, ac);
     }
+    for (int d = 0; d < 6; ++d)
+      a[6 * e.child + d] = ac[d];
   }
 }
 
 // The change of the child's x (u or v) that gives its rigid components of q its parent's:
 // delta = P_p x_parent - P_c x_child (a 0/1 diagonal for an aligned edge).
-inline void edge_delta(const ForestEdge& e, const double* x, double* delta) {
+inline void edge_delta(const ForestEdge& e, const ForestEdgeMatrices& mx, const double* x,
+                       double* delta) {
   double to[6] = {0, 0, 0, 0, 0, 0}, back[6] = {0, 0, 0, 0, 0, 0};
   const double* xc = x + 6 * e.child;
   if (e.aligned) {
     if (e.parent != kGround) diag6_madd(e.rigid_d, x + 6 * e.parent, to);
     diag6_madd(e.rigid_d, xc, back);
   } else {
-    if (e.parent != kGround) mat6_madd(e.proj_p, x + 6 * e.parent, to);
-    mat6_madd(e.proj_c, xc, back);
+    if (e.parent != kGround) mat6_madd(mx.proj_p, x + 6 * e.parent, to);
+    mat6_madd(mx.proj_c, xc, back);
   }
   for (int d = 0; d < 6; ++d)
     delta[d] = to[d] - back[d];
@@ -484,9 +514,10 @@ inline void edge_delta(const ForestEdge& e, const double* x, double* delta) {
 // Projection of one edge, after its parent's: the child's rigid components of q are set from its
 // parent's (generalizes S 30-31), and v, a of the changed DOFs follow (S 35-37): a change du of
 // u_{n+1} changes v_{n+1/2} by du / dt and a_n by du / dt^2.
-inline void project_edge(const ForestEdge& e, double* u, double* v, double* a, double inv_dt) {
+inline void project_edge(const ForestEdge& e, const ForestEdgeMatrices& mx, double* u, double* v,
+                         double* a, double inv_dt) {
   double delta[6];
-  edge_delta(e, u, delta);
+  edge_delta(e, mx, u, delta);
   double* uc = u + 6 * e.child;
   double* vc = v + 6 * e.child;
   double* ac = a + 6 * e.child;
@@ -506,11 +537,13 @@ inline void project_edge(const ForestEdge& e, double* u, double* v, double* a, d
 
 // Projection after the update, root to leaves, of the edges in `list` (ascending, so parents
 // first): see select_projected_edges for which edges need it.
-inline void forest_project(std::span<const ForestEdge> edges, std::span<const std::int32_t> list,
-                           int count, double* u, double* v, double* a, double inv_dt) {
+inline void forest_project(std::span<const ForestEdge> edges,
+                           std::span<const ForestEdgeMatrices> mats,
+                           std::span<const std::int32_t> list, int count, double* u, double* v,
+                           double* a, double inv_dt) {
   for (int k = 0; k < count; ++k) {
-    project_edge(edges[static_cast<std::size_t>(list[static_cast<std::size_t>(k)])], u, v, a,
-                 inv_dt);
+    const auto e = static_cast<std::size_t>(list[static_cast<std::size_t>(k)]);
+    project_edge(edges[e], mats[e], u, v, a, inv_dt);
   }
 }
 
@@ -521,6 +554,20 @@ struct ForestTree {
   std::int32_t end_edge = 0;
   std::int32_t root = -1;
 };
+
+// One tree's accelerations: its upward pass, its root, its downward pass (DESIGN §7.1).
+inline void forest_tree_accelerations(const ForestTree& t, std::span<const ForestRoot> roots,
+                                      std::span<const ForestEdge> edges,
+                                      std::span<const ForestEdgeMatrices> mats, double* r,
+                                      double* a) {
+  const auto first = static_cast<std::size_t>(t.first_edge);
+  const int count = t.end_edge - t.first_edge;
+  const auto tree_edges = edges.subspan(first);
+  const auto tree_mats = mats.subspan(first);
+  forest_up(tree_edges, tree_mats, count, r);
+  const auto root = roots.subspan(static_cast<std::size_t>(t.root < 0 ? 0 : t.root));
+  forest_down(root, t.root < 0 ? 0 : 1, tree_edges, tree_mats, count, r, a);
+}
 
 // The trees of a built forest, in the order of node_tree's indices; returns their number.
 // A tree is rooted at the ground when its first edge hangs from the ground; the others take the
@@ -567,13 +614,14 @@ inline int select_projected_edges(std::span<const ForestEdge> edges,
 // The initial conditions onto the constraints, root to leaves, every edge: u_0 and v_0 of each
 // child take their parent's rigid components (start() does this once, so that the step need
 // only re-project the trees that round).
-inline void forest_project_initial(std::span<const ForestEdge> edges, int count, double* u,
+inline void forest_project_initial(std::span<const ForestEdge> edges,
+                                   std::span<const ForestEdgeMatrices> mats, int count, double* u,
                                    double* v) {
   for (int k = 0; k < count; ++k) {
     const ForestEdge& e = edges[static_cast<std::size_t>(k)];
     for (double* x : {u, v}) {
       double delta[6];
-      edge_delta(e, x, delta);
+      edge_delta(e, mats[static_cast<std::size_t>(k)], x, delta);
       for (int d = 0; d < 6; ++d)
         x[6 * e.child + d] += delta[d];
     }
@@ -582,11 +630,11 @@ inline void forest_project_initial(std::span<const ForestEdge> edges, int count,
 
 // Hinge force in the rigid directions, on node 1 in the hinge frame:
 // lambda = G^T (M_q q - R_q) for the child, negated when the child is node 2.
-inline void forest_hinge_force(const ForestEdge& e, const double* a, const double* r,
-                               double* lambda) {
+inline void forest_hinge_force(const ForestEdge& e, const ForestEdgeMatrices& mx, const double* a,
+                               const double* r, double* lambda) {
   double fa[6] = {0, 0, 0, 0, 0, 0}, fr[6] = {0, 0, 0, 0, 0, 0};
-  mat6_madd(e.force_a, a + 6 * e.child, fa);
-  mat6_madd(e.force_r, r + 6 * e.child, fr);
+  mat6_madd(mx.force_a, a + 6 * e.child, fa);
+  mat6_madd(mx.force_r, r + 6 * e.child, fr);
   for (int d = 0; d < 6; ++d)
     lambda[d] = static_cast<double>(e.sign) * (fa[d] - fr[d]);
 }

@@ -128,49 +128,95 @@ void hinge_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
 }
 
 // a_n = (R_n - C v_{n-1/2}) / m per DOF, R_n = P_n - F_n (S 2-4); zero at supported DOFs.
-// With hinges, R_n goes to w.r first and is coupled: ntn_paper sums it over the rigid
-// directions (S 17-21); ntn_exact hands it up the constraint forest, then the roots and the
-// downward pass give the trees' accelerations (DESIGN §7.1).
+// ntn_paper sums R_n over the rigid directions first (S 17-21, in w.r). ntn_exact hands R_n up
+// the constraint forest, then the roots and the downward pass give the trees' accelerations
+// (DESIGN §7.1); to spare a second store per DOF, its residual pass leaves R_n itself (scale 1)
+// in w.a at tree DOFs and a_n elsewhere, and the forest works in place there (a hinge force
+// output recomputes its tree's coupled R). Penalty springs are in F_n already.
 template <Sizes S>
 void accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges == 0) {
-    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-      w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
-    }
-  } else if (m.hinge_method == HingeMethod::kNtnPaper) {
-    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-      w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
-    }
-    paper_forces(m.hinges, w.r.data());
-    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-      w.a[j] = w.r[j] * m.inv_mass[j];
-    }
-  } else {
-    // One pass: the forest changes R only at tree nodes, whose accelerations it then sets.
-    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-      w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
-      w.a[j] = w.r[j] * m.inv_mass[j];
+  constexpr auto kDofs = static_cast<std::size_t>(Model<S>::kDofs);
+  if constexpr (S.hinges > 0) {
+    if (m.hinge_method == HingeMethod::kNtnPaper) {
+      for (std::size_t j = 0; j < kDofs; ++j) {
+        w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
+      }
+      paper_forces(m.hinges, w.r.data());
+      for (std::size_t j = 0; j < kDofs; ++j) {
+        w.a[j] = w.r[j] * m.inv_mass[j];
+      }
+      return;
     }
     if (m.hinge_method == HingeMethod::kNtnExact) {
-      forest_up(m.edges, m.num_edges, w.r.data());
-      forest_down(m.roots, m.num_roots, m.edges, m.num_edges, w.r.data(), w.a.data());
+      for (std::size_t j = 0; j < kDofs; ++j) {
+        w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.residual_scale[j];
+      }
+      forest_up(m.edges, m.edge_matrices, m.num_edges, w.a.data());
+      forest_down(m.roots, m.num_roots, m.edges, m.edge_matrices, m.num_edges, w.a.data(),
+                  w.a.data());
+      return;
     }
   }
+  for (std::size_t j = 0; j < kDofs; ++j) {
+    w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+  }
+}
+
+// The nodes an impulse at `node` moves (the clamp): the node's rigid tree (ntn_exact), or the
+// node alone.
+struct ClampPart {
+  int tree = -1;  // index into Model::trees, or -1
+  int node = -1;  // the node when it is in no tree, or -1 (also for the ground)
+};
+
+template <Sizes S>
+ClampPart clamp_part(const Model<S>& m, int node) {
+  if (node == kGround) return {};
+  const int t = m.node_tree[static_cast<std::size_t>(node)];
+  return t >= 0 ? ClampPart{t, -1} : ClampPart{-1, node};
+}
+
+// Calls fn(node) for every node of the part.
+template <Sizes S, class Fn>
+void for_each_node(const Model<S>& m, const ClampPart& p, Fn&& fn) {
+  if (p.node >= 0) fn(p.node);
+  if (p.tree < 0) return;
+  const ForestTree& t = m.trees[static_cast<std::size_t>(p.tree)];
+  if (t.root >= 0) fn(m.roots[static_cast<std::size_t>(t.root)].node);
+  for (int k = t.first_edge; k < t.end_edge; ++k)
+    fn(m.edges[static_cast<std::size_t>(k)].child);
+}
+
+// The coupled R_n of one rigid tree in w.r, as the step's upward pass makes it (the same
+// expressions in the same order, so the same bits): the step itself keeps only accelerations.
+template <Sizes S>
+void tree_coupled_residual(const Model<S>& m, const State<S>& s, Scratch<S>& w, int tree) {
+  for_each_node(m, ClampPart{tree, -1}, [&](int n) {
+    for (std::size_t c = 0; c < 6; ++c) {
+      const auto j = static_cast<std::size_t>(kDofsPerNode * n) + c;
+      w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
+    }
+  });
+  const ForestTree& t = m.trees[static_cast<std::size_t>(tree)];
+  const auto first = static_cast<std::size_t>(t.first_edge);
+  forest_up(std::span(m.edges).subspan(first), std::span(m.edge_matrices).subspan(first),
+            t.end_edge - t.first_edge, w.r.data());
 }
 
 // Hinge force on node 1 in the hinge frame, direction k: the constraint force of a rigid
 // direction (ntn_exact: lambda of the forest; ntn_paper: T (m_1 a_1 - R_1) from node 1's own
 // mass and force, which holds every hinge on node 1 together), else the spring force.
 template <Sizes S>
-double hinge_force(const Model<S>& m, const State<S>& s, const Scratch<S>& w, int hinge, int k) {
+double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hinge, int k) {
   const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
   const auto kk = static_cast<std::size_t>(k);
   if ((h.rigid >> k) & 1U) {
     double lambda[6];
     if (m.hinge_method == HingeMethod::kNtnExact) {
-      const ForestEdge& e =
-          m.edges[static_cast<std::size_t>(m.hinge_edge[static_cast<std::size_t>(hinge)])];
-      forest_hinge_force(e, w.a.data(), w.r.data(), lambda);
+      const auto edge = static_cast<std::size_t>(m.hinge_edge[static_cast<std::size_t>(hinge)]);
+      const ForestEdge& e = m.edges[edge];
+      tree_coupled_residual(m, s, w, m.node_tree[static_cast<std::size_t>(e.child)]);
+      forest_hinge_force(e, m.edge_matrices[edge], w.a.data(), w.r.data(), lambda);
       return lambda[k];
     }
     const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
@@ -196,30 +242,6 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
   hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
                  ground ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)], d);
   return d[k];
-}
-
-// The nodes an impulse at `node` moves: the node's rigid tree (ntn_exact), or the node alone.
-struct ClampPart {
-  int tree = -1;  // index into Model::trees, or -1
-  int node = -1;  // the node when it is in no tree, or -1 (also for the ground)
-};
-
-template <Sizes S>
-ClampPart clamp_part(const Model<S>& m, int node) {
-  if (node == kGround) return {};
-  const int t = m.node_tree[static_cast<std::size_t>(node)];
-  return t >= 0 ? ClampPart{t, -1} : ClampPart{-1, node};
-}
-
-// Calls fn(node) for every node of the part.
-template <Sizes S, class Fn>
-void for_each_node(const Model<S>& m, const ClampPart& p, Fn&& fn) {
-  if (p.node >= 0) fn(p.node);
-  if (p.tree < 0) return;
-  const ForestTree& t = m.trees[static_cast<std::size_t>(p.tree)];
-  if (t.root >= 0) fn(m.roots[static_cast<std::size_t>(t.root)].node);
-  for (int k = t.first_edge; k < t.end_edge; ++k)
-    fn(m.edges[static_cast<std::size_t>(k)].child);
 }
 
 // Rigid branches with the momentum-conserving clamp (DESIGN §7.1): when a curve direction d
@@ -287,14 +309,8 @@ double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool 
           }
         }
         if (p.tree < 0) continue;
-        const ForestTree& t = m.trees[static_cast<std::size_t>(p.tree)];
-        const auto edges =
-            std::span<const ForestEdge>(m.edges).subspan(static_cast<std::size_t>(t.first_edge));
-        const int count = t.end_edge - t.first_edge;
-        forest_up(edges, count, w.r.data());
-        const auto roots = std::span<const ForestRoot>(m.roots).subspan(
-            static_cast<std::size_t>(t.root < 0 ? 0 : t.root));
-        forest_down(roots, t.root < 0 ? 0 : 1, edges, count, w.r.data(), w.f.data());
+        forest_tree_accelerations(m.trees[static_cast<std::size_t>(p.tree)], m.roots, m.edges,
+                                  m.edge_matrices, w.r.data(), w.f.data());
       }
       double mobility = 0;  // b^T M_c^-1 b
       for (std::size_t c = 0; c < 6; ++c) {
@@ -355,8 +371,8 @@ void hinge_constraints(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, true);
   }
   if (m.hinge_method == HingeMethod::kNtnExact) {
-    forest_project(m.edges, m.project_edges, m.num_project_edges, s.u.data(), s.v.data(),
-                   w.a.data(), m.inv_dt);
+    forest_project(m.edges, m.edge_matrices, m.project_edges, m.num_project_edges, s.u.data(),
+                   s.v.data(), w.a.data(), m.inv_dt);
   }
 }
 
@@ -424,14 +440,17 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
 // Returns false when a velocity is non-finite.
 template <Sizes S>
 bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
-  bool ok = true;
   const double dt = m.dt;  // a local: stores to s.v, s.u may alias m.dt, which blocks vectorizing
+  // The check is a select into a double, not `ok &= finite(v)`: GCC vectorizes no loop with a
+  // bool reduction, and this is a pass over every DOF.
+  double bad = 0;
   for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
-    s.v[j] += dt * w.a[j];
-    s.u[j] += dt * s.v[j];
-    ok &= finite(s.v[j]);
+    const double v = s.v[j] + dt * w.a[j];
+    s.v[j] = v;
+    s.u[j] += dt * v;
+    bad = finite(v) ? bad : 1.0;
   }
-  return ok;
+  return bad == 0;
 }
 
 }  // namespace detail
@@ -447,7 +466,7 @@ template <Sizes S>
     h = 0.0;
   if constexpr (S.hinges > 0) {
     if (m.hinge_method == HingeMethod::kNtnExact)
-      forest_project_initial(m.edges, m.num_edges, s.u.data(), s.v.data());
+      forest_project_initial(m.edges, m.edge_matrices, m.num_edges, s.u.data(), s.v.data());
   }
   const bool accepted = detail::accept_inputs(m, s, in);
   detail::forces_and_accelerations(m, s, w, 0.0);  // with C v_0

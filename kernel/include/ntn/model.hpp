@@ -45,11 +45,15 @@ struct Model {
   std::array<HingeData, S.hinges> hinges{};
   std::array<CurvePoint, S.curve_points> curve_points{};
   std::array<ForestEdge, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
-  std::array<ForestRoot, S.hinges> roots{};  // ntn_exact: trees not rooted at the ground
-  std::array<Mat6, S.hinges> mass_up{};      // ntn_exact: mass each edge hands its parent
-  std::array<std::int32_t, S.hinges> hinge_edge{};     // hinge -> its forest edge, or -1
-  std::array<std::int32_t, kHingeNodes> node_tree{};   // node -> its rigid tree, or -1
-  std::array<std::uint8_t, kHingeNodes> held{};        // mechanism DOFs held at zero (bits)
+  std::array<ForestEdgeMatrices, S.hinges> edge_matrices{};  // ntn_exact: each edge's matrices
+  std::array<ForestRoot, S.hinges> roots{};           // ntn_exact: trees not rooted at the ground
+  std::array<Mat6, S.hinges> mass_up{};               // ntn_exact: mass each edge hands its parent
+  std::array<std::int32_t, S.hinges> hinge_edge{};    // hinge -> its forest edge, or -1
+  std::array<std::int32_t, kHingeNodes> node_tree{};  // node -> its rigid tree, or -1
+  std::array<std::uint8_t, kHingeNodes> held{};       // mechanism DOFs held at zero (bits)
+  // ntn_exact: what the residual pass multiplies R_n by, per DOF: inv_mass outside the trees, 1
+  // in a tree (the forest turns those R into accelerations in place; integrator.hpp).
+  std::array<double, kDofsPerNode * kHingeNodes> residual_scale{};
   std::array<std::int32_t, S.hinges> spring_hinges{};  // hinges with a spring or dashpot
   std::array<std::int32_t, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
   std::array<std::int32_t, S.hinges> project_edges{};  // ntn_exact: edges the step re-projects
@@ -205,8 +209,9 @@ template <Sizes S>
     for (auto& h : model.held)
       h = 0;
     if (model.hinge_method == HingeMethod::kNtnExact) {
-      const ForestBuild fb = build_forest(model.hinges, spec.nodes, model.mass, model.node_tree,
-                                          model.edges, model.roots, model.mass_up, model.held);
+      const ForestBuild fb =
+          build_forest(model.hinges, spec.nodes, model.mass, model.node_tree, model.edges,
+                       model.edge_matrices, model.roots, model.mass_up, model.held);
       if (!fb.status.ok()) return fb.status;
       model.num_edges = fb.edges, model.num_roots = fb.roots, model.held_dofs = fb.held_dofs;
       for (int k = 0; k < fb.edges; ++k) {
@@ -252,6 +257,16 @@ template <Sizes S>
         }
       } else {
         eff[j] = 1.0 / eff[j];
+      }
+    }
+  }
+
+  if constexpr (S.hinges > 0) {
+    for (int n = 0; n < S.nodes; ++n) {
+      const bool in_tree = model.node_tree[static_cast<std::size_t>(n)] >= 0;
+      for (int d = 0; d < kDofsPerNode; ++d) {
+        const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
+        model.residual_scale[j] = in_tree ? 1.0 : model.inv_mass[j];
       }
     }
   }

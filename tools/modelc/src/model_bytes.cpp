@@ -69,11 +69,13 @@ std::size_t model_size(const Sizes& s) {
   l.array<HingeData>(s.hinges);                                          // hinges
   l.array<CurvePoint>(s.curve_points);                                   // curve_points
   l.array<ForestEdge>(s.hinges);                                         // edges
+  l.array<ForestEdgeMatrices>(s.hinges);                                 // edge_matrices
   l.array<ForestRoot>(s.hinges);                                         // roots
   l.array<Mat6>(s.hinges);                                               // mass_up
   l.array<std::int32_t>(s.hinges);                                       // hinge_edge
   l.array<std::int32_t>(hinge_nodes);                                    // node_tree
   l.array<std::uint8_t>(hinge_nodes);                                    // held
+  l.array<double>(kDofsPerNode * hinge_nodes);                           // residual_scale
   l.array<std::int32_t>(s.hinges);                                       // spring_hinges
   l.array<std::int32_t>(s.hinges);                                       // branch_hinges
   l.array<std::int32_t>(s.hinges);                                       // project_edges
@@ -135,12 +137,14 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
   // places in the lists of hinges with springs, with branches and of projected edges, a
   // tree slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
-  f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestRoot) + sizeof(Mat6) +
-                4 * sizeof(std::int32_t) + sizeof(ForestTree) + sizeof(std::int64_t);
+  f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
+                sizeof(ForestRoot) + sizeof(Mat6) + 4 * sizeof(std::int32_t) + sizeof(ForestTree) +
+                sizeof(std::int64_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
-  // held), the coupled force of its 6 DOFs (Scratch::r) and its clamp move mark (Scratch).
+  // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force
+  // (Scratch::r) and its clamp move mark (Scratch).
   f.per_node_with_hinges = sizeof(std::int32_t) + sizeof(std::uint8_t) +
-                           kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
+                           2 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
   f.per_curve_point = sizeof(CurvePoint);
   return f;
 }

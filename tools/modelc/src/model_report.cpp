@@ -216,8 +216,9 @@ std::string info_text(const ModelDescription& m) {
     line("", "per hinge " + std::to_string(mem.per_hinge) +
                  " B (ntn::HingeData + forest edge, root, mass, index) x " +
                  std::to_string(z.hinges) + " + per node " +
-                 std::to_string(mem.per_node_with_hinges) + " B (tree, held, coupled force) x " +
-                 std::to_string(z.nodes) + " + curve points " +
+                 std::to_string(mem.per_node_with_hinges) +
+                 " B (tree, held, residual scale, coupled force) x " + std::to_string(z.nodes) +
+                 " + curve points " +
                  std::to_string(mem.per_curve_point * static_cast<std::size_t>(z.curve_points)) +
                  " B = " + std::to_string(hinge_bytes) + " B");
   }
