@@ -455,15 +455,13 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
   lap(kElements);
   constexpr auto kDofs = static_cast<std::size_t>(Model<S>::kDofs);
   if constexpr (S.hinges == 0) {
-    for (std::size_t j = 0; j < kDofs; ++j)
-      w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+    ntn::detail::residual(m, s, w, m.inv_mass.data(), w.a.data());
     lap(kDivide);
   } else {
     ntn::detail::hinge_forces(m, s, w);
     lap(kHingeSprings);
     if (m.hinge_method == HingeMethod::kNtnPaper) {
-      for (std::size_t j = 0; j < kDofs; ++j)
-        w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
+      ntn::detail::residual<S, false>(m, s, w, nullptr, w.r.data());
       lap(kResidual);
       paper_forces(m.hinges, w.r.data());
       lap(kCoupleUp);
@@ -471,8 +469,7 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
         w.a[j] = w.r[j] * m.inv_mass[j];
       lap(kDivide);
     } else if (m.hinge_method == HingeMethod::kNtnExact) {
-      for (std::size_t j = 0; j < kDofs; ++j)
-        w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.residual_scale[j];
+      ntn::detail::residual(m, s, w, m.residual_scale.data(), w.a.data());
       lap(kResidual);
       forest_up(m.edges, m.edge_matrices, m.num_edges, w.a.data());
       lap(kCoupleUp);
@@ -480,8 +477,7 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
                   w.a.data());
       lap(kForest);
     } else {
-      for (std::size_t j = 0; j < kDofs; ++j)
-        w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
+      ntn::detail::residual(m, s, w, m.inv_mass.data(), w.a.data());
       lap(kDivide);
     }
   }

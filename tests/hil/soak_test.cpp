@@ -86,7 +86,7 @@ struct SoakSink {
   }
 
   // After step n: s.u = u_{n+1}, s.v = v_{n+1/2}, w.a = a_n, w.f = K u_n (frame3d has no hinge
-  // springs, so F_n is the elements' K u_n), w.p = P_n; v_{n-1/2} = v_{n+1/2} - dt a_n.
+  // springs, so F_n is the elements' K u_n), P_n = external_load; v_{n-1/2} = v_{n+1/2} - dt a_n.
   void after_step(const ntn::State<kS>& s, const ntn::Scratch<kS>& w) {
     if (!measure) return;
     const double dt = model.dt;
@@ -95,12 +95,13 @@ struct SoakSink {
       const double vp = s.v[j] - dt * w.a[j];
       const double vbar = 0.5 * (s.v[j] + vp);
       const double m = model.mass[j];
+      const double p = ntn::external_load(model, w, j);
       kin += m * s.v[j] * s.v[j];
       strain += w.f[j] * s.u[j];
-      in += vbar * w.p[j];
+      in += vbar * p;
       damp += vbar * model.damping[j] * vp;
       magnitude += m * s.v[j] * s.v[j] + std::abs(w.f[j] * s.u[j]) +
-                   dt * (std::abs(vbar * w.p[j]) + std::abs(vbar * model.damping[j] * vp)) +
+                   dt * (std::abs(vbar * p) + std::abs(vbar * model.damping[j] * vp)) +
                    (steps == 0 ? m * vp * vp : 0.0);
       if (steps == 0) v_prev[j] = vp;
     }

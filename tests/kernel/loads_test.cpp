@@ -120,10 +120,12 @@ TEST(Loads, NodalLoadsAndGravityAtTheStepTime) {
     EXPECT_EQ(scratch.time, t);
     const double fl = ntn::time_function_value(spec.time_points, spec.time_functions[0], t);
     const double fg = ntn::time_function_value(spec.time_points, spec.time_functions[1], t);
-    EXPECT_EQ(scratch.p[dof(5, ntn::kUy)], model.mass[dof(5, ntn::kUy)] * 0.0 + 300.0 * fl);
-    EXPECT_EQ(scratch.p[dof(6, ntn::kRz)], -40.0);
-    EXPECT_EQ(scratch.p[dof(9, ntn::kUz)], model.mass[dof(9, ntn::kUz)] * (-9.81 * fg));
-    EXPECT_EQ(scratch.p[dof(9, ntn::kUx)], 0.0);
+    EXPECT_EQ(ntn::external_load(model, scratch, dof(5, ntn::kUy)),
+              model.mass[dof(5, ntn::kUy)] * 0.0 + 300.0 * fl);
+    EXPECT_EQ(ntn::external_load(model, scratch, dof(6, ntn::kRz)), -40.0);
+    EXPECT_EQ(ntn::external_load(model, scratch, dof(9, ntn::kUz)),
+              model.mass[dof(9, ntn::kUz)] * (-9.81 * fg));
+    EXPECT_EQ(ntn::external_load(model, scratch, dof(9, ntn::kUx)), 0.0);
   }
 }
 

@@ -25,11 +25,12 @@ void relaxation_measures(const ntn::Model<S>& m, const ntn::State<S>& s, const n
   double rr = 0, pp = 0, kin = 0, work = 0;
   for (std::size_t j = 0; j < static_cast<std::size_t>(ntn::Model<S>::kDofs); ++j) {
     if (m.inv_mass[j] == 0.0) continue;  // supported DOF: its residual is the reaction
-    const double r = w.p[j] - w.f[j];
+    const double p = ntn::external_load(m, w, j);
+    const double r = p - w.f[j];
     rr += r * r;
-    pp += w.p[j] * w.p[j];
+    pp += p * p;
     kin += m.mass[j] * s.v[j] * s.v[j];
-    work += w.p[j] * s.u[j];
+    work += p * s.u[j];
   }
   residual = pp > 0 ? std::sqrt(rr / pp) : std::sqrt(rr);
   motion = work > 0 ? std::sqrt(kin / work) : std::sqrt(kin);
@@ -70,10 +71,11 @@ void hinged_relaxation_measures(const ntn::Model<S>& m, const ntn::State<S>& s,
   for (std::size_t j = 0; j < static_cast<std::size_t>(ntn::Model<S>::kDofs); ++j) {
     if ((m.fixed[j / ntn::kDofsPerNode] >> (j % ntn::kDofsPerNode)) & 1U) continue;
     const double r = m.mass[j] * w.a[j];
+    const double p = ntn::external_load(m, w, j);
     rr += r * r;
-    pp += w.p[j] * w.p[j];
+    pp += p * p;
     kin += m.mass[j] * s.v[j] * s.v[j];
-    work += w.p[j] * s.u[j];
+    work += p * s.u[j];
   }
   residual = pp > 0 ? std::sqrt(rr / pp) : std::sqrt(rr);
   motion = work > 0 ? std::sqrt(kin / work) : std::sqrt(kin);

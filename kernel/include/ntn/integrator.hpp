@@ -15,6 +15,17 @@
 
 namespace ntn {
 
+// P_n at DOF j as the last forces_and_accelerations (start or step) made it: the load slot's
+// value, else m g_d. The step never stores P_n as a whole (see residual()).
+template <Sizes S>
+double external_load(const Model<S>& m, const Scratch<S>& w, std::size_t j) {
+  for (int k = 0; k < m.num_slots; ++k) {
+    if (static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) == j)
+      return w.p_slot[static_cast<std::size_t>(k)];
+  }
+  return m.mass[j] * w.load_g[j % kDofsPerNode];
+}
+
 namespace detail {
 
 // True for finite x. No libm: x - x is 0 for finite x, NaN for NaN and +-Inf.
@@ -48,8 +59,10 @@ bool accept_inputs(const Model<S>& m, State<S>& s, const Inputs<S>& in) {
   return !held;
 }
 
-// P_n: gravity M g and base excitation -M iota a_g on translations, then nodal loads and
-// force inputs (§5).
+// P_n (§5): gravity M g and base excitation -M iota a_g on translations, nodal loads and force
+// inputs. M g needs only the vector g - a_g (w.load_g), which the residual pass multiplies by
+// each DOF's mass; the load slots (DOFs with nodal loads or force inputs) get their whole P_n,
+// in the order of the model's loads, then its inputs.
 template <Sizes S>
 void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   const double fg = load_factor(m.time_points, m.time_functions, m.gravity_function, t);
@@ -61,23 +74,25 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
           s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
     }
   }
-  const std::array<double, 3> g{m.gravity[0] * fg - w.ground[0], m.gravity[1] * fg - w.ground[1],
-                                m.gravity[2] * fg - w.ground[2]};
-  for (int n = 0; n < S.nodes; ++n) {
-    const auto j = static_cast<std::size_t>(kDofsPerNode * n);
-    w.p[j] = m.mass[j] * g[0];
-    w.p[j + 1] = m.mass[j + 1] * g[1];
-    w.p[j + 2] = m.mass[j + 2] * g[2];
-    w.p[j + 3] = 0, w.p[j + 4] = 0, w.p[j + 5] = 0;
+  w.load_g = {m.gravity[0] * fg - w.ground[0],
+              m.gravity[1] * fg - w.ground[1],
+              m.gravity[2] * fg - w.ground[2],
+              0.0,
+              0.0,
+              0.0};
+  for (int k = 0; k < m.num_slots; ++k) {
+    const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
+    w.p_slot[static_cast<std::size_t>(k)] = m.mass[j] * w.load_g[j % kDofsPerNode];
   }
-  for (const LoadSpec& l : m.loads) {
-    w.p[static_cast<std::size_t>(kDofsPerNode * l.node + l.dof)] +=
+  for (int i = 0; i < S.loads; ++i) {
+    const LoadSpec& l = m.loads[static_cast<std::size_t>(i)];
+    w.p_slot[static_cast<std::size_t>(m.load_slot[static_cast<std::size_t>(i)])] +=
         l.value * load_factor(m.time_points, m.time_functions, l.time_function, t);
   }
   for (int i = 0; i < S.inputs; ++i) {
     const InputSpec& in = m.inputs[static_cast<std::size_t>(i)];
     if (in.kind == InputKind::kNodalForce) {
-      w.p[static_cast<std::size_t>(kDofsPerNode * in.node + in.dof)] +=
+      w.p_slot[static_cast<std::size_t>(m.input_slot[static_cast<std::size_t>(i)])] +=
           s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
     }
   }
@@ -127,6 +142,34 @@ void hinge_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   }
 }
 
+// R_n - C v_{n-1/2} = P_n - F_n - alpha M v_{n-1/2} (S 2-3) into out[j] for every DOF, times
+// scale[j] (or not, for ntn_paper), in one pass: P_n = m g_d on the fly (C = alpha M likewise:
+// the same products as Model::damping), then the load slots again with their whole P_n.
+template <Sizes S, bool kScaled = true>
+void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
+              double* out) {
+  const double alpha = m.alpha;
+  double g[kDofsPerNode];  // locals: the stores to `out` may alias the model and the scratch
+  for (std::size_t d = 0; d < kDofsPerNode; ++d)
+    g[d] = w.load_g[d];
+  for (std::size_t n = 0; n < static_cast<std::size_t>(Model<S>::kDofs); n += kDofsPerNode) {
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      const std::size_t j = n + d;
+      const double r = (m.mass[j] * g[d] - w.f[j]) - (alpha * m.mass[j]) * s.v[j];
+      if constexpr (kScaled) {
+        out[j] = r * scale[j];
+      } else {
+        out[j] = r;
+      }
+    }
+  }
+  for (int k = 0; k < m.num_slots; ++k) {
+    const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
+    const double r = (w.p_slot[static_cast<std::size_t>(k)] - w.f[j]) - m.damping[j] * s.v[j];
+    out[j] = kScaled ? r * scale[j] : r;
+  }
+}
+
 // a_n = (R_n - C v_{n-1/2}) / m per DOF, R_n = P_n - F_n (S 2-4); zero at supported DOFs.
 // ntn_paper sums R_n over the rigid directions first (S 17-21, in w.r). ntn_exact hands R_n up
 // the constraint forest, then the roots and the downward pass give the trees' accelerations
@@ -135,31 +178,24 @@ void hinge_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
 // output recomputes its tree's coupled R). Penalty springs are in F_n already.
 template <Sizes S>
 void accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  constexpr auto kDofs = static_cast<std::size_t>(Model<S>::kDofs);
   if constexpr (S.hinges > 0) {
     if (m.hinge_method == HingeMethod::kNtnPaper) {
-      for (std::size_t j = 0; j < kDofs; ++j) {
-        w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
-      }
+      residual<S, false>(m, s, w, nullptr, w.r.data());
       paper_forces(m.hinges, w.r.data());
-      for (std::size_t j = 0; j < kDofs; ++j) {
+      for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
         w.a[j] = w.r[j] * m.inv_mass[j];
       }
       return;
     }
     if (m.hinge_method == HingeMethod::kNtnExact) {
-      for (std::size_t j = 0; j < kDofs; ++j) {
-        w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.residual_scale[j];
-      }
+      residual(m, s, w, m.residual_scale.data(), w.a.data());
       forest_up(m.edges, m.edge_matrices, m.num_edges, w.a.data());
       forest_down(m.roots, m.num_roots, m.edges, m.edge_matrices, m.num_edges, w.a.data(),
                   w.a.data());
       return;
     }
   }
-  for (std::size_t j = 0; j < kDofs; ++j) {
-    w.a[j] = ((w.p[j] - w.f[j]) - m.damping[j] * s.v[j]) * m.inv_mass[j];
-  }
+  residual(m, s, w, m.inv_mass.data(), w.a.data());
 }
 
 // The nodes an impulse at `node` moves (the clamp): the node's rigid tree (ntn_exact), or the
@@ -194,7 +230,7 @@ void tree_coupled_residual(const Model<S>& m, const State<S>& s, Scratch<S>& w, 
   for_each_node(m, ClampPart{tree, -1}, [&](int n) {
     for (std::size_t c = 0; c < 6; ++c) {
       const auto j = static_cast<std::size_t>(kDofsPerNode * n) + c;
-      w.r[j] = (w.p[j] - w.f[j]) - m.damping[j] * s.v[j];
+      w.r[j] = (external_load(m, w, j) - w.f[j]) - m.damping[j] * s.v[j];
     }
   });
   const ForestTree& t = m.trees[static_cast<std::size_t>(tree)];
@@ -222,7 +258,8 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
     const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
     double g[6], l[6];
     for (std::size_t c = 0; c < 6; ++c) {
-      const double own = (w.p[i1 + c] - w.f[i1 + c]) - m.damping[i1 + c] * s.v[i1 + c];
+      const double own =
+          (external_load(m, w, i1 + c) - w.f[i1 + c]) - m.damping[i1 + c] * s.v[i1 + c];
       g[c] = m.mass[i1 + c] * w.a[i1 + c] - own;
     }
     detail::to_hinge(h, g + (k < 3 ? 0 : 3), l);
@@ -427,7 +464,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
           const int n = m.supported_nodes[static_cast<std::size_t>(k)];
           if ((m.fixed[static_cast<std::size_t>(n)] >> o.dof) & 1U) {
             const auto q = static_cast<std::size_t>(kDofsPerNode * n + o.dof);
-            value += w.f[q] - w.p[q];
+            value += w.f[q] - external_load(m, w, q);
           }
         }
         break;

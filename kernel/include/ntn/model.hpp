@@ -22,16 +22,23 @@ struct Model {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
 
   std::array<BeamData, S.elements> beams{};
-  std::array<double, kDofs> mass{};           // kg or kg m^2, lumped (HRZ) plus point masses
-  std::array<double, kDofs> inv_mass{};       // 1/mass; 0 at supported DOFs, which stay at zero
-  std::array<double, kDofs> damping{};        // N s/m, diagonal C = alpha M (S 1)
-  std::array<std::uint8_t, S.nodes> fixed{};  // support bits per node (bit d: DOF d)
+  std::array<double, kDofs> mass{};      // kg or kg m^2, lumped (HRZ) plus point masses
+  std::array<double, kDofs> inv_mass{};  // 1/mass; 0 at supported DOFs, which stay at zero
+  std::array<double, kDofs> damping{};   // N s/m, diagonal C = alpha M (S 1)
+  double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
+  std::array<std::uint8_t, S.nodes> fixed{};            // support bits per node (bit d: DOF d)
   std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
   int num_supported = 0;
 
   std::array<TimePoint, S.time_points> time_points{};
   std::array<TimeFunctionSpec, S.time_functions> time_functions{};
   std::array<LoadSpec, S.loads> loads{};
+  // The DOFs that carry a nodal load or a force input ("load slots"), each once: only there does
+  // P_n differ from M g (gravity and base excitation), which the residual pass computes on the fly.
+  std::array<std::int32_t, S.loads + S.inputs> slot_dof{};  // slot -> its DOF
+  std::array<std::int32_t, S.loads> load_slot{};            // nodal load -> its slot
+  std::array<std::int32_t, S.inputs> input_slot{};          // force input -> its slot, else -1
+  int num_slots = 0;
   std::array<InputSpec, S.inputs> inputs{};
   std::array<OutputSpec, S.outputs> outputs{};
   std::array<double, 3> gravity{};  // m/s^2
@@ -241,7 +248,7 @@ template <Sizes S>
     if constexpr (S.hinges > 0) in_tree = model.node_tree[static_cast<std::size_t>(n)] >= 0;
     for (int d = 0; d < kDofsPerNode; ++d) {
       const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
-      model.damping[j] = spec.settings.alpha * model.mass[j];
+      model.damping[j] = spec.settings.alpha * model.mass[j];  // residual() recomputes it so
       if (((fixed >> d) & 1U) || in_tree) {  // a tree's accelerations come from the forest
         eff[j] = 0.0;
       } else if (!(eff[j] > 0)) {
@@ -269,6 +276,26 @@ template <Sizes S>
         model.residual_scale[j] = in_tree ? 1.0 : model.inv_mass[j];
       }
     }
+  }
+
+  model.alpha = spec.settings.alpha;
+  // Load slots, in order of first use (nodal loads, then force inputs).
+  model.num_slots = 0;
+  auto slot_of = [&](int dof) {
+    for (int k = 0; k < model.num_slots; ++k) {
+      if (model.slot_dof[static_cast<std::size_t>(k)] == dof) return k;
+    }
+    model.slot_dof[static_cast<std::size_t>(model.num_slots)] = dof;
+    return model.num_slots++;
+  };
+  for (int i = 0; i < S.loads; ++i) {
+    const LoadSpec& l = spec.loads[static_cast<std::size_t>(i)];
+    model.load_slot[static_cast<std::size_t>(i)] = slot_of(kDofsPerNode * l.node + l.dof);
+  }
+  for (int i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = spec.inputs[static_cast<std::size_t>(i)];
+    model.input_slot[static_cast<std::size_t>(i)] =
+        in.kind == InputKind::kNodalForce ? slot_of(kDofsPerNode * in.node + in.dof) : -1;
   }
 
   model.time_points = spec.time_points;

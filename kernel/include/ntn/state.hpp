@@ -23,7 +23,10 @@ struct State {
 template <Sizes S>
 struct Scratch {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
-  std::array<double, kDofs> p{};                       // external load P_n
+  // External load P_n (DESIGN §5): M g at every DOF (load_g per DOF direction, computed in the
+  // residual pass), except at the model's load slots, whose P_n is here (external_load()).
+  std::array<double, kDofsPerNode> load_g{};           // m/s^2: gravity - a_g on x, y, z; 0, 0, 0
+  std::array<double, S.loads + S.inputs> p_slot{};     // N or N m, P_n at Model::slot_dof
   std::array<double, kDofs> f{};                       // internal force F_n
   std::array<double, kDofs> a{};                       // acceleration a_n
   std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};  // R_n - C v, coupled (models with hinges)

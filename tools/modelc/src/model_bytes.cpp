@@ -53,12 +53,17 @@ std::size_t model_size(const Sizes& s) {
   l.array<double>(dofs);              // mass
   l.array<double>(dofs);              // inv_mass
   l.array<double>(dofs);              // damping
+  l.scalar<double>();                 // alpha
   l.array<std::uint8_t>(s.nodes);     // fixed
   l.array<std::int32_t>(s.nodes);     // supported_nodes
   l.scalar<int>();                    // num_supported
   l.array<TimePoint>(s.time_points);  // time_points
   l.array<TimeFunctionSpec>(s.time_functions);
   l.array<LoadSpec>(s.loads);
+  l.array<std::int32_t>(s.loads + s.inputs);  // slot_dof
+  l.array<std::int32_t>(s.loads);             // load_slot
+  l.array<std::int32_t>(s.inputs);            // input_slot
+  l.scalar<int>();                            // num_slots
   l.array<InputSpec>(s.inputs);
   l.array<OutputSpec>(s.outputs);
   l.add(sizeof(std::array<double, 3>), alignof(std::array<double, 3>));  // gravity
@@ -109,7 +114,8 @@ std::size_t state_size(const Sizes& s) {
 std::size_t scratch_size(const Sizes& s) {
   const int dofs = kDofsPerNode * s.nodes;
   Layout l;
-  l.array<double>(dofs);                              // p
+  l.array<double>(kDofsPerNode);                      // load_g
+  l.array<double>(s.loads + s.inputs);                // p_slot
   l.array<double>(dofs);                              // f
   l.array<double>(dofs);                              // a
   l.array<double>(s.hinges > 0 ? dofs : 0);           // r (models with hinges)
@@ -131,9 +137,9 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   f.scratch = scratch_size(s);
   f.total = f.model + f.state + f.scratch;
   f.per_element = sizeof(BeamData);
-  // Per node: 6 DOFs x 8 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
-  // Scratch: p, f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
-  f.per_node = kDofsPerNode * 8 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
+  // Per node: 6 DOFs x 7 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
+  // Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
+  f.per_node = kDofsPerNode * 7 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
   // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
   // places in the lists of hinges with springs, with branches and of projected edges, a
   // tree slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).

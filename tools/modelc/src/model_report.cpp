@@ -210,7 +210,7 @@ std::string info_text(const ModelDescription& m) {
                std::to_string(z.elements) + " = " +
                std::to_string(mem.per_element * static_cast<std::size_t>(z.elements)) + " B");
   line("", "per node " + std::to_string(mem.per_node) +
-               " B (6 DOFs x 8 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
+               " B (6 DOFs x 7 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
                " = " + std::to_string(mem.per_node * static_cast<std::size_t>(z.nodes)) + " B");
   if (z.hinges > 0) {
     line("", "per hinge " + std::to_string(mem.per_hinge) +
