@@ -7,6 +7,7 @@
 //
 // Besides the benchmarks, three modes (each replaces the benchmark run):
 //   --calibrate        penalty stiffness from runs of 1 s (README "Hinges")
+//   --penalty-sweep    penalty / ntn_exact time for 1 s under 10 and 100 times stricter criteria
 //   --stages[=N]       manual timing of each stage of step() over N steps (default 4000)
 //   --dump-state=FILE  u, v after 1000 steps of every variant, raw bytes (to compare builds)
 #include <benchmark/benchmark.h>
@@ -413,6 +414,58 @@ int calibrate() {
   return meets && smallest && !exact.diverged ? 0 : 1;
 }
 
+// ---- --penalty-sweep: the time ratio under stricter criteria. ------------------------------
+
+// Wall-clock time per step: the smallest of three timings of `steps` steps after the warm-up
+// (the smallest is the one least disturbed by other processes).
+template <Joints J, Variant V>
+double seconds_per_step(int steps) {
+  constexpr Sizes S = kSizes<J>;
+  const Model<S>& m = model_of<J, V>();
+  State<S>& s = static_instance<State<S>, slot(J, V, 6)>();
+  Scratch<S>& w = static_instance<Scratch<S>, slot(J, V, 6)>();
+  double best = 0;
+  for (int run = 0; run < 3; ++run) {
+    (void)run_from_rest(m, s, w, kWarmupSteps);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int n = 0; n < steps; ++n)
+      (void)step(m, s, w, kGround);
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (run == 0 || t < best) best = t;
+  }
+  return best / steps;
+}
+
+// For the criterion of --calibrate (relative displacement <= tol x peak over 1 s) made 10 and
+// 100 times stricter: the penalty stiffness the 1/k scaling of the trial run predicts (1-2-5
+// series), a 1 s run that checks the criterion there, the strict stable step it allows, and the
+// time to simulate 1 s against ntn_exact (a penalty step costs the same whatever k).
+int penalty_sweep() {
+  constexpr double kTrial = 1e9;
+  constexpr Joints J = Joints::kPinned;
+  std::printf("Penalty / ntn_exact, time to simulate 1 s, under stricter criteria\n");
+  const double exact_step = seconds_per_step<J, Variant::kExact>(3000);
+  const double penalty_step = seconds_per_step<J, Variant::kPenalty>(3000);
+  const double exact_dt = model_of<J, Variant::kExact>().dt;
+  std::printf("  per step: ntn_exact %.2f us (dt %.2f us), penalty %.2f us\n", exact_step * 1e6,
+              exact_dt * 1e6, penalty_step * 1e6);
+  const Drift trial = drift<J>(Variant::kPenalty, kTrial, kTrial, 1.0);
+  bool ok = !trial.diverged;
+  std::printf("  %-10s %10s %10s %10s %12s %12s %8s\n", "criterion", "k_t N/m", "k_r Nm/rad",
+              "dt us", "max|d|/peak", "max|d_rx|/pk", "ratio");
+  for (double tol : {kPenaltyTolerance, kPenaltyTolerance / 10, kPenaltyTolerance / 100}) {
+    const double kt = series_125_at_least(kTrial * trial.ratio() / tol);
+    const double kr = series_125_at_least(kTrial * trial.ratio_phi() / tol);
+    const Drift d = drift<J>(Variant::kPenalty, kt, kr, 1.0);
+    const bool meets = !d.diverged && d.ratio() <= tol && d.ratio_phi() <= tol;
+    ok = ok && meets;
+    const double ratio = (penalty_step / d.dt) / (exact_step / exact_dt);
+    std::printf("  %-10.0e %10.0e %10.0e %10.3f %12.2e %12.2e %8.0f%s\n", tol, kt, kr, d.dt * 1e6,
+                d.ratio(), d.ratio_phi(), ratio, meets ? "" : "  (criterion NOT met)");
+  }
+  return ok ? 0 : 1;
+}
+
 // ---- --stages: manual timing of each stage of step(). ---------------------------------------
 
 enum Stage : std::uint8_t {
@@ -601,6 +654,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--calibrate") return calibrate();
+    if (a == "--penalty-sweep") return penalty_sweep();
     if (a.rfind("--stages", 0) == 0) {
       return stages(a.size() > 9 ? std::atoi(a.c_str() + 9) : 4000);
     }
