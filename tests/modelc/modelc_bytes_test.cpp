@@ -49,14 +49,14 @@ TEST(ModelBytes, PerElementNodeAndHinge) {
   constexpr ntn::Sizes n{16, 8, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(n) - ntn::modelc::model_bytes(a),
             8 * ntn::modelc::memory_footprint(a).per_node);
-  // Two more hinges keep the 4-byte per-hinge arrays (hinge -> edge, the spring, branch and
-  // projection lists) and the 12-byte tree slots multiples of 8.
+  // Two more hinges keep the 4-byte per-hinge arrays (hinge -> edge, the spring, branch,
+  // projection and tree-stop lists) and the 20-byte tree slots multiples of 8.
   constexpr ntn::Sizes h2{8, 8, 0, 0, 0, 0, 0, 2, 0, 0}, h4{8, 8, 0, 0, 0, 0, 0, 4, 0, 0};
   const auto f = ntn::modelc::memory_footprint(h2);
   EXPECT_EQ(ntn::modelc::model_bytes(h4) - ntn::modelc::model_bytes(h2), 2 * f.per_hinge);
   EXPECT_EQ(f.per_hinge, sizeof(ntn::HingeData) + sizeof(ntn::ForestEdge) +
                              sizeof(ntn::ForestEdgeMatrices) + sizeof(ntn::ForestRoot) +
-                             sizeof(ntn::Mat6) + 4 * sizeof(std::int32_t) +
+                             sizeof(ntn::Mat6) + 5 * sizeof(std::int32_t) +
                              sizeof(ntn::ForestTree) + sizeof(std::int64_t));
   // Eight more nodes in a model with hinges: the per-node arrays plus the hinge ones.
   constexpr ntn::Sizes hn{16, 8, 0, 0, 0, 0, 0, 2, 0, 0};

@@ -553,6 +553,8 @@ struct ForestTree {
   std::int32_t first_edge = 0;
   std::int32_t end_edge = 0;
   std::int32_t root = -1;
+  std::int32_t first_stop = 0;  // its stop hinges with both nodes in it: Model::tree_stops range
+  std::int32_t end_stop = 0;
 };
 
 // One tree's accelerations: its upward pass, its root, its downward pass (DESIGN §7.1).

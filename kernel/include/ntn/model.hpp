@@ -65,6 +65,9 @@ struct Model {
   std::array<std::int32_t, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
   std::array<std::int32_t, S.hinges> project_edges{};  // ntn_exact: edges the step re-projects
   std::array<ForestTree, S.hinges> trees{};            // ntn_exact: edge range and root per tree
+  // ntn_exact: the stop hinges (indices into branch_hinges) whose two nodes lie in one tree,
+  // tree by tree (ForestTree::first_stop, end_stop).
+  std::array<std::int32_t, S.hinges> tree_stops{};
   int num_edges = 0;
   int num_roots = 0;
   int num_spring_hinges = 0;
@@ -230,6 +233,20 @@ template <Sizes S>
       const auto edges =
           std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges));
       model.num_trees = forest_trees(edges, model.node_tree, model.trees);
+      int placed = 0;  // the stop hinges of each tree, tree by tree
+      for (int t = 0; t < model.num_trees; ++t) {
+        ForestTree& tree = model.trees[static_cast<std::size_t>(t)];
+        tree.first_stop = placed;
+        for (int i = 0; i < model.num_branch_hinges; ++i) {
+          const HingeData& h = model.hinges[static_cast<std::size_t>(
+              model.branch_hinges[static_cast<std::size_t>(i)])];
+          if (h.node2 == kGround || model.node_tree[static_cast<std::size_t>(h.node1)] != t ||
+              model.node_tree[static_cast<std::size_t>(h.node2)] != t)
+            continue;
+          model.tree_stops[static_cast<std::size_t>(placed++)] = i;
+        }
+        tree.end_stop = placed;
+      }
       model.num_project_edges = select_projected_edges(
           edges,
           std::span<const ForestTree>(model.trees.data(),

@@ -85,6 +85,7 @@ std::size_t model_size(const Sizes& s) {
   l.array<std::int32_t>(s.hinges);                                       // branch_hinges
   l.array<std::int32_t>(s.hinges);                                       // project_edges
   l.array<ForestTree>(s.hinges);                                         // trees
+  l.array<std::int32_t>(s.hinges);                                       // tree_stops
   l.scalar<int>();                                                       // num_edges
   l.scalar<int>();                                                       // num_roots
   l.scalar<int>();                                                       // num_spring_hinges
@@ -141,10 +142,11 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 7 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
   // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
-  // places in the lists of hinges with springs, with branches and of projected edges, a
+  // places in the lists of hinges with springs, with branches, of projected edges and of the
+  // trees' stops, a
   // tree slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
-                sizeof(ForestRoot) + sizeof(Mat6) + 4 * sizeof(std::int32_t) + sizeof(ForestTree) +
+                sizeof(ForestRoot) + sizeof(Mat6) + 5 * sizeof(std::int32_t) + sizeof(ForestTree) +
                 sizeof(std::int64_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force
