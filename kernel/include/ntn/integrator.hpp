@@ -167,8 +167,13 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
   }
   for (int k = 0; k < m.num_slots; ++k) {
     const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
-    const double r = (w.p_slot[static_cast<std::size_t>(k)] - w.f[j]) - m.damping[j] * s.v[j];
-    out[j] = kScaled ? r * scale[j] : r;
+    const double r =
+        (w.p_slot[static_cast<std::size_t>(k)] - w.f[j]) - (alpha * m.mass[j]) * s.v[j];
+    if constexpr (kScaled) {
+      out[j] = r * scale[j];
+    } else {
+      out[j] = r;
+    }
   }
 }
 
@@ -244,8 +249,11 @@ void tree_coupled_residual(const Model<S>& m, const State<S>& s, Scratch<S>& w, 
 // Hinge force on node 1 in the hinge frame, direction k: the constraint force of a rigid
 // direction (ntn_exact: lambda of the forest; ntn_paper: T (m_1 a_1 - R_1) from node 1's own
 // mass and force, which holds every hinge on node 1 together), else the spring force.
+// `coupled_tree`: the tree whose coupled R w.r holds for this step's outputs (-1: none yet), so
+// that several channels of one tree compute it once.
 template <Sizes S>
-double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hinge, int k) {
+double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hinge, int k,
+                   int& coupled_tree) {
   const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
   const auto kk = static_cast<std::size_t>(k);
   if ((h.rigid >> k) & 1U) {
@@ -253,7 +261,9 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
     if (m.hinge_method == HingeMethod::kNtnExact) {
       const auto edge = static_cast<std::size_t>(m.hinge_edge[static_cast<std::size_t>(hinge)]);
       const ForestEdge& e = m.edges[edge];
-      tree_coupled_residual(m, s, w, m.node_tree[static_cast<std::size_t>(e.child)]);
+      const int tree = m.node_tree[static_cast<std::size_t>(e.child)];
+      if (tree != coupled_tree) tree_coupled_residual(m, s, w, tree);
+      coupled_tree = tree;
       forest_hinge_force(e, m.edge_matrices[edge], w.a.data(), w.r.data(), lambda);
       return lambda[k];
     }
@@ -293,14 +303,6 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
 // Only the trees of the hinge's two nodes (or the nodes themselves) respond, so an event costs
 // the size of those trees, not of the model. Then S 35-37. Uses w.f and w.r there as workspace
 // (the outputs were taken before the update).
-
-// True when both nodes of hinge h lie in one rigid tree (ntn_exact): its stops are that tree's.
-template <Sizes S>
-bool in_one_tree(const Model<S>& m, const HingeData& h) {
-  if (h.node2 == kGround) return false;
-  const std::int32_t t = m.node_tree[static_cast<std::size_t>(h.node1)];
-  return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)];
-}
 
 // The parts that respond to an impulse on stop hinge h: its nodes' trees or the lone nodes.
 template <Sizes S>
@@ -613,9 +615,9 @@ double momentum_clamp_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool 
   }
   // node_tree is -1 everywhere but under ntn_exact, so every part is then a lone node.
   for (int i = 0; i < m.num_branch_hinges; ++i) {
+    if (stop_tree(m, i) >= 0) continue;  // clamp_tree's
     const HingeData& h =
         m.hinges[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])];
-    if (in_one_tree(m, h)) continue;  // clamp_tree's
     std::int64_t& checked = w.clamp_checked[static_cast<std::size_t>(i)];
     if (!clamp_due(w, h, checked, first)) continue;
     largest = std::max(largest, clamp_hinge(m, s, w, h));
@@ -674,6 +676,7 @@ void forces_and_accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& 
 template <Sizes S>
 void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   w.time = t;
+  [[maybe_unused]] int coupled_tree = -1;  // hinge_force: the tree whose coupled R is in w.r
   for (int c = 0; c < S.outputs; ++c) {
     const OutputSpec& o = m.outputs[static_cast<std::size_t>(c)];
     const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
@@ -689,7 +692,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         value = w.a[j];
         break;
       case OutputKind::kHingeForce:
-        if constexpr (S.hinges > 0) value = hinge_force(m, s, w, o.hinge, o.dof);
+        if constexpr (S.hinges > 0) value = hinge_force(m, s, w, o.hinge, o.dof, coupled_tree);
         break;
       case OutputKind::kHingeDisplacement:
         if constexpr (S.hinges > 0) value = hinge_displacement(m, s, o.hinge, o.dof);

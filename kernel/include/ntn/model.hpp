@@ -167,6 +167,17 @@ template <Sizes S>
   return {};
 }
 
+// The rigid tree that holds both nodes of stop hinge `i` (index into Model::branch_hinges), or
+// -1: its stops are then solved with that tree's (integrator.hpp, clamp_tree).
+template <Sizes S>
+int stop_tree(const Model<S>& m, int i) {
+  const HingeData& h =
+      m.hinges[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])];
+  if (h.node2 == kGround) return -1;
+  const std::int32_t t = m.node_tree[static_cast<std::size_t>(h.node1)];
+  return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)] ? t : -1;
+}
+
 // Builds the constant model from its spec. No heap: `model` is caller-owned (usually static).
 template <Sizes S>
 [[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model) {
@@ -233,19 +244,23 @@ template <Sizes S>
       const auto edges =
           std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges));
       model.num_trees = forest_trees(edges, model.node_tree, model.trees);
-      int placed = 0;  // the stop hinges of each tree, tree by tree
+      // The stop hinges of each tree, tree by tree (a counting sort: count, ranges, place).
+      for (int i = 0; i < model.num_branch_hinges; ++i) {
+        const int t = stop_tree(model, i);
+        if (t >= 0) ++model.trees[static_cast<std::size_t>(t)].end_stop;
+      }
+      int placed = 0;
       for (int t = 0; t < model.num_trees; ++t) {
         ForestTree& tree = model.trees[static_cast<std::size_t>(t)];
         tree.first_stop = placed;
-        for (int i = 0; i < model.num_branch_hinges; ++i) {
-          const HingeData& h = model.hinges[static_cast<std::size_t>(
-              model.branch_hinges[static_cast<std::size_t>(i)])];
-          if (h.node2 == kGround || model.node_tree[static_cast<std::size_t>(h.node1)] != t ||
-              model.node_tree[static_cast<std::size_t>(h.node2)] != t)
-            continue;
-          model.tree_stops[static_cast<std::size_t>(placed++)] = i;
-        }
-        tree.end_stop = placed;
+        placed += tree.end_stop;
+        tree.end_stop = tree.first_stop;
+      }
+      for (int i = 0; i < model.num_branch_hinges; ++i) {
+        const int t = stop_tree(model, i);
+        if (t >= 0)
+          model.tree_stops[static_cast<std::size_t>(
+              model.trees[static_cast<std::size_t>(t)].end_stop++)] = i;
       }
       model.num_project_edges = select_projected_edges(
           edges,
@@ -282,16 +297,7 @@ template <Sizes S>
       } else {
         eff[j] = 1.0 / eff[j];
       }
-    }
-  }
-
-  if constexpr (S.hinges > 0) {
-    for (int n = 0; n < S.nodes; ++n) {
-      const bool in_tree = model.node_tree[static_cast<std::size_t>(n)] >= 0;
-      for (int d = 0; d < kDofsPerNode; ++d) {
-        const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
-        model.residual_scale[j] = in_tree ? 1.0 : model.inv_mass[j];
-      }
+      if constexpr (S.hinges > 0) model.residual_scale[j] = in_tree ? 1.0 : eff[j];
     }
   }
 
