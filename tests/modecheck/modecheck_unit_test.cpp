@@ -350,6 +350,29 @@ TEST(ModeCheckResolution, ExplicitAutoAndTooShort) {
   EXPECT_NE(notes[0].find("which needs 200 s"), std::string::npos) << notes[0];
 }
 
+// Extreme (valid) values: a segment count beyond any record is compared as a number, not cast
+// to an integer (undefined behaviour, which gave "give a segment length" or a 0-sample segment).
+TEST(ModeCheckResolution, TinyResolutionsAndTolerances) {
+  const sp::Channels data = synthetic(1);  // 100 s at 100 Hz
+  mc::Options o;
+  o.resolution_hz = 1e-300;
+  try {
+    (void)mc::resolve_resolution(data, 2.0, o, nullptr);
+    FAIL() << "no error";
+  } catch (const mc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("one segment of 1e+300 s (1e+302 samples)"),
+              std::string::npos)
+        << e.what();
+  }
+  o.resolution_hz = 0;
+  o.tolerance = 1e-300;  // auto: the whole record, with a note
+  std::vector<std::string> notes;
+  EXPECT_DOUBLE_EQ(mc::resolve_resolution(data, 2.0, o, &notes), 0.01);
+  EXPECT_EQ(notes.size(), 1u);
+  const mc::Selection sel = mc::select_channels(nullptr, data, {});
+  EXPECT_THROW((void)mc::identify(data, sel, 1e-300, 1.5, 8.0, mc::Options{}), mc::InputError);
+}
+
 // Non-finite data given in memory (files are checked by the reader, with file:line): the
 // spectral code's message, as bad input.
 TEST(ModeCheckIdentify, NonFiniteSamplesAreBadInput) {

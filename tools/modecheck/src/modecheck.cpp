@@ -46,9 +46,14 @@ Kind kind_of(OutputKind k) {
 }
 
 // Samples in one segment for a line spacing df (as Welch's ceil(fs / df), guarded against
-// rounding up a ratio that is an integer in exact arithmetic).
-std::size_t segment_samples(double fs, double df) {
-  return static_cast<std::size_t>(std::ceil(fs / df * (1 - 1e-12)));
+// rounding up a ratio that is an integer in exact arithmetic). A double: for a tiny df it exceeds
+// every record (and std::size_t), so it is compared before any conversion.
+double segment_samples(double fs, double df) {
+  return std::ceil(fs / df * (1 - 1e-12));
+}
+
+std::string count(double samples) {
+  return num(samples, samples < 1e15 ? "%.0f" : "%.6g");
 }
 
 std::string list_names(const std::vector<std::string>& names) {
@@ -306,19 +311,19 @@ double resolve_resolution(const spectral::Channels& data, double lowest_model_hz
                   " Hz for this record")
                      .c_str());
     }
-    const std::size_t seg = segment_samples(fs, options.resolution_hz);
-    if (n < seg) {
+    const double seg = segment_samples(fs, options.resolution_hz);
+    if (static_cast<double>(n) < seg) {
       throw InputError("the record is too short for a resolution of " + num(options.resolution_hz) +
                        " Hz: it is " + num(static_cast<double>(n) / fs) + " s (" +
                        std::to_string(n) + " samples at " + num(fs) + " Hz), and one segment of " +
-                       num(static_cast<double>(seg) / fs) + " s (" + std::to_string(seg) +
-                       " samples) is needed; give a record of at least " +
-                       num(static_cast<double>(seg) / fs) + " s or a coarser --resolution");
+                       num(seg / fs) + " s (" + count(seg) +
+                       " samples) is needed; give a record of at least " + num(seg / fs) +
+                       " s or a coarser --resolution");
     }
     return options.resolution_hz;
   }
   const double wanted = options.tolerance * lowest_model_hz / 2;
-  if (n >= segment_samples(fs, wanted)) return wanted;
+  if (static_cast<double>(n) >= segment_samples(fs, wanted)) return wanted;
   const double df = fs / static_cast<double>(n);
   if (notes != nullptr) {
     notes->push_back("resolution " + num(df) + " Hz (the whole record, " +
@@ -362,7 +367,13 @@ Identification identify(const spectral::Channels& data, const Selection& selecti
   for (const ChannelInfo& ci : selection.channels)
     id.channels.push_back(ci.name);
   spectral::WelchOptions wo;
-  wo.segment = segment_samples(data.fs, resolution_hz);
+  const double seg = segment_samples(data.fs, resolution_hz);
+  if (!(seg >= 2 && seg <= static_cast<double>(data.samples()))) {
+    throw InputError("a resolution of " + num(resolution_hz) + " Hz needs segments of " +
+                     count(seg) + " samples; the record has " + std::to_string(data.samples()) +
+                     " (at least 2 are needed)");
+  }
+  wo.segment = static_cast<std::size_t>(seg);
   wo.overlap = options.overlap;
   wo.window = options.window;
   id.f_min = std::max(0.0, f_min);
@@ -597,6 +608,18 @@ Report check_files(const std::string& model_path, const std::string& response_pa
   }
   std::vector<std::string> notes;
   const double df = resolve_resolution(data, lowest, options, &notes);
+  // The lowest mode's search band must hold a spectral line, or no peak can be found in it.
+  if (2 * options.search_band * lowest < df) {
+    bad_option("--band", 100 * options.search_band, " %",
+               ("the search band around mode " +
+                std::to_string(modes.number[static_cast<std::size_t>(
+                    std::min_element(modes.frequency.begin(), modes.frequency.end()) -
+                    modes.frequency.begin())]) +
+                " (" + num(lowest) + " Hz +- " + num(options.search_band * lowest, "%.3g") +
+                " Hz) is narrower than the line spacing " + num(df) +
+                " Hz; widen --band or refine --resolution")
+                   .c_str());
+  }
   const Identification id = identify(data, sel, df, lowest * (1 - options.search_band),
                                      highest * (1 + options.search_band), options);
   Report rep = compare(modes, id, sel, options);
