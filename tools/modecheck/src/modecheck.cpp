@@ -338,9 +338,9 @@ Identification identify(const spectral::Channels& data, const Selection& selecti
                         double resolution_hz, double f_min, double f_max, const Options& options) {
   validate(options);
   if (selection.channels.empty()) throw InputError("no channels to analyse");
-  // The numerical floor (README, "The numerical floor"): white rounding noise of one rounding
-  // unit (eps |x|max) per channel has the one-sided density 2 (eps |x|max)^2 / fs; s1 and the
-  // PSD are at most the sum over the channels. A peak must be 1000 times above that.
+  // The numerical floor (README, "Dead channels and the numerical floor"): white rounding noise of
+  // one rounding unit (eps |x|max) per channel has the one-sided density 2 (eps |x|max)^2 / fs; s1
+  // and the PSD are at most the sum over the channels. A peak must be 1000 times above that.
   double noise = 0;
   for (const ChannelInfo& ci : selection.channels) {
     if (ci.column >= data.data.size()) throw InputError("channel '" + ci.name + "' has no data");

@@ -122,7 +122,8 @@ struct Identification {
   std::vector<IdentifiedPeak> peaks;         // inside [f_min, f_max], frequency order
   double f_min = 0, f_max = 0;               // Hz: the range searched
   // The numerical floor of the spectrum (u^2/Hz): a local maximum below it is rounding noise, not
-  // a peak (README, "The numerical floor"); the maxima left out for it are counted.
+  // a peak (README, "Dead channels and the numerical floor"); the maxima left out for it are
+  // counted.
   double floor = 0;
   int below_floor = 0;
   std::vector<std::string> notes;
