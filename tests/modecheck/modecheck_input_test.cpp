@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ntn/modecheck/modecheck.hpp"
 #include "test_files.hpp"
@@ -34,6 +36,30 @@ class ModeCheckInput : public ::testing::Test {
         s.resize(s.rfind(',') + 1);
         s += "nan\n";
       }
+    }
+    const std::string path = dir_ / name;
+    ntn_test::write_file(path, s);
+    return path;
+  }
+
+  // `seconds` at `fs` of the given channels of the test model (name, x(t)), as ntn-run writes.
+  std::string channels(const std::string& name,
+                       const std::vector<std::pair<std::string, double (*)(double)>>& ch,
+                       int seconds = 40, int fs = 100) {
+    std::string s = "time[s]";
+    for (const auto& c : ch)
+      s += "," + c.first + "[m]";
+    s += "\n";
+    for (int k = 0; k < seconds * fs; ++k) {
+      const double t = k / static_cast<double>(fs);
+      char v[48];
+      std::snprintf(v, sizeof v, "%.9g", t);
+      s += v;
+      for (const auto& c : ch) {
+        std::snprintf(v, sizeof v, ",%.17g", c.second(t));
+        s += v;
+      }
+      s += "\n";
     }
     const std::string path = dir_ / name;
     ntn_test::write_file(path, s);
@@ -163,6 +189,81 @@ TEST_F(ModeCheckInput, BadOptions) {
   EXPECT_EQ(p.exit_code, 2);
   p = run(args + " --tolerance -1");
   EXPECT_EQ(p.exit_code, 2);
+}
+
+// Issue 12 item 12: a dead sensor (0.01 m for 40 s) "identified" both modes from its rounding
+// residue (PSD ~1e-63) and passed. A constant channel is bad input, named, with its value.
+TEST_F(ModeCheckInput, AConstantChannelIsADeadSensor) {
+  const std::string path = channels("dead.csv", {{"roof_ux", [](double) { return 0.01; }}});
+  const auto p = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(path) + " -n 2");
+  EXPECT_EQ(p.exit_code, 2) << p.output;
+  EXPECT_NE(p.output.find("ntn-check-modes: error: channel 'roof_ux' is constant (a dead "
+                          "sensor?): every sample is 0.01 m"),
+            std::string::npos)
+      << p.output;
+  // All zeros too (no value to go wrong on).
+  const std::string zeros = channels("zeros.csv", {{"roof_ux", [](double) { return 0.0; }},
+                                                   {"roof_uy", [](double) { return 0.0; }}});
+  const auto z = run(ntn_test::quoted(model()) + " " + ntn_test::quoted(zeros) + " -n 2");
+  EXPECT_EQ(z.exit_code, 2) << z.output;
+  EXPECT_NE(z.output.find("channel 'roof_ux' is constant (a dead sensor?): every sample is 0 m"),
+            std::string::npos)
+      << z.output;
+}
+
+// A dead channel beside a live one: the check refuses it by name (not the live one); without it
+// (--channels) the live channel's PSD finds the mode it carries.
+TEST_F(ModeCheckInput, AConstantChannelBesideALiveOne) {
+  const std::string path =
+      channels("dead_and_live.csv",
+               {{"roof_ux", [](double) { return 0.01; }},
+                {"roof_uy", [](double t) { return 1e-3 * std::sin(2 * M_PI * 1.6046 * t); }}});
+  const std::string args = ntn_test::quoted(model()) + " " + ntn_test::quoted(path);
+  const auto p = run(args + " -n 1");
+  EXPECT_EQ(p.exit_code, 2) << p.output;
+  EXPECT_NE(p.output.find("channel 'roof_ux' is constant (a dead sensor?): every sample is 0.01 m"),
+            std::string::npos)
+      << p.output;
+  EXPECT_EQ(p.output.find("'roof_uy' is constant"), std::string::npos) << p.output;
+  const auto live = run(args + " -n 1 --channels roof_uy");
+  EXPECT_EQ(live.exit_code, 0) << live.output;
+  EXPECT_NE(live.output.find("PASS: 1 of 1 modes"), std::string::npos) << live.output;
+}
+
+// NaN (and infinite) option values are refused with the option named: CLI11's range checks let
+// NaN through (every comparison is false), so the library's validate() refuses them, and
+// `--min-prominence nan` no longer passes every local maximum.
+TEST_F(ModeCheckInput, NanOptionsAreRefused) {
+  const std::string args = ntn_test::quoted(model()) + " " + ntn_test::quoted(record("r.csv"));
+  for (const char* option :
+       {"--tolerance", "--min-mac", "--min-prominence", "--band", "--min-level", "--min-mass",
+        "--min-visibility", "--overlap", "--resolution"}) {
+    for (const char* value : {"nan", "inf"}) {
+      SCOPED_TRACE(std::string(option) + " " + value);
+      const auto p = run(args + " " + option + " " + value);
+      EXPECT_EQ(p.exit_code, 2) << p.output;
+      EXPECT_NE(p.output.find(option), std::string::npos) << p.output;
+    }
+  }
+  const auto p = run(args + " --min-prominence nan");
+  EXPECT_NE(p.output.find("error: option --min-prominence is nan: it must be a finite ratio of at "
+                          "least 1"),
+            std::string::npos)
+      << p.output;
+}
+
+// The same through the library (programmatic use): check_files refuses NaN options.
+TEST_F(ModeCheckInput, LibraryRefusesNanOptions) {
+  const std::string path = record("r.csv");
+  const double nan = std::nan("");
+  for (double mc::Options::*field :
+       {&mc::Options::tolerance, &mc::Options::min_mac, &mc::Options::min_prominence,
+        &mc::Options::search_band, &mc::Options::min_level, &mc::Options::resolution_hz,
+        &mc::Options::overlap, &mc::Options::min_mass_fraction, &mc::Options::min_visibility}) {
+    mc::Options o;
+    o.*field = nan;
+    EXPECT_THROW((void)mc::check_files(model(), path, o), mc::InputError);
+  }
 }
 
 // --plot into a directory that does not exist: the plot library's message, exit 2 (after the

@@ -350,6 +350,29 @@ TEST(ModeCheckResolution, ExplicitAutoAndTooShort) {
   EXPECT_NE(notes[0].find("which needs 200 s"), std::string::npos) << notes[0];
 }
 
+// Extreme (valid) values: a segment count beyond any record is compared as a number, not cast
+// to an integer (undefined behaviour, which gave "give a segment length" or a 0-sample segment).
+TEST(ModeCheckResolution, TinyResolutionsAndTolerances) {
+  const sp::Channels data = synthetic(1);  // 100 s at 100 Hz
+  mc::Options o;
+  o.resolution_hz = 1e-300;
+  try {
+    (void)mc::resolve_resolution(data, 2.0, o, nullptr);
+    FAIL() << "no error";
+  } catch (const mc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("one segment of 1e+300 s (1e+302 samples)"),
+              std::string::npos)
+        << e.what();
+  }
+  o.resolution_hz = 0;
+  o.tolerance = 1e-300;  // auto: the whole record, with a note
+  std::vector<std::string> notes;
+  EXPECT_DOUBLE_EQ(mc::resolve_resolution(data, 2.0, o, &notes), 0.01);
+  EXPECT_EQ(notes.size(), 1u);
+  const mc::Selection sel = mc::select_channels(nullptr, data, {});
+  EXPECT_THROW((void)mc::identify(data, sel, 1e-300, 1.5, 8.0, mc::Options{}), mc::InputError);
+}
+
 // Non-finite data given in memory (files are checked by the reader, with file:line): the
 // spectral code's message, as bad input.
 TEST(ModeCheckIdentify, NonFiniteSamplesAreBadInput) {
@@ -362,6 +385,80 @@ TEST(ModeCheckIdentify, NonFiniteSamplesAreBadInput) {
     FAIL() << "no error";
   } catch (const mc::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("1234"), std::string::npos) << e.what();
+  }
+}
+
+// Issue 12 item 12, in memory: a constant channel is bad input naming it and its value.
+TEST(ModeCheckIdentify, AConstantChannelIsBadInput) {
+  sp::Channels data = synthetic(2);
+  data.data[0].assign(data.data[0].size(), 0.01);
+  const mc::Options o = options();
+  const mc::Selection sel = mc::select_channels(nullptr, data, {});
+  try {
+    (void)mc::identify(data, sel, o.resolution_hz, 1.5, 8.0, o);
+    FAIL() << "no error";
+  } catch (const mc::InputError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("channel 'ch1' is constant (a dead sensor?): every sample is "
+                                   "0.01 m"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
+// A channel that only jitters by rounding units around its value (+-3 units of 0.01, a stuck
+// sensor written through arithmetic) has no peak: every local maximum of its spectrum is below
+// the numerical floor (README: 1000 x 2 (eps |x|max)^2 / fs).
+TEST(ModeCheckIdentify, RoundingJitterIsNoPeak) {
+  sp::Channels data = synthetic(1);
+  std::mt19937 rng(12);
+  std::uniform_int_distribution<int> units(-3, 3);
+  for (double& v : data.data[0]) {
+    v = 0.01;
+    for (int k = units(rng); k != 0; k += k > 0 ? -1 : 1)
+      v = std::nextafter(v, k > 0 ? 1.0 : 0.0);
+  }
+  const mc::Options o = options();
+  const mc::Selection sel = mc::select_channels(nullptr, data, {});
+  const mc::Identification id = mc::identify(data, sel, o.resolution_hz, 1.5, 8.0, o);
+  EXPECT_TRUE(id.peaks.empty()) << id.peaks.size() << " peaks, the first at "
+                                << id.peaks.front().peak.frequency << " Hz";
+  const mc::Report r = mc::compare(true_model(), id, sel, o);
+  EXPECT_FALSE(r.pass) << r.summary;
+}
+
+// The floor is relative to the data's own magnitude, so a genuine signal of any scale is
+// identified: the synthetic decays times 1e-20 (and times 1e20) give the same peaks.
+TEST(ModeCheckIdentify, ATinyGenuineSignalIsStillIdentified) {
+  const mc::Options o = options();
+  const sp::Channels data = synthetic();
+  const mc::Selection sel = mc::select_channels(nullptr, data, {});
+  const mc::Identification ref = mc::identify(data, sel, o.resolution_hz, 1.5, 8.0, o);
+  ASSERT_EQ(ref.peaks.size(), 3u);
+  for (const double scale : {1e-20, 1e20}) {
+    sp::Channels scaled = data;
+    for (auto& x : scaled.data)
+      for (double& v : x)
+        v *= scale;
+    const mc::Identification id = mc::identify(scaled, sel, o.resolution_hz, 1.5, 8.0, o);
+    ASSERT_EQ(id.peaks.size(), 3u) << scale;
+    for (std::size_t r = 0; r < 3; ++r)
+      EXPECT_NEAR(id.peaks[r].peak.frequency, ref.peaks[r].peak.frequency, 1e-9) << scale;
+    EXPECT_TRUE(mc::compare(true_model(), id, sel, o).pass) << scale;
+  }
+}
+
+// NaN options through the steps (identify, compare): bad input, not a silent pass.
+TEST(ModeCheckOptions, NanIsRefusedByTheSteps) {
+  const sp::Channels data = synthetic();
+  const mc::Selection sel = mc::select_channels(nullptr, data, {});
+  const mc::Identification id = mc::identify(data, sel, 1 / kDuration, 1.5, 8.0, options());
+  for (double mc::Options::*field : {&mc::Options::tolerance, &mc::Options::min_mac,
+                                     &mc::Options::min_prominence, &mc::Options::search_band}) {
+    mc::Options o = options();
+    o.*field = std::nan("");
+    EXPECT_THROW((void)mc::identify(data, sel, 1 / kDuration, 1.5, 8.0, o), mc::InputError);
+    EXPECT_THROW((void)mc::compare(true_model(), id, sel, o), mc::InputError);
   }
 }
 

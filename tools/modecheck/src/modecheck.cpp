@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
 #include <tuple>
 
@@ -45,9 +46,14 @@ Kind kind_of(OutputKind k) {
 }
 
 // Samples in one segment for a line spacing df (as Welch's ceil(fs / df), guarded against
-// rounding up a ratio that is an integer in exact arithmetic).
-std::size_t segment_samples(double fs, double df) {
-  return static_cast<std::size_t>(std::ceil(fs / df * (1 - 1e-12)));
+// rounding up a ratio that is an integer in exact arithmetic). A double: for a tiny df it exceeds
+// every record (and std::size_t), so it is compared before any conversion.
+double segment_samples(double fs, double df) {
+  return std::ceil(fs / df * (1 - 1e-12));
+}
+
+std::string count(double samples) {
+  return num(samples, samples < 1e15 ? "%.0f" : "%.6g");
 }
 
 std::string list_names(const std::vector<std::string>& names) {
@@ -57,7 +63,69 @@ std::string list_names(const std::vector<std::string>& names) {
   return s;
 }
 
+// Refuses one option: `shown` is the value as the ntn-check-modes option takes it (percent for
+// the fractions given in %).
+[[noreturn]] void bad_option(const char* option, double shown, const char* unit, const char* rule) {
+  throw InputError(std::string("option ") + option + " is " + num(shown) + unit + ": " + rule);
+}
+
+// Every sample of a selected channel finite, and not constant: a channel that does not move (a
+// dead sensor, a channel of zeros) has no spectrum, and the mean removal leaves its rounding
+// residue, whose local maxima would pass for peaks. Constant: max - min within 4 rounding units
+// of the largest |value| (the same value written and read back, or rounded differently).
+void check_channel(const spectral::Channels& data, const ChannelInfo& ci) {
+  const std::vector<double>& x = data.data[ci.column];
+  if (x.empty()) throw InputError("channel '" + ci.name + "' has no samples");
+  double lo = x.front(), hi = x.front(), top = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (!std::isfinite(x[k])) {
+      throw InputError("channel '" + ci.name + "' is " + num(x[k]) + " at sample " +
+                       std::to_string(k) + " (t = " + num(static_cast<double>(k) / data.fs) +
+                       " s)");
+    }
+    lo = std::min(lo, x[k]);
+    hi = std::max(hi, x[k]);
+    top = std::max(top, std::abs(x[k]));
+  }
+  if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * top) {
+    throw InputError("channel '" + ci.name + "' is constant (a dead sensor?): every sample is " +
+                     num(x.front(), "%.9g") + (ci.unit.empty() ? "" : " " + ci.unit) + " over " +
+                     num(static_cast<double>(x.size()) / data.fs) +
+                     " s; leave it out with --channels");
+  }
+}
+
 }  // namespace
+
+void validate(const Options& o) {
+  const auto in = [](double v, double lo, double hi) {
+    return std::isfinite(v) && v >= lo && v <= hi;
+  };
+  if (o.modes < 1) {
+    throw InputError("option --modes is " + std::to_string(o.modes) + ": it must be at least 1");
+  }
+  if (!in(o.tolerance, 0, 1) || o.tolerance == 0)
+    bad_option("--tolerance", 100 * o.tolerance, " %", "it must be above 0 and at most 100 %");
+  if (!in(o.search_band, 0, 1) || o.search_band == 0)
+    bad_option("--band", 100 * o.search_band, " %", "it must be above 0 and at most 100 %");
+  if (!in(o.min_mac, 0, 1)) bad_option("--min-mac", o.min_mac, "", "it must be in [0, 1]");
+  if (!std::isfinite(o.resolution_hz) || o.resolution_hz < 0) {
+    bad_option("--resolution", o.resolution_hz, " Hz",
+               "it must be a finite positive line spacing (0 in the library: automatic)");
+  }
+  if (!in(o.overlap, 0, 0.95)) bad_option("--overlap", o.overlap, "", "it must be in [0, 0.95]");
+  if (o.direction < -1 || o.direction > 2) {
+    throw InputError("the direction is " + std::to_string(o.direction) +
+                     ": it must be x, y or z (0, 1, 2; -1: every mode)");
+  }
+  if (!in(o.min_mass_fraction, 0, 1))
+    bad_option("--min-mass", 100 * o.min_mass_fraction, " %", "it must be in [0, 100] %");
+  if (!in(o.min_prominence, 1, std::numeric_limits<double>::max()))
+    bad_option("--min-prominence", o.min_prominence, "", "it must be a finite ratio of at least 1");
+  if (!in(o.min_level, 0, 1)) bad_option("--min-level", o.min_level, "", "it must be in [0, 1]");
+  if (!in(o.min_visibility, 0, 1))
+    bad_option("--min-visibility", 100 * o.min_visibility, " %", "it must be in [0, 100] %");
+}
 
 const char* to_string(Kind kind) {
   switch (kind) {
@@ -237,19 +305,25 @@ double resolve_resolution(const spectral::Channels& data, double lowest_model_hz
   const double fs = data.fs;
   const std::size_t n = data.samples();
   if (options.resolution_hz > 0) {
-    const std::size_t seg = segment_samples(fs, options.resolution_hz);
-    if (n < seg) {
+    if (options.resolution_hz > fs / 8) {
+      bad_option("--resolution", options.resolution_hz, " Hz",
+                 ("a segment needs at least 8 samples: at most fs / 8 = " + num(fs / 8) +
+                  " Hz for this record")
+                     .c_str());
+    }
+    const double seg = segment_samples(fs, options.resolution_hz);
+    if (static_cast<double>(n) < seg) {
       throw InputError("the record is too short for a resolution of " + num(options.resolution_hz) +
                        " Hz: it is " + num(static_cast<double>(n) / fs) + " s (" +
                        std::to_string(n) + " samples at " + num(fs) + " Hz), and one segment of " +
-                       num(static_cast<double>(seg) / fs) + " s (" + std::to_string(seg) +
-                       " samples) is needed; give a record of at least " +
-                       num(static_cast<double>(seg) / fs) + " s or a coarser --resolution");
+                       num(seg / fs) + " s (" + count(seg) +
+                       " samples) is needed; give a record of at least " + num(seg / fs) +
+                       " s or a coarser --resolution");
     }
     return options.resolution_hz;
   }
   const double wanted = options.tolerance * lowest_model_hz / 2;
-  if (n >= segment_samples(fs, wanted)) return wanted;
+  if (static_cast<double>(n) >= segment_samples(fs, wanted)) return wanted;
   const double df = fs / static_cast<double>(n);
   if (notes != nullptr) {
     notes->push_back("resolution " + num(df) + " Hz (the whole record, " +
@@ -262,12 +336,44 @@ double resolve_resolution(const spectral::Channels& data, double lowest_model_hz
 
 Identification identify(const spectral::Channels& data, const Selection& selection,
                         double resolution_hz, double f_min, double f_max, const Options& options) {
+  validate(options);
   if (selection.channels.empty()) throw InputError("no channels to analyse");
+  // The numerical floor (README, "Dead channels and the numerical floor"): white rounding noise of
+  // one rounding unit (eps |x|max) per channel has the one-sided density 2 (eps |x|max)^2 / fs; s1
+  // and the PSD are at most the sum over the channels. A peak must be 1000 times above that.
+  double noise = 0;
+  for (const ChannelInfo& ci : selection.channels) {
+    if (ci.column >= data.data.size()) throw InputError("channel '" + ci.name + "' has no data");
+    check_channel(data, ci);
+    double top = 0;
+    for (const double v : data.data[ci.column])
+      top = std::max(top, std::abs(v));
+    const double unit = std::numeric_limits<double>::epsilon() * top;
+    noise += 2 * unit * unit / data.fs;
+  }
   Identification id;
+  id.floor = 1e3 * noise;
+  // Local maxima below the floor are rounding noise: out, counted, with a note.
+  const auto drop_below_floor = [&id] {
+    const auto low = [&id](const IdentifiedPeak& p) { return !(p.peak.value >= id.floor); };
+    id.below_floor = static_cast<int>(std::count_if(id.peaks.begin(), id.peaks.end(), low));
+    id.peaks.erase(std::remove_if(id.peaks.begin(), id.peaks.end(), low), id.peaks.end());
+    if (id.below_floor > 0) {
+      id.notes.push_back(std::to_string(id.below_floor) +
+                         " local maxima left out: below the numerical floor " +
+                         num(id.floor, "%.3g") + " u^2/Hz (rounding noise, README)");
+    }
+  };
   for (const ChannelInfo& ci : selection.channels)
     id.channels.push_back(ci.name);
   spectral::WelchOptions wo;
-  wo.segment = segment_samples(data.fs, resolution_hz);
+  const double seg = segment_samples(data.fs, resolution_hz);
+  if (!(seg >= 2 && seg <= static_cast<double>(data.samples()))) {
+    throw InputError("a resolution of " + num(resolution_hz) + " Hz needs segments of " +
+                     count(seg) + " samples; the record has " + std::to_string(data.samples()) +
+                     " (at least 2 are needed)");
+  }
+  wo.segment = static_cast<std::size_t>(seg);
   wo.overlap = options.overlap;
   wo.window = options.window;
   id.f_min = std::max(0.0, f_min);
@@ -286,6 +392,7 @@ Identification identify(const spectral::Channels& data, const Selection& selecti
       id.auto_psd.push_back(id.spectrum);
       for (const spectral::Peak& p : spectral::find_peaks(id.spectrum, po))
         id.peaks.push_back({p, spectral::half_power(id.spectrum, p), {}, 0});
+      drop_below_floor();
       return id;
     }
     std::vector<std::vector<double>> x;
@@ -339,6 +446,7 @@ Identification identify(const spectral::Channels& data, const Selection& selecti
                          return a.peak.frequency < b.peak.frequency;
                        });
     }
+    drop_below_floor();
   } catch (const spectral::Error& e) {
     throw InputError(e.what());
   }
@@ -367,6 +475,7 @@ std::vector<int> match_peaks(const std::vector<double>& model_hz,
 
 Report compare(const ModelModes& model, const Identification& identification,
                const Selection& selection, const Options& options) {
+  validate(options);
   Report rep;
   rep.selection = selection;
   rep.identification = identification;
@@ -451,8 +560,7 @@ Report compare(const ModelModes& model, const Identification& identification,
 Report check_files(const std::string& model_path, const std::string& response_path,
                    const Options& options) {
   namespace fs = std::filesystem;
-  if (options.tolerance <= 0) throw InputError("the tolerance must be positive");
-  if (options.search_band <= 0) throw InputError("the search band must be positive");
+  validate(options);
   for (const auto& [what, path] : {std::pair<const char*, const std::string&>{"model", model_path},
                                    {"response", response_path}}) {
     std::error_code ec;
@@ -500,6 +608,18 @@ Report check_files(const std::string& model_path, const std::string& response_pa
   }
   std::vector<std::string> notes;
   const double df = resolve_resolution(data, lowest, options, &notes);
+  // The lowest mode's search band must hold a spectral line, or no peak can be found in it.
+  if (2 * options.search_band * lowest < df) {
+    bad_option("--band", 100 * options.search_band, " %",
+               ("the search band around mode " +
+                std::to_string(modes.number[static_cast<std::size_t>(
+                    std::min_element(modes.frequency.begin(), modes.frequency.end()) -
+                    modes.frequency.begin())]) +
+                " (" + num(lowest) + " Hz +- " + num(options.search_band * lowest, "%.3g") +
+                " Hz) is narrower than the line spacing " + num(df) +
+                " Hz; widen --band or refine --resolution")
+                   .c_str());
+  }
   const Identification id = identify(data, sel, df, lowest * (1 - options.search_band),
                                      highest * (1 + options.search_band), options);
   Report rep = compare(modes, id, sel, options);
@@ -512,6 +632,7 @@ Report check_files(const std::string& model_path, const std::string& response_pa
   rep.notes = sel.notes;
   rep.notes.insert(rep.notes.end(), modes.notes.begin(), modes.notes.end());
   rep.notes.insert(rep.notes.end(), notes.begin(), notes.end());
+  rep.notes.insert(rep.notes.end(), id.notes.begin(), id.notes.end());
   for (const ModeCheck& c : rep.modes) {
     if (c.resolution_ratio && *c.resolution_ratio > 0.25) {
       rep.notes.push_back("mode " + std::to_string(c.number) +

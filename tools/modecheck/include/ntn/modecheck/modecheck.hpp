@@ -52,6 +52,13 @@ struct Options {
   double min_visibility = 0.05;  // a mode the channels see less of than this fails (below)
 };
 
+// Refuses options no check can run with (InputError naming the ntn-check-modes option, its value
+// and the allowed range): NaN or infinite values anywhere, tolerance and search band not in
+// (0, 1], min_mac, min_level, min_visibility, min_mass_fraction not in [0, 1], min_prominence
+// below 1, overlap not in [0, 1), resolution_hz negative, modes below 1, direction not -1..2.
+// check_files, identify and compare call it, so programmatic use is covered too.
+void validate(const Options& options);
+
 // How a response channel maps to the model.
 enum class Kind : std::uint8_t { kDisplacement, kVelocity, kAcceleration, kOther };
 const char* to_string(Kind kind);
@@ -114,6 +121,12 @@ struct Identification {
   std::vector<spectral::Spectrum> singular;  // FDD: s1 ... sn
   std::vector<IdentifiedPeak> peaks;         // inside [f_min, f_max], frequency order
   double f_min = 0, f_max = 0;               // Hz: the range searched
+  // The numerical floor of the spectrum (u^2/Hz): a local maximum below it is rounding noise, not
+  // a peak (README, "Dead channels and the numerical floor"); the maxima left out for it are
+  // counted.
+  double floor = 0;
+  int below_floor = 0;
+  std::vector<std::string> notes;
 };
 
 // The line spacing to use: options.resolution_hz when given (InputError, naming the needed
@@ -122,7 +135,9 @@ struct Identification {
 double resolve_resolution(const spectral::Channels& data, double lowest_model_hz,
                           const Options& options, std::vector<std::string>* notes);
 
-// Spectrum and peaks of the selected channels in [f_min, f_max] (InputError on bad data).
+// Spectrum and peaks of the selected channels in [f_min, f_max] (InputError on bad data, bad
+// options, and a constant channel: "channel 'X' is constant (a dead sensor?) ..."). Peaks below
+// the numerical floor are left out (Identification::floor).
 Identification identify(const spectral::Channels& data, const Selection& selection,
                         double resolution_hz, double f_min, double f_max, const Options& options);
 

@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# Hostile command-line arguments (issue 12, "What must be shown"): runs the cases of one group of
+# cases.txt and checks, for each, the generic rules
+#   - no signal (exit code < 128) and no hang (each case under `timeout`, CASE_TIMEOUT s);
+#   - no uncaught exception or sanitizer report on stderr ("terminate called", "what():",
+#     "AddressSanitizer", "runtime error:", ...), and no number of 40 or more digits (CLI11
+#     printing DBL_MAX in full, an issue-12 message to make clear);
+# and the case's own expectation: the exit code, and for a non-zero one a message on stderr that
+# contains the given text (the option's name or the argument; fragments joined by ' && ' must all
+# appear, a fragment '!X' must not).
+#
+#   run_cases.sh GROUP CASES_FILE WORK_DIR SOURCE_DIR [TOOL=PATH ...]
+#
+# WORK_DIR (under the build tree) is emptied and holds every file a case reads or writes;
+# SOURCE_DIR is the project's root (models and records). TOOL=PATH defines the placeholder @TOOL@.
+# Placeholders in cases.txt (see there) are replaced before the command line is split as bash
+# words (eval: the table is ours, its paths have no spaces). Prints one line per case and the
+# failures with the first lines of stderr; exit 1 when a case fails.
+set -u
+group=$1 cases=$2 work=$3 src=$4
+shift 4
+timeout_s=${CASE_TIMEOUT:-20}
+
+declare -A ph
+for kv in "$@"; do ph[${kv%%=*}]=${kv#*=}; done
+
+case $work in
+  "" | / | /home* | /usr* | /etc*) echo "refusing WORK_DIR '$work'" >&2; exit 2 ;;
+esac
+rm -rf -- "$work"
+mkdir -p -- "$work/a_dir" || exit 2
+tmp=$(cd "$work" && pwd)
+
+# Fixtures.
+: >"$tmp/empty.toml"; : >"$tmp/empty.csv"; : >"$tmp/empty.AT2"; : >"$tmp/empty.log"
+echo "a regular file, not a directory" >"$tmp/regular_file"
+head -c 4096 /dev/zero | tr '\0' 'Z' >"$tmp/garbage.log"
+# A response of the modal check's test model: 40 s at 100 Hz of its first two modes.
+awk 'BEGIN { print "time[s],roof_ux[m],roof_uy[m]";
+  for (k = 0; k < 4000; ++k) { t = k / 100;
+    printf "%.9g,%.17g,%.17g\n", t, 1e-3 * sin(2 * 3.141592653589793 * 1.7388 * t),
+      1e-3 * sin(2 * 3.141592653589793 * 1.6046 * t) } }' >"$tmp/response.csv"
+# A history (ntn-plot history) and a spectrum (ntn-plot psd).
+awk 'BEGIN { print "time[s],a[m]"; for (k = 0; k < 200; ++k) printf "%g,%g\n", k / 100, sin(k / 10) }' \
+  >"$tmp/history.csv"
+awk 'BEGIN { print "frequency[Hz],s1[m^2/Hz]"; for (k = 1; k < 200; ++k) printf "%g,%g\n", k / 20, 1 / (1 + (k / 20 - 2) ^ 2) }' \
+  >"$tmp/psd.csv"
+
+ph[TMP]=$tmp
+ph[DIR]=$tmp/a_dir
+ph[FILE]=$tmp/regular_file
+ph[MODEL]=$src/config/frame3d.toml
+ph[SENSORS]=$src/tests/modecheck/frame3d_sensors.toml
+ph[AT2]=$src/config/ground-motions/elCentro.AT2
+
+# The real-time loop's logs for replay: a valid one of 3 frames, one cut to its header (no frames;
+# header size = size(1 frame) - (size(2) - size(1))), one cut mid-frame.
+if [[ -n ${ph[ntn-hil-frame3d]:-} && $group == hil ]]; then
+  hil=${ph[ntn-hil-frame3d]}
+  for n in 1 2 3; do
+    timeout "$timeout_s" "$hil" run --clock virtual -i "ag_x=${ph[AT2]}" -n $n -q \
+      --record "$tmp/log$n.log" >/dev/null 2>&1 || echo "fixture: $hil run -n $n failed" >&2
+  done
+  if [[ -s $tmp/log1.log && -s $tmp/log2.log ]]; then
+    s1=$(stat -c %s "$tmp/log1.log") s2=$(stat -c %s "$tmp/log2.log")
+    head -c $((2 * s1 - s2)) "$tmp/log1.log" >"$tmp/header_only.log"
+    head -c $((s2 + (s2 - s1) / 2)) "$tmp/log3.log" >"$tmp/cut.log"
+  fi
+fi
+
+pass=0 fail=0 failures=""
+while IFS= read -r line; do
+  [[ $line =~ ^[[:space:]]*(#|$) ]] && continue
+  IFS='|' read -r g expect msg cmd <<<"$line"
+  trim() { local v=$1; v=${v#"${v%%[![:space:]]*}"}; printf '%s' "${v%"${v##*[![:space:]]}"}"; }
+  g=$(trim "$g"); expect=$(trim "$expect"); msg=$(trim "$msg")
+  [[ $g == "$group" ]] || continue
+  for key in "${!ph[@]}"; do cmd=${cmd//@$key@/${ph[$key]}}; msg=${msg//@$key@/${ph[$key]}}; done
+  if [[ $cmd =~ @[A-Za-z0-9_-]+@ ]]; then
+    echo "SKIP  $cmd   (no ${BASH_REMATCH[0]}: tool or fixture missing)"
+    failures+="  $cmd: placeholder ${BASH_REMATCH[0]} undefined"$'\n'; ((++fail)); continue
+  fi
+  eval "argv=( $cmd )"
+  out=$tmp/case.out err=$tmp/case.err
+  t0=$(date +%s%N)
+  (cd "$tmp" && exec timeout -k 2 "$timeout_s" "${argv[@]}" >"$out" 2>"$err" </dev/null)
+  rc=$?
+  ms=$((($(date +%s%N) - t0) / 1000000))
+  why=""
+  if ((rc == 124 || rc == 137)) && ((ms >= timeout_s * 1000)); then
+    why="hung: killed after ${timeout_s} s"
+  elif ((rc >= 128)); then
+    why="signal $((rc - 128)) (exit $rc)"
+  elif grep -Eq 'terminate called|what\(\):|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|runtime error:' "$err"; then
+    why="uncaught exception or sanitizer report (exit $rc)"
+  elif grep -Eq '[0-9]{40}' "$err"; then
+    why="a number printed with 40 or more digits (DBL_MAX in full?) (exit $rc)"
+  elif [[ $rc != "$expect" ]]; then
+    why="exit $rc, expected $expect"
+  elif [[ $expect != 0 && -n $msg ]]; then
+    # TEXT: fragments joined by ' && '; '!fragment' must not appear.
+    rest=$msg
+    while [[ -n $rest && -z $why ]]; do
+      frag=${rest%% && *}
+      [[ $frag == "$rest" ]] && rest="" || rest=${rest#* && }
+      if [[ $frag == !* ]]; then
+        grep -qF -- "${frag#!}" "$err" && why="exit $rc as expected, but stderr says '${frag#!}'"
+      elif ! grep -qF -- "$frag" "$err"; then
+        why="exit $rc as expected, but stderr does not name '$frag'"
+      fi
+    done
+  fi
+  short=$cmd
+  for key in ntn-model ntn-modelc ntn-run-frame3d ntn-hil-frame3d ntn-feeder ntn-check-modes ntn-plot; do
+    [[ -n ${ph[$key]:-} ]] && short=${short//${ph[$key]}/$key}
+  done
+  short=${short//$tmp\//}; short=${short//$src\//}
+  if [[ -z $why ]]; then
+    ((++pass)); printf 'ok    %5d ms  exit %-3d %s\n' "$ms" "$rc" "$short"
+  else
+    ((++fail)); printf 'FAIL  %5d ms  exit %-3d %s\n' "$ms" "$rc" "$short"
+    first=$(head -c 600 "$err" | head -n 3 | sed 's/^/        | /')
+    [[ -z $first ]] && first="        | (stderr empty; stdout: $(head -c 200 "$out" | head -n 1))"
+    failures+="  $short"$'\n'"      -> $why"$'\n'"$first"$'\n'
+  fi
+done <"$cases"
+
+echo
+echo "robustness $group: $((pass + fail)) cases, $pass ok, $fail failed"
+if ((fail > 0)); then
+  echo "failed cases:"
+  printf '%s' "$failures"
+  exit 1
+fi
+((pass > 0)) || { echo "no case ran for group '$group'"; exit 1; }
