@@ -156,7 +156,12 @@ int main(int argc, char** argv) {
                  "real time: run under SCHED_FIFO at this priority with memory locked (falls "
                  "back with a warning where not permitted)")
       ->check(CLI::Range(0, 99));
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {  // usage errors exit 2 (CLI11's own codes are 100+)
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
 
   // Channels.
   if (!record_arg.empty()) input_args.insert(input_args.begin(), "record=" + record_arg);

@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/gate.hpp"
 #include "ntn/hil/loop.hpp"
@@ -36,6 +38,21 @@ ntn::Model<kS> g_model;
 ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
 ntn::State<kS> g_checkpoint;  // the end of the last good frame (the loop's safe state)
+
+// SIGINT / SIGTERM: the handler only records the signal; the loop ends after the frame it is in
+// (LoopConfig::stop), and the program flushes the CSV, the log and the JSON and says so.
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_stop_signal(int signal) {
+  g_stop = signal;
+}
+
+// Runs are bounded so that nothing the run keeps grows without limit: at most kMaxFrames frames
+// (11.6 days at 1 kHz; the CSV's time column, %.9g, resolves 1 ms frames up to 10^6 s), and the
+// wake-up latency and compute time of the first kTimedFrames frames (64 MiB) for the summary's
+// percentiles (overruns are counted over the whole run). The CSV and the log are streamed to
+// their files through 1 MiB buffers; the output hash is computed as the run goes.
+constexpr std::int64_t kMaxFrames = 1'000'000'000;
+constexpr std::int64_t kTimedFrames = std::int64_t{1} << 22;
 
 // Recorded inputs (AT2, CSV), sampled at frame times, through the gate (NaN, range).
 struct FileSource {
@@ -86,9 +103,11 @@ struct UdpSource {
     const std::int64_t start = ntn::hil::monotonic_ns();
     bool ended = false;
     drain(0, ended);
-    for (std::int64_t left = first_wait_ns; left > 0;
+    for (std::int64_t left = first_wait_ns; left > 0 && g_stop == 0;
          left = start + first_wait_ns - ntn::hil::monotonic_ns()) {
-      if (socket->wait_readable(std::chrono::nanoseconds(left)) != ntn::hil::WaitStatus::kReadable)
+      // In slices of 0.1 s, so that SIGINT / SIGTERM (g_stop) ends the wait soon.
+      if (socket->wait_readable(std::chrono::nanoseconds(
+              std::min<std::int64_t>(left, 100'000'000))) != ntn::hil::WaitStatus::kReadable)
         continue;
       const std::int64_t arrival = ntn::hil::monotonic_ns();
       for (;;) {
@@ -112,7 +131,7 @@ struct UdpSource {
     if (k == 0 && !lock_step) wait_first_packet();
     bool ended = false;
     drain(k, ended);
-    while (lock_step && !ended) {
+    while (lock_step && !ended && g_stop == 0) {
       if (socket->wait_readable(std::chrono::seconds(2)) != ntn::hil::WaitStatus::kReadable) {
         ++timeouts;  // the sender went away: the frame is missing, values held
         break;
@@ -123,25 +142,62 @@ struct UdpSource {
   }
 };
 
-// Inputs from a log, as they were accepted.
+// Inputs from a log, as they were accepted, read frame by frame (the log was checked whole
+// before; a record that fails now, the file having changed, stops the replay).
 struct ReplaySource {
-  const ntn::hil::Log* log;
-  void frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
-    const ntn::hil::LogFrame& f = log->frames[static_cast<std::size_t>(k)];
-    std::copy(f.inputs.begin(), f.inputs.end(), v.begin());
-    flags = static_cast<std::uint16_t>(f.input_flags);
+  ntn::hil::LogReader* reader;
+  volatile std::sig_atomic_t* stop;
+  ntn::hil::LogFrame frame;
+  std::string error;  // not empty: frame k could not be read, the loop stops after it
+  void frame_inputs(std::int64_t, std::span<double> v, std::uint16_t& flags) {
+    if (!error.empty() || reader->next(frame) != ntn::hil::LogRead::kFrame) {
+      if (error.empty()) error = reader->error();
+      std::fill(v.begin(), v.end(), 0.0);
+      flags = 0;
+      *stop = 1;
+      return;
+    }
+    std::copy(frame.inputs.begin(), frame.inputs.end(), v.begin());
+    flags = static_cast<std::uint16_t>(frame.input_flags);
   }
 };
 
-// CSV rows into a buffer reserved before the run; output packets back to the sender.
+// Compares each replayed frame with the log: every output value bit for bit, and the diverged
+// flag (the alarm bit depends on --alarm and the overrun bit on timing: neither is replayed).
+struct ReplaySink {
+  const ReplaySource* source;
+  volatile std::sig_atomic_t* stop;
+  std::int64_t differs = -1;  // first differing frame
+  int channel = -1;           // its first differing channel, or -1: the diverged flag
+  double recorded = 0, now = 0;
+  std::uint16_t recorded_flags = 0, now_flags = 0;
+  void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t flags) {
+    if (differs >= 0 || !source->error.empty()) return;
+    const ntn::hil::LogFrame& f = source->frame;
+    for (std::size_t c = 0; c < v.size(); ++c) {
+      if (std::memcmp(&v[c], &f.outputs[c], sizeof(double)) != 0) {
+        differs = k, channel = static_cast<int>(c), recorded = f.outputs[c], now = v[c];
+        *stop = 1;
+        return;
+      }
+    }
+    if ((flags & ntn::hil::flag::kDiverged) != (f.output_flags & ntn::hil::flag::kDiverged)) {
+      differs = k, recorded_flags = static_cast<std::uint16_t>(f.output_flags), now_flags = flags;
+      *stop = 1;
+    }
+  }
+};
+
+// CSV rows streamed to the file (opened before the run, 1 MiB buffer); output packets back to
+// the sender; the output hash as the run goes.
 struct Sink {
-  std::string* csv = nullptr;
+  std::FILE* csv = nullptr;
   ntn::hil::UdpSocket* socket = nullptr;
   std::uint16_t reply_port = 0;
   std::uint32_t sequence = 0;
   double period = 1e-3;
   std::array<std::byte, ntn::hil::kMaxPacketBytes> packet{};
-  std::vector<std::uint64_t>* hashes = nullptr;       // per-frame output hash (replay compares)
+  XXH3_state_t* run_hash = nullptr;                   // XXH3 of the frames' output hashes
   std::array<double, kS.outputs> peak{};              // largest |value| per channel
   std::array<std::int64_t, kS.outputs> peak_frame{};  // and its first frame
   void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t flags) {
@@ -151,21 +207,23 @@ struct Sink {
     if (csv != nullptr) {
       char row[64];
       std::snprintf(row, sizeof row, "%.9g", static_cast<double>(k) * period);
-      csv->append(row);
+      std::fputs(row, csv);
       for (double x : v) {
         std::snprintf(row, sizeof row, ",%.17g", x);
-        csv->append(row);
+        std::fputs(row, csv);
       }
       std::snprintf(row, sizeof row, ",%u\n", static_cast<unsigned>(flags));
-      csv->append(row);
+      std::fputs(row, csv);
     }
     if (socket != nullptr && reply_port != 0) {
       const std::size_t n =
           ntn::hil::encode(ntn::hil::PacketKind::kOutput, sequence++, k, flags, v, packet);
       (void)socket->send_to(reply_port, std::span<const std::byte>(packet.data(), n));
     }
-    if (hashes != nullptr && hashes->size() < hashes->capacity())
-      hashes->push_back(ntn::hil::hash_outputs(v));
+    if (run_hash != nullptr) {
+      const std::uint64_t h = ntn::hil::hash_outputs(v);
+      (void)XXH3_64bits_update(run_hash, &h, sizeof h);
+    }
   }
 };
 
@@ -205,9 +263,117 @@ double us(std::int64_t ns) {
   return static_cast<double>(ns) / 1e3;
 }
 
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// `replay LOG`: checks the whole log first (every record's checksum, the frame numbers, the end
+// record; the header against this model), then re-runs its complete frames on the virtual clock
+// and compares every output with the recorded one. Exit 0: bit-identical over a complete log;
+// 1: a frame differs; 2: the log cannot be used; 4: the log is incomplete (no end record: the
+// run was killed, or the disk filled) and its complete frames replay bit-identical.
+int replay_log(const std::string& path, ntn::hil::LoopConfig config) {
+  using ntn::hil::LogRead;
+  ntn::hil::LogReader check;
+  if (!check.open(path)) {
+    std::fprintf(stderr, "error: %s\n", check.error().c_str());
+    return 2;
+  }
+  const ntn::hil::LogHeader& h = check.header();
+  const std::string name(mdl::kName);
+  char why[256] = "";
+  if (h.model != name) {
+    std::snprintf(why, sizeof why, "model '%s', this program runs '%s'", h.model.c_str(),
+                  name.c_str());
+  } else if (h.inputs != kS.inputs || h.outputs != kS.outputs) {
+    std::snprintf(why, sizeof why, "%u inputs and %u outputs, the model has %d and %d", h.inputs,
+                  h.outputs, kS.inputs, kS.outputs);
+  } else if (h.substeps != static_cast<std::uint32_t>(config.substeps)) {
+    std::snprintf(why, sizeof why, "%u substeps per frame, the model runs %d", h.substeps,
+                  config.substeps);
+  } else if (!same_bits(h.period, config.period)) {
+    std::snprintf(why, sizeof why, "period %.17g s, the model's frame period is %.17g s", h.period,
+                  config.period);
+  } else if (!same_bits(h.dt, g_model.dt)) {
+    std::snprintf(why, sizeof why, "dt %.17g s, the model's is %.17g s", h.dt, g_model.dt);
+  }
+  if (why[0] != '\0') {
+    std::fprintf(stderr, "error: %s was recorded with another model or step: %s\n", path.c_str(),
+                 why);
+    return 2;
+  }
+  ntn::hil::LogFrame frame;
+  LogRead r = LogRead::kFrame;
+  while ((r = check.next(frame)) == LogRead::kFrame) {
+  }
+  if (r == LogRead::kError) {
+    std::fprintf(stderr, "error: %s\n", check.error().c_str());
+    return 2;
+  }
+  const std::int64_t frames = check.frames();
+  if (frames == 0) {
+    std::fprintf(stderr, "error: %s: the log holds no complete frame: nothing to replay (%s)\n",
+                 path.c_str(), check.error().c_str());
+    return 2;
+  }
+
+  ntn::hil::LogReader reader;
+  if (!reader.open(path)) {
+    std::fprintf(stderr, "error: %s\n", reader.error().c_str());
+    return 2;
+  }
+  volatile std::sig_atomic_t stop = 0;
+  config.frames = frames;
+  config.interpolate = h.interpolate != 0;
+  config.stop = &stop;
+  ReplaySource source{&reader, &stop, {}, {}};
+  ReplaySink sink{&source, &stop};
+  ntn::hil::VirtualClock clock;
+  ntn::hil::FrameTimes times;
+  std::vector<ntn::hil::Alarm> no_alarms;
+  const ntn::hil::LoopResult result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source,
+                                                         sink, nullptr, config, no_alarms, times);
+  if (!source.error.empty()) {
+    std::fprintf(stderr, "error: %s (the file changed while it was replayed?)\n",
+                 source.error.c_str());
+    return 2;
+  }
+  if (sink.differs >= 0) {
+    const double t = static_cast<double>(sink.differs) * config.period;
+    if (sink.channel >= 0) {
+      std::printf(
+          "replay: DIFFERS at frame %lld (t = %.6f s), channel %s: recorded %.17g, now %.17g\n",
+          static_cast<long long>(sink.differs), t,
+          std::string(mdl::kOutputNames[static_cast<std::size_t>(sink.channel)]).c_str(),
+          sink.recorded, sink.now);
+    } else {
+      std::printf(
+          "replay: DIFFERS at frame %lld (t = %.6f s): the log's output flags 0x%04x say %s, the "
+          "replay %s\n",
+          static_cast<long long>(sink.differs), t, static_cast<unsigned>(sink.recorded_flags),
+          (sink.recorded_flags & ntn::hil::flag::kDiverged) != 0 ? "diverged" : "not diverged",
+          (sink.now_flags & ntn::hil::flag::kDiverged) != 0 ? "diverged" : "not diverged");
+    }
+    return 1;
+  }
+  if (result.frames != frames) {
+    std::fprintf(stderr, "error: %s: replayed %lld of %lld frames\n", path.c_str(),
+                 static_cast<long long>(result.frames), static_cast<long long>(frames));
+    return 2;
+  }
+  if (r == LogRead::kTruncated) {
+    std::printf("replay: bit-identical over %lld frames (0..%lld); the log is incomplete\n",
+                static_cast<long long>(frames), static_cast<long long>(frames - 1));
+    std::fprintf(stderr, "warning: %s\n", check.error().c_str());
+    return 4;
+  }
+  std::printf("replay: bit-identical over %lld frames\n", static_cast<long long>(frames));
+  return 0;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
+int hil_main(int argc, char** argv) {
   CLI::App app{"Run the model '" + std::string(mdl::kName) + "' in the real-time frame loop"};
   app.require_subcommand(1);
   auto* run = app.add_subcommand("run", "run the loop");
@@ -221,19 +387,21 @@ int main(int argc, char** argv) {
   bool interpolate = false, fifo = false, mlock = false, quiet = false;
   run->add_option("-i,--input", input_args, "NAME=FILE: feed an input from a record (AT2, CSV)");
   run->add_option("--listen", listen_port, "take inputs as UDP packets on 127.0.0.1:PORT")
-      ->check(CLI::Range(0, 65535));
+      ->check(ntn::cli::Integer(0, 65535));
   run->add_option("--reply", reply_port, "send output packets to 127.0.0.1:PORT")
-      ->check(CLI::Range(1, 65535));
+      ->check(ntn::cli::Integer(1, 65535));
   run->add_option("--clock", clock_name,
                   "real (absolute deadlines) or virtual (as fast as "
                   "possible; lock-step with UDP)")
       ->check(CLI::IsMember({"real", "virtual"}));
   run->add_option("--wait-first", first_wait_s,
                   "real time with --listen: seconds to wait for the sender's first packet, which "
-                  "fixes the frame deadlines (default 10)")
-      ->check(CLI::PositiveNumber);
-  run->add_option("-t,--duration", duration, "seconds to run (default: the longest record)");
-  run->add_option("-n,--frames", frames, "frames to run (overrides --duration)");
+                  "fixes the frame deadlines (default 10, at most 3600)")
+      ->check(ntn::cli::Positive(3600));
+  run->add_option("-t,--duration", duration, "seconds to run (default: the longest record)")
+      ->check(ntn::cli::Positive());
+  run->add_option("-n,--frames", frames, "frames to run (overrides --duration)")
+      ->check(ntn::cli::Integer(1, kMaxFrames));
   run->add_flag("--interpolate", interpolate,
                 "interpolate inputs linearly within a frame (one frame of delay); default: hold");
   run->add_option("--alarm", alarm_args,
@@ -244,10 +412,16 @@ int main(int argc, char** argv) {
   run->add_option("--summary-json", json_path, "write the summary as JSON");
   run->add_flag("--fifo", fifo, "SCHED_FIFO (falls back with a warning)");
   run->add_flag("--mlock", mlock, "mlockall (falls back with a warning)");
-  run->add_option("--cpu", cpu, "pin to this CPU (falls back with a warning)");
+  run->add_option("--cpu", cpu, "pin to this CPU (falls back with a warning)")
+      ->check(ntn::cli::Integer(0, std::numeric_limits<int>::max()));
   run->add_flag("-q,--quiet", quiet, "print only warnings, errors and the output hash");
   replay->add_option("log", replay_path, "log written by run --record")->required();
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {  // usage errors exit 2 (CLI11's own codes are 100+)
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
 
   if (const ntn::InitStatus st = ntn::init(mdl::kSpec, g_model); !st.ok()) {
     std::fprintf(stderr, "error: model '%s': %s (at %d)\n", std::string(mdl::kName).c_str(),
@@ -267,87 +441,36 @@ int main(int argc, char** argv) {
   }
 
   // ---- replay ----
-  if (replay->parsed()) {
-    std::string error;
-    const auto log = ntn::hil::read_log(replay_path, error);
-    if (!log) {
-      std::fprintf(stderr, "error: %s\n", error.c_str());
-      return 2;
-    }
-    if (log->header.inputs != kS.inputs || log->header.outputs != kS.outputs ||
-        log->header.model != mdl::kName ||
-        log->header.substeps != static_cast<unsigned>(config.substeps)) {
-      std::fprintf(stderr,
-                   "error: %s was recorded with another model or step (%s, %u inputs, %u outputs, "
-                   "%u substeps)\n",
-                   replay_path.c_str(), log->header.model.c_str(), log->header.inputs,
-                   log->header.outputs, log->header.substeps);
-      return 2;
-    }
-    config.frames = static_cast<std::int64_t>(log->frames.size());
-    config.interpolate = log->header.interpolate != 0;
-    ReplaySource source{&*log};
-    std::vector<std::uint64_t> hashes;
-    hashes.reserve(log->frames.size());
-    Sink sink;
-    sink.hashes = &hashes;
-    ntn::hil::VirtualClock clock;
-    ntn::hil::FrameTimes times;
-    std::vector<ntn::hil::Alarm> no_alarms;
-    // Outputs of each frame are compared value by value: keep them from the sink's hash and
-    // re-derive the first differing channel by running again only when a hash differs.
-    (void)ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink, nullptr, config,
-                             no_alarms, times);
-    for (std::size_t k = 0; k < hashes.size(); ++k) {
-      if (hashes[k] == log->frames[k].hash) continue;
-      // Find the channel: re-run up to frame k and compare the outputs.
-      ntn::hil::LoopConfig upto = config;
-      upto.frames = static_cast<std::int64_t>(k) + 1;
-      struct Capture {
-        std::array<double, kS.outputs> last{};
-        void frame_outputs(std::int64_t, std::span<const double> v, std::uint16_t) {
-          std::copy(v.begin(), v.end(), last.begin());
-        }
-      } capture;
-      g_state = {};
-      (void)ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, capture, nullptr, upto,
-                               no_alarms, times);
-      std::size_t channel = 0;
-      for (; channel < capture.last.size(); ++channel) {
-        if (std::memcmp(&capture.last[channel], &log->frames[k].outputs[channel], sizeof(double)) !=
-            0)
-          break;
-      }
-      const std::string name = channel < kS.outputs ? std::string(mdl::kOutputNames[channel]) : "?";
-      std::printf(
-          "replay: DIFFERS at frame %zu (t = %.6f s), channel %s: recorded %.17g, now %.17g\n", k,
-          static_cast<double>(k) * period, name.c_str(),
-          channel < kS.outputs ? log->frames[k].outputs[channel] : 0.0,
-          channel < kS.outputs ? capture.last[channel] : 0.0);
-      return 1;
-    }
-    std::printf("replay: bit-identical over %zu frames\n", hashes.size());
-    return 0;
-  }
-
+  if (replay->parsed()) return replay_log(replay_path, config);
   // ---- run ----
+  // Every output file is checked before anything is read or run: an unwritable path ends here,
+  // not after the run with its results lost.
+  for (const auto& [path, option] :
+       {std::pair{&out_path, "--out"}, std::pair{&log_path, "--record"},
+        std::pair{&json_path, "--summary-json"}}) {
+    if (run->count(option) == 0) continue;
+    if (const auto problem = ntn::cli::output_path_problem(*path, option)) {
+      std::fprintf(stderr, "error: %s\n", problem->c_str());
+      return 2;
+    }
+  }
+  const ntn::cli::InputArgs inputs = ntn::cli::parse_input_args(input_args, "--input");
+  if (inputs.error) {
+    std::fprintf(stderr, "error: %s\n", inputs.error->c_str());
+    return 2;
+  }
   std::array<ntn::io::Record, kS.inputs> records{};
   double record_duration = 0;
-  for (const std::string& arg : input_args) {
-    const auto eq = arg.find('=');
-    if (eq == std::string::npos) {
-      std::fprintf(stderr, "error: --input wants NAME=FILE, got '%s'\n", arg.c_str());
-      return 2;
-    }
-    const std::string name = arg.substr(0, eq), file = arg.substr(eq + 1);
+  for (const ntn::cli::InputArg& arg : inputs.args) {
     int index = -1;
     for (int k = 0; k < kS.inputs; ++k)
-      if (mdl::kInputNames[static_cast<std::size_t>(k)] == name) index = k;
+      if (mdl::kInputNames[static_cast<std::size_t>(k)] == arg.name) index = k;
     if (index < 0) {
-      std::fprintf(stderr, "error: the model has no input channel '%s'\n", name.c_str());
+      std::fprintf(stderr, "error: --input %s=...: the model has no input channel '%s'\n",
+                   arg.name.c_str(), arg.name.c_str());
       return 2;
     }
-    ntn::io::ReadResult r = ntn::io::read_record(file);
+    ntn::io::ReadResult r = ntn::io::read_record(arg.file, arg.column);
     if (r.error) {
       std::fprintf(stderr, "%s\n", r.error->format().c_str());
       return 2;
@@ -356,18 +479,39 @@ int main(int argc, char** argv) {
     records[static_cast<std::size_t>(index)] = std::move(*r.record);
   }
   const bool udp_in = listen_port >= 0;
-  if (!udp_in && input_args.size() != static_cast<std::size_t>(kS.inputs) && kS.inputs > 0) {
+  if (!udp_in && inputs.args.size() != static_cast<std::size_t>(kS.inputs) && kS.inputs > 0) {
     std::fprintf(stderr,
                  "error: give --input NAME=FILE for every input channel, or --listen PORT\n");
     return 2;
   }
-  if (frames < 0) {
-    if (duration < 0) duration = record_duration;
-    frames = static_cast<std::int64_t>(std::ceil(duration / period - 1e-9));
-  }
-  if (frames <= 0) {
-    std::fprintf(stderr, "error: give --frames or --duration\n");
-    return 2;
+  // The run's length: --frames (checked by its validator), else --duration, else the longest
+  // record; compared as numbers before any conversion.
+  if (run->count("--frames") == 0) {
+    const bool given = run->count("--duration") > 0;
+    const double seconds = given ? duration : record_duration;
+    const double n = std::ceil(seconds / period - 1e-9);
+    const std::string what = given
+                                 ? "--duration " + ntn::cli::num(duration) + " s"
+                                 : "the longest --input record (" + ntn::cli::num(seconds) + " s)";
+    if (!given && udp_in && inputs.args.empty()) {
+      std::fprintf(stderr,
+                   "error: with --listen and no --input record, give --frames or --duration\n");
+      return 2;
+    }
+    if (!(n >= 1)) {
+      std::fprintf(stderr, "error: %s is shorter than one frame (%s s)\n", what.c_str(),
+                   ntn::cli::num(period).c_str());
+      return 2;
+    }
+    if (n > static_cast<double>(kMaxFrames)) {
+      std::fprintf(stderr,
+                   "error: %s is longer than a run may be: at most %lld frames of %s s (%s s)%s\n",
+                   what.c_str(), static_cast<long long>(kMaxFrames), ntn::cli::num(period).c_str(),
+                   ntn::cli::num(static_cast<double>(kMaxFrames) * period).c_str(),
+                   given ? "" : "; give --frames or --duration");
+      return 2;
+    }
+    frames = static_cast<std::int64_t>(n);
   }
   config.frames = frames;
   config.interpolate = interpolate;
@@ -386,26 +530,47 @@ int main(int argc, char** argv) {
     }
   }
 
+  // SIGINT / SIGTERM from here on end the run after the frame in progress, with every file
+  // written (exit 4); before, they end the program as usual (nothing written yet).
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  (void)sigaction(SIGINT, &action, nullptr);
+  (void)sigaction(SIGTERM, &action, nullptr);
+  config.stop = &g_stop;
+
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(mdl::kSpec.inputs));
   ntn::hil::UdpSocket socket;  // opened last, when the loop is ready (below)
-  std::string csv;
+  std::FILE* csv = nullptr;
+  std::vector<char> csv_buffer;
   if (!out_path.empty()) {
-    csv.reserve(static_cast<std::size_t>(frames + 2) * (kS.outputs + 2) * 24);
-    csv += "time[s]";
-    for (int c = 0; c < kS.outputs; ++c) {
-      csv += "," + std::string(mdl::kOutputNames[static_cast<std::size_t>(c)]) + "[" +
-             std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]) + "]";
+    csv = std::fopen(out_path.c_str(), "wb");
+    if (csv == nullptr) {
+      std::fprintf(stderr, "error: --out: cannot write '%s': %s\n", out_path.c_str(),
+                   std::strerror(errno));
+      return 2;
     }
-    csv += ",flags\n";
+    csv_buffer.resize(1 << 20);
+    std::setvbuf(csv, csv_buffer.data(), _IOFBF, csv_buffer.size());
+    std::string head = "time[s]";
+    for (int c = 0; c < kS.outputs; ++c) {
+      head += "," + std::string(mdl::kOutputNames[static_cast<std::size_t>(c)]) + "[" +
+              std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]) + "]";
+    }
+    head += ",flags\n";
+    std::fputs(head.c_str(), csv);
   }
-  std::vector<std::uint64_t> hashes;
-  hashes.reserve(static_cast<std::size_t>(frames));
+  XXH3_state_t* run_hash = XXH3_createState();
+  if (run_hash == nullptr || XXH3_64bits_reset(run_hash) != XXH_OK) {
+    std::fprintf(stderr, "error: cannot set up the output hash\n");
+    return 2;
+  }
   Sink sink;
-  sink.csv = out_path.empty() ? nullptr : &csv;
+  sink.csv = csv;
   sink.socket = reply_port != 0 ? &socket : nullptr;
   sink.reply_port = static_cast<std::uint16_t>(reply_port);
   sink.period = period;
-  sink.hashes = &hashes;
+  sink.run_hash = run_hash;
 
   ntn::hil::Recorder recorder;
   if (!log_path.empty()) {
@@ -415,7 +580,7 @@ int main(int argc, char** argv) {
     h.interpolate = interpolate ? 1U : 0U;
     h.period = period, h.dt = g_model.dt, h.model = std::string(mdl::kName);
     if (!recorder.open(log_path, h)) {
-      std::fprintf(stderr, "error: %s\n", recorder.error().c_str());
+      std::fprintf(stderr, "error: --record: %s\n", recorder.error().c_str());
       return 2;
     }
   }
@@ -426,7 +591,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   ntn::hil::FrameTimes times;
-  times.reserve(frames);
+  times.reserve(std::min(frames, kTimedFrames));
   // The port is bound only now, after every allocation, mlockall and the scheduler change: a
   // sender that waits for the port (tools/demo, tests/hil) then starts when the loop can take
   // its packets at once.
@@ -474,16 +639,21 @@ int main(int argc, char** argv) {
                  "frame missing\n",
                  first_wait_s);
   }
-  if (!log_path.empty() && !recorder.close()) {
-    std::fprintf(stderr, "error: %s\n", recorder.error().c_str());
-    return 1;
+  // Files are finished whatever happened; a write error (disk full) is an error of the run.
+  std::vector<std::string> write_errors;
+  if (!log_path.empty() && !recorder.close()) write_errors.push_back(recorder.error());
+  if (csv != nullptr) {
+    int err = std::fflush(csv) != 0 || std::ferror(csv) != 0 ? (errno != 0 ? errno : EIO) : 0;
+    if (std::fclose(csv) != 0 && err == 0) err = errno != 0 ? errno : EIO;
+    csv = nullptr;
+    if (err != 0) {
+      write_errors.push_back("--out: write error in " + out_path + ": " + std::strerror(err) +
+                             " (the CSV is incomplete)");
+    }
   }
-  if (!out_path.empty()) {
-    const std::filesystem::path p(out_path);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    std::ofstream(out_path, std::ios::binary) << csv;
-  }
-  const std::uint64_t run_hash = XXH3_64bits(hashes.data(), hashes.size() * sizeof(std::uint64_t));
+  const std::uint64_t hash_value = XXH3_64bits_digest(run_hash);
+  XXH3_freeState(run_hash);
+  const char* stop_signal = g_stop == SIGINT ? "SIGINT" : g_stop == SIGTERM ? "SIGTERM" : "";
 
   // ---- summary ----
   const auto& gc = gate.counters();
@@ -558,10 +728,16 @@ int main(int argc, char** argv) {
       std::printf("  DIVERGED at frame %lld (t = %.3f s, kernel step %lld): %s (%.4g J)\n", kd,
                   static_cast<double>(kd) * period, static_cast<long long>(result.diverged_step),
                   ntn::hil::to_string(result.reason), result.kinetic_at_detection);
-      std::printf(
-          "  SAFE STATE from frame %lld: no more steps; outputs held at frame %lld's values and "
-          "flagged diverged (bit 14); state kept at the end of frame %lld\n",
-          kd, kd - 1, kd - 1);
+      if (kd > 0) {
+        std::printf(
+            "  SAFE STATE from frame %lld: no more steps; outputs held at frame %lld's values and "
+            "flagged diverged (bit 14); state kept at the end of frame %lld\n",
+            kd, kd - 1, kd - 1);
+      } else {  // no frame was good: there are no good outputs to hold yet
+        std::printf(
+            "  SAFE STATE from frame 0: no more steps; no frame completed before it, so the "
+            "outputs are 0, flagged diverged (bit 14); state kept at the initial state\n");
+      }
     }
     if (udp_in && !virtual_clock && first_frame >= 0) {
       std::printf(
@@ -573,14 +749,26 @@ int main(int argc, char** argv) {
       std::printf("  %llu frames timed out waiting for the sender\n",
                   static_cast<unsigned long long>(udp_timeouts));
   }
-  std::printf("  output hash %016llx\n", static_cast<unsigned long long>(run_hash));
+  if (result.stopped) {
+    std::printf(
+        "  STOPPED by %s after %lld of %lld frames (t = %.3f s): the CSV, the log and the "
+        "summary hold frames 0..%lld\n",
+        stop_signal, static_cast<long long>(result.frames), static_cast<long long>(frames),
+        static_cast<double>(result.frames) * period, static_cast<long long>(result.frames - 1));
+    std::fprintf(stderr, "stopped by %s after %lld frames\n", stop_signal,
+                 static_cast<long long>(result.frames));
+  }
+  std::printf("  output hash %016llx\n", static_cast<unsigned long long>(hash_value));
   if (!json_path.empty()) {
     std::ofstream js(json_path);
     js << "{\n  \"model\": \"" << mdl::kName << "\",\n  \"clock\": \"" << clock_name
-       << "\",\n  \"frames\": " << result.frames << ",\n  \"period_s\": " << period
-       << ",\n  \"substeps\": " << config.substeps << ",\n  \"overruns\": " << times.overruns
-       << ",\n  \"latency_us\": {\"p50\": " << us(lat50) << ", \"p99\": " << us(lat99)
-       << ", \"p99.9\": " << us(lat999) << ", \"max\": " << us(latmax) << "}"
+       << "\",\n  \"frames\": " << result.frames << ",\n  \"frames_requested\": " << frames
+       << ",\n  \"stopped_by\": "
+       << (result.stopped ? "\"" + std::string(stop_signal) + "\"" : std::string("null"))
+       << ",\n  \"period_s\": " << period << ",\n  \"substeps\": " << config.substeps
+       << ",\n  \"overruns\": " << times.overruns << ",\n  \"latency_us\": {\"p50\": " << us(lat50)
+       << ", \"p99\": " << us(lat99) << ", \"p99.9\": " << us(lat999) << ", \"max\": " << us(latmax)
+       << "}"
        << ",\n  \"compute_fraction\": {\"p50\": " << static_cast<double>(cmp50) / period_ns
        << ", \"p99\": " << static_cast<double>(cmp99) / period_ns
        << ", \"p99.9\": " << static_cast<double>(cmp999) / period_ns
@@ -625,7 +813,29 @@ int main(int argc, char** argv) {
        << (result.diverged_frame >= 0 ? result.diverged_frame - 1 : result.frames - 1)
        << ", \"state_restored\": " << (result.state_restored ? "true" : "false") << "}"
        << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"output_hash\": \""
-       << std::hex << run_hash << std::dec << "\"\n}\n";
+       << std::hex << hash_value << std::dec << "\"\n}\n";
+    js.close();
+    if (!js) {
+      write_errors.push_back("--summary-json: write error in " + json_path + ": " +
+                             std::strerror(errno != 0 ? errno : EIO));
+    }
   }
-  return result.diverged_frame >= 0 ? 3 : 0;
+  for (const std::string& e : write_errors)
+    std::fprintf(stderr, "error: %s\n", e.c_str());
+  // Exit codes (README "Exit codes"): 2 a file could not be written, 3 diverged, 4 stopped by
+  // SIGINT / SIGTERM, 0 otherwise.
+  if (!write_errors.empty()) return 2;
+  if (result.diverged_frame >= 0) return 3;
+  return result.stopped ? 4 : 0;
+}
+
+// No exception may end the program unreported: whatever is left (a std::bad_alloc, a
+// filesystem error) is an error with exit 2. A backstop: the checks above come first.
+int main(int argc, char** argv) {
+  try {
+    return hil_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
 }

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <csignal>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,6 +37,9 @@ struct LoopConfig {
   double period = 1e-3;       // s
   double kinetic_limit = -1;  // J: a frame whose 1/2 v^T M v passes it is diverged; < 0: the
                               // model's kinetic_energy_limit (+Inf where it has no bound)
+  // When given and non-zero after a frame (a signal handler sets it), the loop ends after that
+  // frame, its outputs given to the sink and recorded, and says so in LoopResult::stopped.
+  const volatile std::sig_atomic_t* stop = nullptr;
 };
 
 // A limit alarm on one output channel: on when |value| > limit, off again when
@@ -73,6 +77,7 @@ struct LoopResult {
   std::int64_t peak_kinetic_frame = -1;
   bool state_restored = false;  // the state was put back to the end of the last good frame
   std::uint64_t input_held_frames = 0;
+  bool stopped = false;  // ended early by LoopConfig::stop (`frames` says after how many)
 };
 
 // The deadline of frame 0 a source asks for on the real clock, or -1 (the loop then starts one
@@ -207,6 +212,10 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
       times.compute_ns.push_back(monotonic_ns() - c0);
     }
     ++result.frames;
+    if (config.stop != nullptr && *config.stop != 0) {
+      result.stopped = result.frames < config.frames;
+      break;
+    }
   }
   return result;
 }
