@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "ntn/hil/faults.hpp"
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/udp.hpp"
@@ -32,6 +33,12 @@ namespace {
 using namespace ntn::hil;
 
 constexpr std::int64_t kNsPerS = 1'000'000'000;
+
+// What the feeder keeps per frame is bounded: at most kMaxFrames frames (2.8 h at 1 kHz; ~12
+// bytes a frame: the fault plan, the output flags, the wake-up latency), and with --out, which
+// keeps every output value for the CSV, at most kMaxCsvFrames (1 GiB at 64 channels).
+constexpr std::int64_t kMaxFrames = 10'000'000;
+constexpr std::int64_t kMaxCsvFrames = 2'000'000;
 
 std::int64_t now_ns() {
   timespec ts{};
@@ -53,8 +60,9 @@ struct Channel {
 // What came back from the loop, per frame.
 struct Outputs {
   std::int64_t frames = 0;
+  bool keep_values = false;    // for the CSV (--out)
   int count = -1;              // channels of the first output packet
-  std::vector<double> values;  // frames x count
+  std::vector<double> values;  // frames x count, when keep_values
   std::vector<std::uint16_t> flags;
   std::vector<bool> have;
   std::int64_t received = 0, distinct = 0, undecodable = 0, wrong_count = 0, outside = 0;
@@ -73,7 +81,7 @@ struct Outputs {
     }
     if (count < 0) {
       count = p.count;
-      values.assign(static_cast<std::size_t>(frames) * p.count, 0.0);
+      if (keep_values) values.assign(static_cast<std::size_t>(frames) * p.count, 0.0);
       flags.assign(static_cast<std::size_t>(frames), 0);
       have.assign(static_cast<std::size_t>(frames), false);
     }
@@ -85,7 +93,8 @@ struct Outputs {
     if (!have[k]) ++distinct;
     have[k] = true;
     flags[k] = p.flags;
-    std::copy_n(p.values.begin(), count, values.begin() + static_cast<std::ptrdiff_t>(k * count));
+    if (keep_values)
+      std::copy_n(p.values.begin(), count, values.begin() + static_cast<std::ptrdiff_t>(k * count));
     highest = std::max(highest, p.frame);
   }
 };
@@ -113,7 +122,7 @@ constexpr std::array<const char*, 16> kFlagNames{
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int feeder_main(int argc, char** argv) {
   CLI::App app{"Stream recorded inputs over UDP to the real-time loop and read its outputs back"};
   int port = 0, listen_port = 0;
   std::vector<std::string> input_args;
@@ -126,28 +135,33 @@ int main(int argc, char** argv) {
   std::string out_path, json_path;
   app.add_option("-p,--port", port, "the loop's input port on 127.0.0.1")
       ->required()
-      ->check(CLI::Range(1, 65535));
+      ->check(ntn::cli::Integer(1, 65535));
   app.add_option("--listen-port", listen_port,
                  "own port for sending and for the loop's outputs (0: any free port)")
-      ->check(CLI::Range(0, 65535));
+      ->check(ntn::cli::Integer(0, 65535));
   app.add_option("-i,--input", input_args,
                  "NAME=FILE[:COLUMN]: one input channel from a record (AT2 or CSV); channels "
                  "are numbered in the order given");
   app.add_option("-r,--record", record_arg, "FILE[:COLUMN]: a single input channel");
-  app.add_option("--scale", scale, "multiply every record value by this");
-  app.add_option("--rate", rate, "frame rate in Hz")->check(CLI::PositiveNumber);
+  app.add_option("--scale", scale, "multiply every record value by this")
+      ->check(ntn::cli::Finite());
+  app.add_option("--rate", rate, "frame rate in Hz, in [0.01, 1e6]")
+      ->check(ntn::cli::Number(0.01, 1e6));
   app.add_option("-n,--frames", frames, "frames to send (default: the longest record)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(ntn::cli::Integer(1, kMaxFrames));
   app.add_flag("--virtual", lockstep,
                "no sleeping: send frame k, a frame-end marker, then wait for the output of k");
   app.add_option("--fault", fault_lists, "KIND@FRAME[,KIND@FRAME...]: inject a fault at a frame");
   app.add_option("--fault-rate", fault_rates, "KIND=P: inject a fault kind with probability P");
-  app.add_option("--seed", seed, "seed of the fault draws and corrupted bytes");
-  app.add_option("--range-value", range_value, "the value a 'range' fault sends");
-  app.add_option("--timeout", timeout_s, "lock-step: seconds to wait for an output")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--linger", linger_ms, "real time: ms to wait for outputs after the last frame")
-      ->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", seed, "seed of the fault draws and corrupted bytes")
+      ->check(ntn::cli::Integer(0, std::numeric_limits<std::int64_t>::max()));
+  app.add_option("--range-value", range_value, "the value a 'range' fault sends")
+      ->check(ntn::cli::Finite());
+  app.add_option("--timeout", timeout_s, "lock-step: seconds to wait for an output (at most 3600)")
+      ->check(ntn::cli::Positive(3600));
+  app.add_option("--linger", linger_ms,
+                 "real time: ms to wait for outputs after the last frame (at most 3.6e6)")
+      ->check(ntn::cli::NonNegative(3.6e6));
   app.add_option("-o,--out", out_path, "CSV of the outputs received: time, channels, flags");
   app.add_option("--summary-json", json_path, "also write the summary as JSON");
   app.add_flag("-q,--quiet", quiet, "print only the fault line and errors");
@@ -155,7 +169,7 @@ int main(int argc, char** argv) {
   app.add_option("--fifo", fifo,
                  "real time: run under SCHED_FIFO at this priority with memory locked (falls "
                  "back with a warning where not permitted)")
-      ->check(CLI::Range(0, 99));
+      ->check(ntn::cli::Integer(0, 99));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {  // usage errors exit 2 (CLI11's own codes are 100+)
@@ -163,41 +177,74 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
-  // Channels.
-  if (!record_arg.empty()) input_args.insert(input_args.begin(), "record=" + record_arg);
-  if (input_args.empty()) {
+  // Output files first: an unwritable path ends here, not after the run.
+  for (const auto& [path, option] :
+       {std::pair{&out_path, "--out"}, std::pair{&json_path, "--summary-json"}}) {
+    if (app.count(option) == 0) continue;
+    if (const auto problem = ntn::cli::output_path_problem(*path, option)) {
+      std::fprintf(stderr, "error: %s\n", problem->c_str());
+      return 2;
+    }
+  }
+
+  // Channels: --record FILE[:COLUMN] first, then each --input NAME=FILE[:COLUMN].
+  std::vector<ntn::cli::InputArg> args;
+  if (app.count("--record") > 0) {
+    const ntn::cli::InputArgs r = ntn::cli::parse_input_args({"record=" + record_arg}, "--record");
+    if (r.error || record_arg.empty()) {
+      std::fprintf(stderr, "error: --record wants FILE[:COLUMN], got '%s'\n", record_arg.c_str());
+      return 2;
+    }
+    args = r.args;
+  }
+  {
+    const ntn::cli::InputArgs r = ntn::cli::parse_input_args(input_args, "--input");
+    if (r.error) {
+      std::fprintf(stderr, "error: %s\n", r.error->c_str());
+      return 2;
+    }
+    args.insert(args.end(), r.args.begin(), r.args.end());
+  }
+  if (args.empty()) {
     std::fprintf(stderr, "error: give --record FILE or --input NAME=FILE\n");
     return 2;
   }
-  if (input_args.size() > static_cast<std::size_t>(kMaxChannels)) {
-    std::fprintf(stderr, "error: at most %d channels\n", kMaxChannels);
+  if (args.size() > static_cast<std::size_t>(kMaxChannels)) {
+    std::fprintf(stderr, "error: %zu channels (--record, --input): at most %d\n", args.size(),
+                 kMaxChannels);
     return 2;
   }
   std::vector<Channel> channels;
-  for (const std::string& arg : input_args) {
-    const auto eq = arg.find('=');
-    if (eq == std::string::npos) {
-      std::fprintf(stderr, "error: --input wants NAME=FILE, got '%s'\n", arg.c_str());
-      return 2;
-    }
-    std::string file = arg.substr(eq + 1), column;
-    if (const auto c = file.rfind(':'); c != std::string::npos && c > 1) {
-      column = file.substr(c + 1);
-      file = file.substr(0, c);
-    }
-    ntn::io::ReadResult r = ntn::io::read_record(file, column);
+  for (const ntn::cli::InputArg& arg : args) {
+    ntn::io::ReadResult r = ntn::io::read_record(arg.file, arg.column);
     if (r.error) {
       std::fprintf(stderr, "%s\n", r.error->format().c_str());
       return 2;
     }
-    channels.push_back({arg.substr(0, eq), std::move(*r.record)});
+    channels.push_back({arg.name, std::move(*r.record)});
   }
   const double period = 1.0 / rate;
-  if (frames < 0) {
+  if (frames < 0) {  // the longest record, compared as a number before the conversion
     double longest = 0;
     for (const Channel& c : channels)
       longest = std::max(longest, c.record.duration());
-    frames = static_cast<std::int64_t>(std::ceil(longest / period - 1e-9));
+    const double n = std::ceil(longest / period - 1e-9);
+    if (!(n >= 1) || n > static_cast<double>(kMaxFrames)) {
+      std::fprintf(stderr,
+                   "error: the longest record (%s s at --rate %s Hz) gives %s frames; a run has 1 "
+                   "to %lld: give --frames\n",
+                   ntn::cli::num(longest).c_str(), ntn::cli::num(rate).c_str(),
+                   ntn::cli::num(n).c_str(), static_cast<long long>(kMaxFrames));
+      return 2;
+    }
+    frames = static_cast<std::int64_t>(n);
+  }
+  if (!out_path.empty() && frames > kMaxCsvFrames) {
+    std::fprintf(stderr,
+                 "error: --out with %lld frames: the feeder keeps every output for its CSV, at "
+                 "most %lld frames (--frames)\n",
+                 static_cast<long long>(frames), static_cast<long long>(kMaxCsvFrames));
+    return 2;
   }
 
   // Faults.
@@ -246,6 +293,7 @@ int main(int argc, char** argv) {
 
   Outputs outputs;
   outputs.frames = frames;
+  outputs.keep_values = !out_path.empty();
   std::array<std::byte, kReceiveBufferBytes> rx{};
   auto drain = [&] {
     for (;;) {
@@ -361,9 +409,8 @@ int main(int argc, char** argv) {
   }
 
   // CSV of the outputs.
+  std::vector<std::string> write_errors;  // reported after the summary: exit 2
   if (!out_path.empty()) {
-    const std::filesystem::path p(out_path);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
     std::ofstream out(out_path, std::ios::binary);
     out << "time[s]";
     for (int c = 0; c < outputs.count; ++c)
@@ -384,9 +431,10 @@ int main(int argc, char** argv) {
       }
       out << ',' << outputs.flags[u] << '\n';
     }
+    out.close();
     if (!out) {
-      std::fprintf(stderr, "error: cannot write %s\n", out_path.c_str());
-      return 1;
+      write_errors.push_back("--out: write error in " + out_path + ": " +
+                             std::strerror(errno != 0 ? errno : EIO));
     }
   }
 
@@ -471,7 +519,25 @@ int main(int argc, char** argv) {
       first = false;
     }
     js << "}\n}\n";
+    js.close();
+    if (!js) {
+      write_errors.push_back("--summary-json: write error in " + json_path + ": " +
+                             std::strerror(errno != 0 ? errno : EIO));
+    }
   }
+  for (const std::string& e : write_errors)
+    std::fprintf(stderr, "error: %s\n", e.c_str());
+  if (!write_errors.empty()) return 2;
   if (timed_out) return 3;
   return send_errors > 0 ? 1 : 0;
+}
+
+// No exception may end the program unreported (a backstop: the checks above come first).
+int main(int argc, char** argv) {
+  try {
+    return feeder_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
 }
