@@ -188,23 +188,20 @@ int feeder_main(int argc, char** argv) {
   }
 
   // Channels: --record FILE[:COLUMN] first, then each --input NAME=FILE[:COLUMN].
-  std::vector<ntn::cli::InputArg> args;
-  if (app.count("--record") > 0) {
-    const ntn::cli::InputArgs r = ntn::cli::parse_input_args({"record=" + record_arg}, "--record");
-    if (r.error || record_arg.empty()) {
-      std::fprintf(stderr, "error: --record wants FILE[:COLUMN], got '%s'\n", record_arg.c_str());
-      return 2;
-    }
-    args = r.args;
+  const bool record_given = app.count("--record") > 0;
+  if (record_given && record_arg.empty()) {
+    std::fprintf(stderr, "error: --record wants FILE[:COLUMN], got ''\n");
+    return 2;
   }
-  {
-    const ntn::cli::InputArgs r = ntn::cli::parse_input_args(input_args, "--input");
-    if (r.error) {
-      std::fprintf(stderr, "error: %s\n", r.error->c_str());
-      return 2;
-    }
-    args.insert(args.end(), r.args.begin(), r.args.end());
+  std::vector<std::string> raw = input_args;
+  if (record_given) raw.insert(raw.begin(), "record=" + record_arg);
+  const ntn::cli::InputArgs parsed =
+      ntn::cli::parse_input_args(raw, record_given ? "--record/--input" : "--input");
+  if (parsed.error) {
+    std::fprintf(stderr, "error: %s\n", parsed.error->c_str());
+    return 2;
   }
+  const std::vector<ntn::cli::InputArg>& args = parsed.args;
   if (args.empty()) {
     std::fprintf(stderr, "error: give --record FILE or --input NAME=FILE\n");
     return 2;

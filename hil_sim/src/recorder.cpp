@@ -264,8 +264,8 @@ LogRead LogReader::next(LogFrame& frame) {
     return LogRead::kEnd;
   }
   if (got < n) {
-    error_ = path_ + ": log ends inside frame " + k + " (truncated, " + std::to_string(got) +
-             " of " + std::to_string(n) + " bytes): " + done;
+    error_ = path_ + ": log ends inside frame " + k + " (truncated): " + done + " (" +
+             std::to_string(got) + " of the frame's " + std::to_string(n) + " bytes are there)";
     return LogRead::kTruncated;
   }
   const auto stored = [&] {

@@ -53,8 +53,10 @@ ph[MODEL]=$src/config/frame3d.toml
 ph[SENSORS]=$src/tests/modecheck/frame3d_sensors.toml
 ph[AT2]=$src/config/ground-motions/elCentro.AT2
 
-# The real-time loop's logs for replay: a valid one of 3 frames, one cut to its header (no frames;
-# header size = size(1 frame) - (size(2) - size(1))), one cut mid-frame.
+# The real-time loop's logs for replay (format 2, hil_sim/include/ntn/hil/recorder.hpp: header,
+# frames, a 24-byte end record): a valid one of 3 frames, its header alone (no frames, no end
+# record; header size = size(1 frame) - (size(2) - size(1)) - 24), one cut mid-frame (inside frame
+# 2), one with 3 bytes after its end record, and a version-1 header (the format before checksums).
 if [[ -n ${ph[ntn-hil-frame3d]:-} && $group == hil ]]; then
   hil=${ph[ntn-hil-frame3d]}
   for n in 1 2 3; do
@@ -63,9 +65,11 @@ if [[ -n ${ph[ntn-hil-frame3d]:-} && $group == hil ]]; then
   done
   if [[ -s $tmp/log1.log && -s $tmp/log2.log ]]; then
     s1=$(stat -c %s "$tmp/log1.log") s2=$(stat -c %s "$tmp/log2.log")
-    head -c $((2 * s1 - s2)) "$tmp/log1.log" >"$tmp/header_only.log"
+    head -c $((2 * s1 - s2 - 24)) "$tmp/log1.log" >"$tmp/header_only.log"
     head -c $((s2 + (s2 - s1) / 2)) "$tmp/log3.log" >"$tmp/cut.log"
+    { cat "$tmp/log3.log"; printf 'xyz'; } >"$tmp/trailing.log"
   fi
+  { printf 'NTNLOG1\0\001\0\0\0'; head -c 96 /dev/zero; } >"$tmp/v1.log"
 fi
 
 pass=0 fail=0 failures=""
