@@ -12,10 +12,12 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "bit-identical over 100000 frames")
   message(FATAL_ERROR "replay: exit ${rc}: ${out}")
 endif()
 
-# Flip the lowest bit of frame 5000's input (t = 5 s, inside the record). Layout
-# (hil_sim/include/ntn/hil/recorder.hpp): header 8 + 5 x 4 + 2 x 8 + 64 = 108 bytes; a frame of
-# frame3d (1 input, 9 outputs) is 8 + 4 + 4 + 8 + 9 x 8 + 8 = 104 bytes; its input starts at 16.
-math(EXPR offset "108 + 5000 * 104 + 16")
+# Flip the lowest bit of frame 5000's input (t = 5 s, inside the record). Layout, format 2
+# (hil_sim/include/ntn/hil/recorder.hpp): header 8 + 5 x 4 + 2 x 8 + 64 + 8 = 116 bytes; a frame
+# of frame3d (1 input, 9 outputs) is 8 + 4 + 4 + 8 + 9 x 8 + 8 = 104 bytes; its input starts at
+# 16. The frame's checksum no longer matches: the log is refused at that frame (exit 2).
+# (tests/hil/record_e2e_test.cpp forges the checksum too and finds a changed output by replay.)
+math(EXPR offset "116 + 5000 * 104 + 16")
 file(READ ${log} byte OFFSET ${offset} LIMIT 1 HEX)
 math(EXPR flipped "0x${byte} ^ 1" OUTPUT_FORMAT HEXADECIMAL)
 string(SUBSTRING "${flipped}" 2 -1 flipped)
@@ -25,9 +27,10 @@ if(len EQUAL 1)
 endif()
 execute_process(COMMAND sh -c "printf '\\x${flipped}' | dd of=${log} bs=1 seek=${offset} conv=notrunc status=none"
                 RESULT_VARIABLE rc)
-execute_process(COMMAND ${HIL} replay ${log} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
-if(NOT rc EQUAL 1 OR NOT out MATCHES "DIFFERS at frame 5000 ")
-  message(FATAL_ERROR "a changed input bit at frame 5000 was not found there: exit ${rc}: ${out}")
+execute_process(COMMAND ${HIL} replay ${log} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "frame 5000: checksum")
+  message(FATAL_ERROR "a changed input bit at frame 5000 was not found there: exit ${rc}: ${out} ${err}")
 endif()
 
 # Real time against virtual time over the same 1500 frames (1.5 s of the record).
