@@ -181,7 +181,9 @@ int feeder_main(int argc, char** argv) {
   for (const auto& [path, option] :
        {std::pair{&out_path, "--out"}, std::pair{&json_path, "--summary-json"}}) {
     if (app.count(option) == 0) continue;
-    if (const auto problem = ntn::cli::output_path_problem(*path, option)) {
+    // --out creates its directory, as the runners do; the other files' must exist.
+    if (const auto problem =
+            ntn::cli::output_path_problem(*path, option, std::string_view(option) == "--out")) {
       std::fprintf(stderr, "error: %s\n", problem->c_str());
       return 2;
     }

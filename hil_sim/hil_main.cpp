@@ -449,7 +449,9 @@ int hil_main(int argc, char** argv) {
        {std::pair{&out_path, "--out"}, std::pair{&log_path, "--record"},
         std::pair{&json_path, "--summary-json"}}) {
     if (run->count(option) == 0) continue;
-    if (const auto problem = ntn::cli::output_path_problem(*path, option)) {
+    // --out creates its directory, as the runners do; the other files' must exist.
+    if (const auto problem =
+            ntn::cli::output_path_problem(*path, option, std::string_view(option) == "--out")) {
       std::fprintf(stderr, "error: %s\n", problem->c_str());
       return 2;
     }

@@ -87,4 +87,47 @@ TEST(DivergeE2e, UnstableModelGoesToTheSafeState) {
   }
 }
 
+// Divergence in frame 0 (issue 12: the screen said "outputs held at frame -1's values"): there
+// are no good outputs to hold yet; the screen says so, the outputs are 0 (no NaN), flagged, and
+// the JSON's last good frame is -1. Input: a constant 3 g (the input's full range) for 50 ms.
+TEST(DivergeE2e, DivergenceInFrameZeroSaysNoFrameWasGood) {
+  const TempDir dir("diverge_frame0");
+  std::string csv = "time[s],a[g]\n";
+  for (int i = 0; i <= 50; ++i)
+    csv += std::to_string(i * 1e-3) + ",3\n";
+  ntn_test::write_file(dir / "step.csv", csv);
+  Child run(
+      {NTN_HIL_UNSTABLE_2MS, "run", "--clock", "virtual", "--input", "ag_x=" + (dir / "step.csv"),
+       "--frames", "20", "--out", dir / "run.csv", "--summary-json", dir / "run.json"},
+      dir / "run.txt");
+  ASSERT_TRUE(run.started());
+  EXPECT_EQ(run.wait(), 3);
+  const std::string screen = read_file(dir / "run.txt");
+  const std::string json = read_file(dir / "run.json");
+  EXPECT_NE(screen.find("DIVERGED at frame 0 "), std::string::npos) << screen;
+  EXPECT_NE(screen.find("SAFE STATE from frame 0: no more steps; no frame completed before it, "
+                        "so the outputs are 0, flagged diverged (bit 14); state kept at the "
+                        "initial state"),
+            std::string::npos)
+      << screen;
+  EXPECT_EQ(screen.find("frame -1"), std::string::npos) << screen;
+  EXPECT_EQ(json_number(json, "diverged_frame"), 0);
+  EXPECT_EQ(json_number(json, "last_good_frame"), -1);
+  std::ifstream rows(dir / "run.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(rows, line));  // header
+  int n = 0;
+  for (; std::getline(rows, line); ++n) {
+    std::stringstream cells(line);
+    std::vector<double> row;
+    for (std::string cell; std::getline(cells, cell, ',');)
+      row.push_back(std::strtod(cell.c_str(), nullptr));
+    ASSERT_GE(row.size(), 3U) << line;
+    EXPECT_NE(static_cast<unsigned>(row.back()) & ntn::hil::flag::kDiverged, 0U) << line;
+    for (std::size_t c = 1; c + 1 < row.size(); ++c)
+      EXPECT_EQ(row[c], 0.0) << line;
+  }
+  EXPECT_EQ(n, 20);
+}
+
 }  // namespace

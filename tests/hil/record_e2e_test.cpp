@@ -94,10 +94,12 @@ TEST(RecordE2e, SigtermStopsTheRunWithEveryFileWritten) {
   while (log_size() < (2u << 20) && std::chrono::steady_clock::now() < give_up)
     std::this_thread::sleep_for(10ms);
   ASSERT_GE(log_size(), 2u << 20) << read_file(dir / "run.txt");
-  // Memory is bounded: the CSV and the log stream to their files; 64 MiB of timing reserved.
+  // Memory is bounded: the CSV and the log stream to their files, 64 MiB of timing are reserved
+  // (not all touched). Before, 10^9 frames reserved 8 GB of per-frame hashes and 264 GB of CSV.
+  // The bound, 512 MiB, leaves room for a sanitizer build's own memory.
   const long long rss = rss_kib(child.pid());
   EXPECT_GT(rss, 0);
-  EXPECT_LT(rss, 200 * 1024) << "VmRSS " << rss << " KiB";
+  EXPECT_LT(rss, 512 * 1024) << "VmRSS " << rss << " KiB";
   ASSERT_EQ(kill(child.pid(), SIGTERM), 0);
   const int code = child.wait(60s);
   const std::string out = read_file(dir / "run.txt");
