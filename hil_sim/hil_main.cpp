@@ -635,7 +635,7 @@ int hil_main(int argc, char** argv) {
   }
   // The wait for the sender's first packet is not part of the run.
   const double wall = static_cast<double>(ntn::hil::monotonic_ns() - wall0 - first_waited_ns) / 1e9;
-  if (udp_in && !virtual_clock && first_frame < 0) {
+  if (udp_in && !virtual_clock && first_frame < 0 && !result.stopped) {
     std::fprintf(stderr,
                  "warning: no input packet within %g s: the loop ran on its own clock, every "
                  "frame missing\n",

@@ -147,6 +147,7 @@ TEST(RecordE2e, SigtermWhileWaitingForTheSender) {
   const std::string out = read_file(dir / "run.txt");
   ASSERT_EQ(code, 4) << out;
   EXPECT_NE(out.find("stopped by SIGTERM after 1 frames"), std::string::npos) << out;
+  EXPECT_EQ(out.find("no input packet within"), std::string::npos) << out;  // it did not wait
   EXPECT_EQ(lines(read_file(dir / "run.csv")), 2U);
   const Ran replay = run(dir, {"replay", dir / "run.ntnlog"}, "replay.txt");
   EXPECT_EQ(replay.code, 0) << replay.output;
