@@ -29,10 +29,22 @@ std::string_view text(const std::uint8_t* data, std::size_t size) {
 void check_record(const ntn::io::ReadResult& r) {
   require(r.record.has_value() != r.error.has_value());  // exactly one of the two
   if (r.record) {
-    require(r.record->dt > 0 && std::isfinite(r.record->dt));
+    // The sample-interval rule (issue 12 items 7, 8): every record's duration and step count
+    // are finite and bounded.
+    require(r.record->dt >= ntn::io::kMinSampleInterval &&
+            r.record->dt <= ntn::io::kMaxSampleInterval);
+    require(std::isfinite(r.record->t0));
     for (double v : r.record->values)
       require(std::isfinite(v));
     (void)r.record->at(0.5 * r.record->duration());
+    // A stated unit that parses is the one `unit` holds; conversion to a g input either refuses
+    // or leaves finite values (item 16).
+    require(!r.record->unit || ntn::io::parse_unit(r.record->units).has_value());
+    ntn::io::Record copy = *r.record;
+    if (!copy.to_unit(ntn::io::input_unit(true, 0, 9.80665))) {
+      for (double v : copy.values)
+        require(std::isfinite(v));
+    }
   } else {
     (void)r.error->format();
   }
