@@ -352,6 +352,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", r.error->format().c_str());
       return 2;
     }
+    // The record's values in the input's unit (gal to g, ...): the runner's rule (tools/io).
+    const ntn::InputSpec& spec = mdl::kSpec.inputs[static_cast<std::size_t>(index)];
+    if (const auto e = r.record->to_unit(ntn::io::input_unit(
+            spec.kind == ntn::InputKind::kGroundAcceleration, spec.dof, spec.scale))) {
+      std::fprintf(stderr, "%s: error: input '%s': %s\n", file.c_str(), name.c_str(), e->c_str());
+      return 2;
+    }
     record_duration = std::max(record_duration, r.record->duration());
     records[static_cast<std::size_t>(index)] = std::move(*r.record);
   }
