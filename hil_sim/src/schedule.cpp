@@ -5,7 +5,8 @@
 namespace ntn::hil {
 
 SenderSchedule::SenderSchedule(std::int64_t period_ns, std::int64_t frames, int resync_after) {
-  valid_ = period_ns > 0 && frames > 0 && resync_after >= 0 && frames <= kMaxSpan / period_ns;
+  valid_ = period_ns > 0 && frames > 0 && resync_after >= 0 && resync_after <= kMaxResyncAfter &&
+           frames <= kMaxSpan / period_ns;
   if (!valid_) return;
   period_ns_ = period_ns;
   frames_ = frames;
@@ -35,50 +36,57 @@ bool SenderSchedule::anchor(std::int64_t frame, std::int64_t arrival_ns, std::in
   epoch_ = e;
   anchored_ = true;
   anchor_frame_ = frame;
-  run_side_ = 0, run_length_ = 0;
+  recent_count_ = 0;
+  recent_next_ = 0;
   return true;
 }
 
 bool SenderSchedule::observe(const OfferResult& r, std::int64_t current, std::int64_t seen_ns) {
-  if (!valid_) return false;
-  int side = 0;
+  if (!valid_ || resync_after_ == 0) return false;
+  Seen now;
   switch (r.status) {
     case OfferStatus::kCurrent:
     case OfferStatus::kBuffered:
-      run_side_ = 0, run_length_ = 0;  // the schedule works for this packet
-      return false;
+      now.side = 0;  // the schedule works for this packet
+      break;
     case OfferStatus::kTooEarly:
-      side = +1;
+      now.side = +1;
       break;
     case OfferStatus::kLate:
-      side = -1;
+      now.side = -1;
       break;
     default:
       return false;  // not a packet of the stream, or nothing about timing
   }
-  std::int64_t e = 0;
-  if (resync_after_ == 0 || !plausible(r.frame, current) || !epoch_of(r.frame, seen_ns, e))
-    return false;
-  const std::int64_t lead = r.frame - current;
-  if (run_length_ > 0 && side == run_side_ &&
-      std::max(run_max_lead_, lead) - std::min(run_min_lead_, lead) <= kResyncSpread) {
-    ++run_length_;
-    run_min_lead_ = std::min(run_min_lead_, lead);
-    run_max_lead_ = std::max(run_max_lead_, lead);
-    run_epoch_ = std::min(run_epoch_, e);
-  } else {
-    run_side_ = side, run_length_ = 1;
-    run_min_lead_ = run_max_lead_ = lead;
-    run_epoch_ = e;
+  if (now.side != 0) {
+    if (!plausible(r.frame, current) || !epoch_of(r.frame, seen_ns, now.epoch)) return false;
+    now.lead = r.frame - current;
   }
-  if (run_length_ < resync_after_) return false;
-  epoch_ = run_epoch_;
+  const int window = 2 * resync_after_;
+  recent_[static_cast<std::size_t>(recent_next_)] = now;
+  recent_next_ = (recent_next_ + 1) % window;
+  recent_count_ = std::min(recent_count_ + 1, window);
+  if (now.side == 0) return false;
+  int agree = 0;
+  std::int64_t epoch = now.epoch;
+  for (int i = 0; i < recent_count_; ++i) {
+    const Seen& s = recent_[static_cast<std::size_t>(i)];
+    const std::int64_t d = s.lead > now.lead ? s.lead - now.lead : now.lead - s.lead;
+    if (s.side == now.side && d <= kResyncSpread) {
+      ++agree;
+      epoch = std::min(epoch, s.epoch);
+    }
+  }
+  // K of them, and more than all the other packets of the window together.
+  if (agree < resync_after_ || 2 * agree <= recent_count_) return false;
+  epoch_ = epoch;
   if (!anchored_) anchor_frame_ = r.frame;
   anchored_ = true;
   ++resyncs_;
   last_resync_frame_ = current;
   flags_ |= flag::kResync;
-  run_side_ = 0, run_length_ = 0;
+  recent_count_ = 0;
+  recent_next_ = 0;
   return true;
 }
 

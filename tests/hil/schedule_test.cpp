@@ -1,5 +1,5 @@
 // The sender schedule (hil_sim/include/ntn/hil/schedule.hpp): the anchor only from a plausible
-// frame, integer arithmetic that cannot overflow, and the resync rule (K consecutive packets
+// frame, integer arithmetic that cannot overflow, and the resync rule (K of the last 2K packets
 // dropped on one side with a consistent offset), on synthetic times only: no clock, no socket.
 #include "ntn/hil/schedule.hpp"
 
@@ -52,6 +52,7 @@ TEST(Schedule, ArithmeticIsChecked) {
   EXPECT_FALSE(SenderSchedule(kP, SenderSchedule::kMaxSpan / kP + 1).valid());
   EXPECT_TRUE(SenderSchedule(kP, SenderSchedule::kMaxSpan / kP).valid());
   EXPECT_FALSE(SenderSchedule(kP, 10, -1).valid());
+  EXPECT_FALSE(SenderSchedule(kP, 10, SenderSchedule::kMaxResyncAfter + 1).valid());
   const std::int64_t frames = SenderSchedule::kMaxSpan / kP;
   SenderSchedule s(kP, frames);
   EXPECT_FALSE(s.anchor(1000, std::numeric_limits<std::int64_t>::min(), 1000));
@@ -103,9 +104,10 @@ TEST(Schedule, ResyncAfterKConsistentLatePackets) {
   EXPECT_EQ(s.sender_epoch_ns(), kT + 30 * kP + kP / 2);
 }
 
-// No single packet moves the schedule: K - 1 dropped packets then one the gate used start over;
-// a mixed run (early, late, early ...) or one with leads spread wider than kResyncSpread never
-// completes; other kinds (corrupt, duplicate, out of the run ...) change nothing.
+// No single packet moves the schedule, nor any number of them while half of the stream is used:
+// K - 1 dropped packets and K + 1 used ones, over and over, never resync; nor do packets dropped
+// on alternating sides or with leads spread wider than kResyncSpread; other kinds (corrupt,
+// duplicate, out of the run ...) change nothing. A majority of the last 2K, K or more, does.
 TEST(Schedule, RoguePacketsNeverMoveIt) {
   SenderSchedule s(kP, 100'000);
   ASSERT_TRUE(s.anchor(0, kT));
@@ -115,7 +117,8 @@ TEST(Schedule, RoguePacketsNeverMoveIt) {
   for (int round = 0; round < 50; ++round, ++k) {
     for (int i = 0; i < kK - 1; ++i)
       EXPECT_FALSE(s.observe(result(OfferStatus::kTooEarly, k + 500), k, t()));
-    EXPECT_FALSE(s.observe(result(OfferStatus::kCurrent, k), k, t()));
+    for (int i = 0; i < kK + 1; ++i)
+      EXPECT_FALSE(s.observe(result(OfferStatus::kCurrent, k), k, t()));
   }
   for (int i = 0; i < 10 * kK; ++i, ++k)  // alternating sides
     EXPECT_FALSE(s.observe(
@@ -136,13 +139,22 @@ TEST(Schedule, RoguePacketsNeverMoveIt) {
   EXPECT_EQ(s.resyncs(), 0U);
   EXPECT_EQ(s.epoch_ns(), epoch);
   EXPECT_EQ(s.take_flags(), 0);
-  // Interleaved packets of other kinds neither extend nor break a run.
-  for (int i = 0; i < kK; ++i) {
-    EXPECT_EQ(s.observe(result(OfferStatus::kTooEarly, k + 30), k, t()), i == kK - 1);
+  // Interleaved packets of other kinds are not counted.
+  // (The window holds K of the spread leads above: K + 1 at lead 30 are the majority.)
+  for (int i = 0; i <= kK; ++i) {
+    EXPECT_EQ(s.observe(result(OfferStatus::kTooEarly, k + 30), k, t()), i == kK);
     (void)s.observe(result(OfferStatus::kDuplicate, k), k, t());
     ++k;
   }
   EXPECT_EQ(s.resyncs(), 1U);
+  // K dropped and K used, interleaved: no majority, no resync; K + 1 dropped and K - 1 used in
+  // the window: a resync at the (K + 1)-th.
+  for (int i = 0; i < kK; ++i, ++k) {
+    EXPECT_FALSE(s.observe(result(OfferStatus::kCurrent, k), k, t()));
+    EXPECT_FALSE(s.observe(result(OfferStatus::kLate, k - 3), k, t()));
+  }
+  EXPECT_TRUE(s.observe(result(OfferStatus::kLate, k - 3), k, t()));
+  EXPECT_EQ(s.resyncs(), 2U);
 }
 
 // Before any anchor (no packet in the first wait), K consistent packets anchor the schedule; with

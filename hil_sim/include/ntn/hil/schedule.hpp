@@ -7,27 +7,34 @@
 //  - Anchor: the first input packet seen arriving (frame f, at t) gives e = t - f period, if its
 //    frame is plausible: inside the run and at most InputGate::kFrameWindow frames from the
 //    loop's current frame. Anything else never sets the schedule.
-//  - Resync: K (`resync_after`, default 8) consecutive input packets that the gate dropped on
-//    the same side (all too early, beyond the jitter buffer; or all late) with a consistent
-//    offset (their frame minus the loop's frame within kResyncSpread of each other) mean the
-//    stream and the schedule disagree, not that the packets are bad: e is re-anchored to them,
-//    e = min over the K packets of (time seen - frame period). A packet is seen when the loop
-//    reads it, at or after its arrival, so this is the latest epoch the K packets allow: a
-//    packet that follows on time arrives at least half a period before its frame's deadline
-//    (not late) and, as the loop reads its socket once a frame, at most 1.5 periods before it
-//    (kept in the jitter buffer). Any packet the gate used (current or buffered) ends the run;
-//    packets that are corrupt, of the wrong count, duplicates or out of the run / window
-//    neither extend nor end it. Before any anchor (no packet within the first wait) the same
-//    rule anchors the schedule: a sender that starts late is still followed.
-// So one packet never moves the schedule, except the first; and a first packet that was wrong
-// (a burst after a stall, a stale packet) is corrected after K packets. Every resync is counted
-// and flags its frame with flag::kResync.
+//  - Resync: when K (`resync_after`, default 8) or more of the last 2K packets of the stream were
+//    dropped on the same side (too early, beyond the jitter buffer; or late) with a consistent
+//    offset (their frame minus the loop's frame within kResyncSpread of the newest one's), and
+//    they are more than all the other packets of those 2K together, the stream
+//    and the schedule disagree, not the packets: e is re-anchored to those K or more packets,
+//    e = min over them of (time seen - frame period). A packet is seen when the loop reads it,
+//    at or after its arrival, so this is the latest epoch they allow: a packet that follows on
+//    time arrives at least half a period before its frame's deadline (not late) and, as the
+//    loop reads its socket once a frame, at most 1.5 periods before it (kept in the jitter
+//    buffer). The packets of the stream are those the gate used (current or buffered) or
+//    dropped as too early or late; corrupt ones, wrong counts, duplicates, frame ends and
+//    frames out of the run or the window are not counted at all. Before any anchor (no packet
+//    within the first wait) the same rule anchors the schedule: a late sender is still followed.
+//    "K of the last 2K", not "K in a row": a slowly drifting sender with jitter misses its
+//    frames now and then before it misses them all, and each packet used in between would
+//    otherwise start the count again (with 100 us of jitter and 200 ppm of drift, K in a row
+//    lost 3 % of a 10 s run).
+// So one packet never moves the schedule, except the first; while half of the stream's packets
+// (K of any 2K in a row) are used at their frames it does not move at all; and a
+// first packet that was wrong (a burst after a stall, a stale packet) is corrected after K
+// packets. Every resync is counted and flags its frame with flag::kResync.
 //
 // Times are integer ns (CLOCK_MONOTONIC, or synthetic in the tests); every product and sum is
 // checked: frames x period must fit an int64 with room, and a time that would overflow leaves the
 // schedule unchanged. No heap, no libm: real-time safe.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "ntn/hil/gate.hpp"
@@ -36,12 +43,14 @@ namespace ntn::hil {
 
 class SenderSchedule {
  public:
-  static constexpr int kResyncAfter = 8;   // K: consecutive packets on one side
+  static constexpr int kResyncAfter = 8;  // K: packets on one side, of the last 2K
+  static constexpr int kMaxResyncAfter = 32;
   static constexpr int kResyncSpread = 1;  // frames: their frame - loop frame within this
   static constexpr std::int64_t kMaxSpan = std::int64_t{1} << 61;  // ns: frames x period bound
 
-  // period_ns > 0, frames > 0 with frames x period_ns <= kMaxSpan, resync_after >= 1 (0 turns
-  // resync off: the schedule is then the first packet's alone, as before issue 12).
+  // period_ns > 0, frames > 0 with frames x period_ns <= kMaxSpan, resync_after in
+  // [1, kMaxResyncAfter] (0 turns resync off: the schedule is then the first packet's alone, as
+  // before issue 12).
   SenderSchedule(std::int64_t period_ns, std::int64_t frames, int resync_after = kResyncAfter);
   bool valid() const { return valid_; }
 
@@ -85,11 +94,16 @@ class SenderSchedule {
   std::uint64_t resyncs_ = 0;
   std::int64_t last_resync_frame_ = -1;
   std::uint16_t flags_ = 0;
-  // The current run of dropped packets on one side.
-  int run_side_ = 0;  // +1 too early, -1 late, 0 none
-  int run_length_ = 0;
-  std::int64_t run_min_lead_ = 0, run_max_lead_ = 0;
-  std::int64_t run_epoch_ = 0;  // min of seen - frame x period over the run
+  // The last 2K packets of the stream: side (+1 too early, -1 late, 0 used), frame - loop frame,
+  // and seen - frame x period.
+  struct Seen {
+    std::int64_t lead = 0;
+    std::int64_t epoch = 0;
+    int side = 0;
+  };
+  std::array<Seen, 2 * kMaxResyncAfter> recent_{};
+  int recent_count_ = 0;  // entries in use, up to 2K
+  int recent_next_ = 0;   // where the next one goes
 };
 
 }  // namespace ntn::hil
