@@ -60,7 +60,8 @@ struct FileSource {
 // period / 2, half a period after its packet is expected, so that arrival jitter below half a
 // period makes no packet late (after its frame ran) or early (before the frame before it ran).
 // The SenderSchedule (schedule.hpp) keeps that epoch: set by a plausible first packet only, and
-// re-anchored (resync) when K consecutive packets miss the schedule on one side.
+// re-anchored (resync) when the stream misses the schedule (K of its last 2K packets dropped on
+// one side with a consistent offset, README "The input schedule").
 struct UdpSource {
   ntn::hil::UdpSocket* socket;
   ntn::hil::InputGate* gate;
@@ -398,8 +399,12 @@ int main(int argc, char** argv) {
   const auto frame_ns = static_cast<std::int64_t>(std::llround(period * 1e9));
   ntn::hil::SenderSchedule schedule(frame_ns, frames);
   if (!schedule.valid()) {
-    std::fprintf(stderr, "error: --frames %lld: %lld frames of %g s do not fit the clock's range\n",
-                 static_cast<long long>(frames), static_cast<long long>(frames), period);
+    std::fprintf(stderr,
+                 "error: --frames/--duration: %lld frames of %g s do not fit the clock's range "
+                 "(at most %lld frames)\n",
+                 static_cast<long long>(frames), period,
+                 static_cast<long long>(ntn::hil::SenderSchedule::kMaxSpan /
+                                        std::max<std::int64_t>(frame_ns, 1)));
     return 2;
   }
   ntn::hil::UdpSocket socket;  // opened last, when the loop is ready (below)
