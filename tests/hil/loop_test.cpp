@@ -528,6 +528,9 @@ TEST_F(Loop, SenderStallResyncsOnce) {
   EXPECT_GE(r.counters.accepted,
             2000u - 30u - 1u - static_cast<unsigned>(ntn::hil::SenderSchedule::kResyncAfter));
   EXPECT_EQ(r.counters.accepted + r.counters.missing, 2000u);
+  std::printf("sender stall: %llu of 2000 accepted (%llu without resync)\n",
+              static_cast<unsigned long long>(r.counters.accepted),
+              static_cast<unsigned long long>(off.counters.accepted));
 }
 
 // A DAQ whose clock runs 200 ppm slow: 10 000 frames drift 2 periods. The packets come later
@@ -551,9 +554,10 @@ TEST_F(Loop, SlowSenderClockKeepsRunning) {
   EXPECT_GE(r.counters.accepted,
             10'000u - r.resyncs * (125u + 1u +
                                    static_cast<unsigned>(ntn::hil::SenderSchedule::kResyncAfter)));
-  std::printf("200 ppm slow sender: %llu of 10000 accepted, %llu resyncs\n",
+  std::printf("200 ppm slow sender: %llu of 10000 accepted, %llu resyncs (%llu without resync)\n",
               static_cast<unsigned long long>(r.counters.accepted),
-              static_cast<unsigned long long>(r.resyncs));
+              static_cast<unsigned long long>(r.resyncs),
+              static_cast<unsigned long long>(off.counters.accepted));
 }
 
 // Rogue packets in a healthy stream never move the schedule: single packets far ahead or behind
