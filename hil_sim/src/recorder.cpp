@@ -282,16 +282,16 @@ LogRead LogReader::next(LogFrame& frame) {
                 " (frames must be 0, 1, 2, ...)");
   const auto input_flags = get<std::uint32_t>(at);
   const auto output_flags = get<std::uint32_t>(at);
-  // The loop writes the gate's bits as the input flags and adds its own (alarm, overrun,
-  // diverged) to them for the output flags.
-  if ((input_flags & ~std::uint32_t{flag::kGateMask}) != 0)
-    return fail("frame " + k + ": input flags 0x" + hex(input_flags).substr(8) +
-                " have bits the input gate does not set");
+  // The loop records the source's bits (the gate's, and the sender schedule's resync bit) as
+  // the input flags and adds its own (alarm, overrun, diverged) to them for the output flags.
+  constexpr std::uint32_t kInputBits = flag::kGateMask | flag::kResync;
   constexpr std::uint32_t kLoopBits = flag::kAlarm | flag::kOverrun | flag::kDiverged;
-  if ((output_flags & ~(std::uint32_t{flag::kGateMask} | kLoopBits)) != 0 ||
-      (output_flags & flag::kGateMask) != input_flags)
-    return fail("frame " + k + ": output flags 0x" + hex(output_flags).substr(8) +
-                " do not extend its input flags 0x" + hex(input_flags).substr(8));
+  if ((input_flags & ~kInputBits) != 0)
+    return fail("frame " + k + ": input flags 0x" + hex(input_flags).substr(12) +
+                " have bits the input side does not set");
+  if ((output_flags & ~(kInputBits | kLoopBits)) != 0 || (output_flags & kInputBits) != input_flags)
+    return fail("frame " + k + ": output flags 0x" + hex(output_flags).substr(12) +
+                " do not extend its input flags 0x" + hex(input_flags).substr(12));
   frame.frame = index;
   frame.input_flags = input_flags;
   frame.output_flags = output_flags;
