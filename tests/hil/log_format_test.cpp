@@ -41,14 +41,15 @@ double out_value(std::int64_t k, int c) {
   return static_cast<double>(k * 10 + c) / 3.0;
 }
 
-// A log of `frames` frames; frame 1 carries the gate's held bit and an alarm.
+// A log of `frames` frames; frame 1 carries the gate's held bit and an alarm, frame 2 the sender
+// schedule's resync bit (input side, schedule.hpp).
 std::string write_log(const std::string& path, int frames) {
   Recorder r;
   EXPECT_TRUE(r.open(path, header())) << r.error();
   for (int k = 0; k < frames; ++k) {
     const double in[kIn] = {in_value(k)};
     const double out[kOut] = {out_value(k, 0), out_value(k, 1)};
-    const std::uint32_t f = k == 1 ? ntn::hil::flag::kHeld : 0U;
+    const std::uint32_t f = k == 1 ? ntn::hil::flag::kHeld : k == 2 ? ntn::hil::flag::kResync : 0U;
     r.write_frame(k, f, f | (k == 1 ? ntn::hil::flag::kAlarm : 0U), in, out);
   }
   EXPECT_TRUE(r.close()) << r.error();
@@ -100,6 +101,8 @@ TEST(LogFormat, RoundTripIsExact) {
   }
   EXPECT_EQ(r.got[1].input_flags, ntn::hil::flag::kHeld);
   EXPECT_EQ(r.got[1].output_flags, ntn::hil::flag::kHeld | ntn::hil::flag::kAlarm);
+  EXPECT_EQ(r.got[2].input_flags, ntn::hil::flag::kResync);
+  EXPECT_EQ(r.got[2].output_flags, ntn::hil::flag::kResync);
   LogReader reader;
   ASSERT_TRUE(reader.open(dir / "a.log"));
   EXPECT_EQ(reader.header().model, "test_model");
