@@ -19,7 +19,7 @@ namespace ntn {
 // Largest circular frequency of one free element: omega_e^2 = lambda_max(M_e^-1 K_e), with the
 // element's own lumped mass in global axes (the same mass that is assembled). By the element
 // eigenvalue theorem max_e omega_e bounds the assembled model's omega_max: added point masses
-// and supports only lower it. Returns 0 for an invalid element.
+// and supports only lower it. Returns 0 for an invalid element, +inf for one beyond double.
 inline double element_omega_max(const ElementSpec& e, const NodeSpec& a, const NodeSpec& b,
                                 bool rotary_inertia) {
   const BeamGeometry g = beam_geometry(a, b, e);
