@@ -108,8 +108,8 @@ Percentiles percentiles(std::vector<std::int64_t> ns) {
 
 constexpr std::array<const char*, 16> kFlagNames{
     "held",      "missing", "nonfinite", "out_of_range", "corrupt",   "wrong_count",
-    "duplicate", "late",    "early",     "reordered",    "too_early", "bit11",
-    "alarm",     "overrun", "diverged",  "bit15"};
+    "duplicate", "late",    "early",     "reordered",    "too_early", "resync",
+    "alarm",     "overrun", "diverged",  "bad_frame"};
 
 }  // namespace
 

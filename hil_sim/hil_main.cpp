@@ -21,6 +21,7 @@
 #include "ntn/hil/loop.hpp"
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/recorder.hpp"
+#include "ntn/hil/schedule.hpp"
 #include "ntn/hil/udp.hpp"
 #include "ntn/kernel.hpp"
 #include "record.hpp"
@@ -58,6 +59,9 @@ struct FileSource {
 // the loop's deadlines follow the sender's stream: frame k is due at t_a + (k - f0) period +
 // period / 2, half a period after its packet is expected, so that arrival jitter below half a
 // period makes no packet late (after its frame ran) or early (before the frame before it ran).
+// The SenderSchedule (schedule.hpp) keeps that epoch: set by a plausible first packet only, and
+// re-anchored (resync) when the stream misses the schedule (K of its last 2K packets dropped on
+// one side with a consistent offset, README "The input schedule").
 struct UdpSource {
   ntn::hil::UdpSocket* socket;
   ntn::hil::InputGate* gate;
@@ -65,16 +69,17 @@ struct UdpSource {
   std::int64_t period_ns = 1'000'000;
   std::int64_t first_wait_ns = 0;  // real time: how long frame 0 waits for the first packet
   std::array<std::byte, ntn::hil::kMaxPacketBytes + 64> buffer{};
+  ntn::hil::SenderSchedule* schedule = nullptr;  // real time: the deadlines
   std::uint64_t timeouts = 0;
-  std::int64_t epoch = -1;        // deadline of frame 0, or -1: none (no packet came)
   std::int64_t first_frame = -1;  // frame of the packet the deadlines follow
   std::int64_t waited_ns = 0;     // time frame 0 waited for it
-  std::int64_t epoch_ns() const { return epoch; }
+  std::int64_t epoch_ns() const { return schedule != nullptr ? schedule->epoch_ns() : -1; }
   void drain(std::int64_t k, bool& ended) {
     for (;;) {
       const ntn::hil::Received r = socket->receive(buffer);
       if (!r.has_datagram()) return;
       const auto res = gate->offer(std::span<const std::byte>(buffer.data(), r.size));
+      if (schedule != nullptr) (void)schedule->observe(res, k, ntn::hil::monotonic_ns());
       if (res.status == ntn::hil::OfferStatus::kFrameEnd && res.frame >= k) ended = true;
     }
   }
@@ -96,10 +101,12 @@ struct UdpSource {
         if (!r.has_datagram()) break;
         const auto res = gate->offer(std::span<const std::byte>(buffer.data(), r.size));
         using ntn::hil::OfferStatus;
-        if (res.status == OfferStatus::kCurrent || res.status == OfferStatus::kBuffered ||
-            res.status == OfferStatus::kTooEarly) {
+        // Only a packet whose frame is plausible (the gate checked the run and the window;
+        // the schedule checks again, and the arithmetic) fixes the deadlines.
+        if ((res.status == OfferStatus::kCurrent || res.status == OfferStatus::kBuffered ||
+             res.status == OfferStatus::kTooEarly) &&
+            schedule != nullptr && schedule->anchor(res.frame, arrival, 0)) {
           first_frame = res.frame;
-          epoch = arrival - res.frame * period_ns + period_ns / 2;
           waited_ns = arrival - start;
           return;
         }
@@ -120,6 +127,7 @@ struct UdpSource {
       drain(k, ended);
     }
     gate->end_frame(v, flags);
+    if (schedule != nullptr) flags |= schedule->take_flags();
   }
 };
 
@@ -353,6 +361,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", r.error->format().c_str());
       return 2;
     }
+    // The record's values in the input's unit (gal to g, ...): the runner's rule (tools/io).
+    const ntn::InputSpec& spec = mdl::kSpec.inputs[static_cast<std::size_t>(index)];
+    if (const auto e = r.record->to_unit(ntn::io::input_unit(
+            spec.kind == ntn::InputKind::kGroundAcceleration, spec.dof, spec.scale))) {
+      std::fprintf(stderr, "%s: error: input '%s': %s\n", file.c_str(), name.c_str(), e->c_str());
+      return 2;
+    }
     record_duration = std::max(record_duration, r.record->duration());
     records[static_cast<std::size_t>(index)] = std::move(*r.record);
   }
@@ -388,6 +403,18 @@ int main(int argc, char** argv) {
   }
 
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(mdl::kSpec.inputs));
+  (void)gate.set_run_frames(frames);  // a packet for a frame outside the run: out_of_run
+  const auto frame_ns = static_cast<std::int64_t>(std::llround(period * 1e9));
+  ntn::hil::SenderSchedule schedule(frame_ns, frames);
+  if (!schedule.valid()) {
+    std::fprintf(stderr,
+                 "error: --frames/--duration: %lld frames of %g s do not fit the clock's range "
+                 "(at most %lld frames)\n",
+                 static_cast<long long>(frames), period,
+                 static_cast<long long>(ntn::hil::SenderSchedule::kMaxSpan /
+                                        std::max<std::int64_t>(frame_ns, 1)));
+    return 2;
+  }
   ntn::hil::UdpSocket socket;  // opened last, when the loop is ready (below)
   std::string csv;
   if (!out_path.empty()) {
@@ -437,6 +464,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: %s\n", st.message().c_str());
       return 2;
     }
+    // The port actually bound (the OS's choice for --listen 0), for the sender: flushed now.
+    if (udp_in && (!quiet || listen_port == 0)) {
+      std::printf("ntn-hil  listening on 127.0.0.1:%u\n", static_cast<unsigned>(socket.port()));
+      std::fflush(stdout);
+    }
   }
   ntn::hil::LoopResult result;
   std::uint64_t udp_timeouts = 0;
@@ -445,7 +477,8 @@ int main(int argc, char** argv) {
   auto go = [&](auto& clock) {
     if (udp_in) {
       UdpSource source{&socket, &gate, virtual_clock};
-      source.period_ns = static_cast<std::int64_t>(std::llround(period * 1e9));
+      source.period_ns = frame_ns;
+      if (!virtual_clock) source.schedule = &schedule;
       source.first_wait_ns = static_cast<std::int64_t>(first_wait_s * 1e9);
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
                                   log_path.empty() ? nullptr : &recorder, config, alarms, times,
@@ -470,10 +503,11 @@ int main(int argc, char** argv) {
   // The wait for the sender's first packet is not part of the run.
   const double wall = static_cast<double>(ntn::hil::monotonic_ns() - wall0 - first_waited_ns) / 1e9;
   if (udp_in && !virtual_clock && first_frame < 0) {
-    std::fprintf(stderr,
-                 "warning: no input packet within %g s: the loop ran on its own clock, every "
-                 "frame missing\n",
-                 first_wait_s);
+    std::fprintf(
+        stderr,
+        "warning: no plausible input packet within %g s: the loop started on its own clock%s\n",
+        first_wait_s,
+        schedule.anchored() ? " and followed the sender after a resync" : ", every frame missing");
   }
   if (!log_path.empty() && !recorder.close()) {
     std::fprintf(stderr, "error: %s\n", recorder.error().c_str());
@@ -519,10 +553,11 @@ int main(int argc, char** argv) {
         "  inputs   accepted %llu, missing %llu (lost %llu), late %llu, early %llu\n"
         "           reordered %llu, duplicate %llu, corrupt %llu, wrong count %llu, too early "
         "%llu\n"
-        "           values held: non-finite %llu, out of range %llu\n",
+        "           values held: non-finite %llu, out of range %llu\n"
+        "           frame out of run %llu, out of window %llu; sender restarts %llu\n",
         u(gc.accepted), u(gc.missing), u(gc.lost()), u(gc.late), u(gc.early), u(gc.reordered),
         u(gc.duplicate), u(gc.corrupt), u(gc.wrong_count), u(gc.too_early), u(gc.nonfinite),
-        u(gc.out_of_range));
+        u(gc.out_of_range), u(gc.out_of_run), u(gc.out_of_window), u(gc.sender_restart));
     for (std::size_t c = 0; c < kS.outputs; ++c) {
       const auto& a = alarms[c];
       if (!a.enabled) continue;
@@ -570,6 +605,12 @@ int main(int argc, char** argv) {
           "frame k at packet k + T/2\n",
           static_cast<long long>(first_frame), static_cast<double>(first_waited_ns) / 1e9);
     }
+    if (udp_in) std::printf("  UDP on 127.0.0.1:%u\n", static_cast<unsigned>(socket.port()));
+    if (schedule.resyncs() > 0) {
+      std::printf(
+          "  resync   %llu (deadlines re-anchored to the sender's stream), last at frame %lld\n",
+          u(schedule.resyncs()), static_cast<long long>(schedule.last_resync_frame()));
+    }
     if (udp_timeouts > 0)
       std::printf("  %llu frames timed out waiting for the sender\n",
                   static_cast<unsigned long long>(udp_timeouts));
@@ -591,7 +632,11 @@ int main(int argc, char** argv) {
        << ", \"duplicate\": " << gc.duplicate << ", \"reordered\": " << gc.reordered
        << ", \"early\": " << gc.early << ", \"too_early\": " << gc.too_early
        << ", \"corrupt\": " << gc.corrupt << ", \"wrong_count\": " << gc.wrong_count
-       << ", \"nonfinite\": " << gc.nonfinite << ", \"out_of_range\": " << gc.out_of_range << "}"
+       << ", \"nonfinite\": " << gc.nonfinite << ", \"out_of_range\": " << gc.out_of_range
+       << ", \"out_of_run\": " << gc.out_of_run << ", \"out_of_window\": " << gc.out_of_window
+       << ", \"sender_restart\": " << gc.sender_restart << "}"
+       << ",\n  \"resync\": " << schedule.resyncs()
+       << ",\n  \"listen_port\": " << (udp_in ? static_cast<int>(socket.port()) : -1)
        << ",\n  \"first_packet_frame\": " << first_frame << ",\n  \"alarms\": [";
     bool first_alarm = true;
     for (std::size_t c = 0; c < kS.outputs; ++c) {

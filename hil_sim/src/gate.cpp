@@ -49,6 +49,12 @@ bool InputGate::set_initial(int channel, double value) {
   return true;
 }
 
+bool InputGate::set_run_frames(std::int64_t frames) {
+  if (frames <= 0) return false;
+  run_frames_ = frames;
+  return true;
+}
+
 bool InputGate::begin_frame(std::int64_t frame) {
   if (started_ && frame <= current_) return false;
   std::uint16_t carried = 0;
@@ -81,9 +87,7 @@ InputGate::SequenceCheck InputGate::check_sequence(std::uint32_t sequence) {
   constexpr std::uint32_t kMask = kSequenceWindow - 1;
   if (!any_sequence_) {
     any_sequence_ = true;
-    highest_sequence_ = sequence;
-    seen_.reset();
-    seen_.set(sequence & kMask);
+    rebase_sequence(sequence);
     return SequenceCheck::kNewest;
   }
   // Serial-number arithmetic (RFC 1982): the u32 sequence may wrap.
@@ -105,6 +109,33 @@ InputGate::SequenceCheck InputGate::check_sequence(std::uint32_t sequence) {
   if (seen_.test(sequence & kMask)) return SequenceCheck::kDuplicate;
   seen_.set(sequence & kMask);
   return SequenceCheck::kOlder;
+}
+
+void InputGate::rebase_sequence(std::uint32_t sequence) {
+  highest_sequence_ = sequence;
+  seen_.reset();
+  seen_.set(sequence & (kSequenceWindow - 1));
+}
+
+// The frame rules that do not depend on the sequence: inside the run, and within kFrameWindow of
+// the current frame. Differences in unsigned arithmetic: any int64 frame may arrive.
+bool InputGate::frame_in_run(std::int64_t frame, OfferResult& r) {
+  if (frame < 0 || frame >= run_frames_) {
+    ++counters_.out_of_run;
+    pending_flags_ |= flag::kBadFrame;
+    r.status = OfferStatus::kOutOfRun;
+    return false;
+  }
+  const std::uint64_t distance =
+      frame >= current_ ? static_cast<std::uint64_t>(frame) - static_cast<std::uint64_t>(current_)
+                        : static_cast<std::uint64_t>(current_) - static_cast<std::uint64_t>(frame);
+  if (distance > static_cast<std::uint64_t>(kFrameWindow)) {
+    ++counters_.out_of_window;
+    pending_flags_ |= flag::kBadFrame;
+    r.status = OfferStatus::kOutOfWindow;
+    return false;
+  }
+  return true;
 }
 
 OfferResult InputGate::offer(std::span<const std::byte> datagram) {
@@ -132,7 +163,18 @@ OfferResult InputGate::offer(std::span<const std::byte> datagram) {
     r.status = OfferStatus::kWrongCount;
     return r;
   }
-  const SequenceCheck s = check_sequence(p.sequence);
+  if (!frame_in_run(p.frame, r)) return r;
+  SequenceCheck s = check_sequence(p.sequence);
+  // A sender restart: the sequence is not above the newest (a duplicate, older, or beyond the
+  // window), yet the frame is newer than every frame seen. A resent copy keeps its frame and a
+  // reordered packet has an older one, so neither can look like this; a sender that started
+  // counting again from 0 (or anywhere) while its frames go on does.
+  if (s != SequenceCheck::kNewest && p.frame > newest_frame_) {
+    ++counters_.sender_restart;
+    rebase_sequence(p.sequence);
+    s = SequenceCheck::kNewest;
+  }
+  if (s != SequenceCheck::kDuplicate) newest_frame_ = std::max(newest_frame_, p.frame);
   if (s == SequenceCheck::kDuplicate) {
     ++counters_.duplicate;
     pending_flags_ |= flag::kDuplicate;
@@ -156,6 +198,7 @@ OfferResult InputGate::accept_values(std::int64_t frame, std::span<const double>
     r.status = OfferStatus::kWrongCount;
     return r;
   }
+  if (!frame_in_run(frame, r)) return r;
   return place(frame, values);
 }
 

@@ -10,6 +10,7 @@
 
 #include "ntn/hil/gate.hpp"
 #include "ntn/hil/packet.hpp"
+#include "ntn/hil/schedule.hpp"
 #include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
@@ -31,10 +32,22 @@ std::string_view text(const std::uint8_t* data, std::size_t size) {
 void check_record(const ntn::io::ReadResult& r) {
   require(r.record.has_value() != r.error.has_value());  // exactly one of the two
   if (r.record) {
-    require(r.record->dt > 0 && std::isfinite(r.record->dt));
+    // The sample-interval rule (issue 12 items 7, 8): every record's duration and step count
+    // are finite and bounded.
+    require(r.record->dt >= ntn::io::kMinSampleInterval &&
+            r.record->dt <= ntn::io::kMaxSampleInterval);
+    require(std::isfinite(r.record->t0));
     for (double v : r.record->values)
       require(std::isfinite(v));
     (void)r.record->at(0.5 * r.record->duration());
+    // A stated unit that parses is the one `unit` holds; conversion to a g input either refuses
+    // or leaves finite values (item 16).
+    require(!r.record->unit || ntn::io::parse_unit(r.record->units).has_value());
+    ntn::io::Record copy = *r.record;
+    if (!copy.to_unit(ntn::io::input_unit(true, 0, 9.80665))) {
+      for (double v : copy.values)
+        require(std::isfinite(v));
+    }
   } else {
     (void)r.error->format();
   }
@@ -106,17 +119,43 @@ void packet_bytes(std::span<const std::byte> bytes) {
   ntn::hil::Packet typed;
   (void)ntn::hil::decode(bytes, typed, ntn::hil::PacketKind::kInput);
 
-  // The input gate, 3 channels in [-1, 1]: whatever is offered, what comes out is finite and in
-  // range. The datagram is offered at frame 0 and again (a duplicate) at the packet's own frame
-  // when that is close, so the early / current / late paths all see it.
+  // The input gate, 3 channels in [-1, 1], a run of kFrames frames: whatever is offered, what
+  // comes out is finite and in range. The datagram is offered at frame 0 and again (a duplicate)
+  // at the packet's own frame when that is close, so the early / current / late paths all see it.
+  constexpr std::int64_t kFrames = 1000, kPeriod = 1'000'000, kArrival = 5'000'000'000;
   ntn::hil::InputGate gate(3);
   for (int c = 0; c < 3; ++c)
     require(gate.set_range(c, -1.0, 1.0));
+  require(gate.set_run_frames(kFrames));
   std::array<double, 3> values{};
   std::uint16_t flags = 0;
   require(gate.begin_frame(0));
   const ntn::hil::OfferResult first = gate.offer(bytes);
   gate.end_frame(values, flags);
+
+  // The sender schedule (schedule.hpp), as the real-time loop drives it: the packet as the first
+  // one (the anchor), then K times as a resync candidate. Only a frame inside the run and the
+  // window may fix the deadlines, and then the loop's frame 0 is due within the run's span of
+  // the arrival: no overflow, no deadline days away (issue 12 item 2: frame 18 445 744 073 710).
+  ntn::hil::SenderSchedule schedule(kPeriod, kFrames);
+  require(schedule.valid());
+  using ntn::hil::OfferStatus;
+  if (first.status == OfferStatus::kCurrent || first.status == OfferStatus::kBuffered ||
+      first.status == OfferStatus::kTooEarly) {
+    if (schedule.anchor(first.frame, kArrival, 0))
+      require(first.frame >= 0 && first.frame < kFrames &&
+              first.frame <= ntn::hil::InputGate::kFrameWindow);
+  }
+  for (int i = 0; i < ntn::hil::SenderSchedule::kResyncAfter; ++i)
+    (void)schedule.observe(first, 0, kArrival + i * kPeriod);
+  if (schedule.anchored()) {
+    const std::int64_t epoch = schedule.epoch_ns();
+    require(epoch >= kArrival - kFrames * kPeriod &&
+            epoch <= kArrival + ntn::hil::SenderSchedule::kResyncAfter * kPeriod);
+  } else {
+    require(schedule.epoch_ns() == -1);
+  }
+
   std::int64_t next = 1;
   if (first.status == ntn::hil::OfferStatus::kBuffered && first.frame > 0 && first.frame < 64)
     next = first.frame;

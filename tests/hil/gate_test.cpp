@@ -174,9 +174,9 @@ TEST(Gate, LatePacketIsDroppedAndReconciled) {
 }
 
 // Frame indices at the ends of int64 (found by the packet fuzzer: INT64_MIN overflowed the
-// late-packet arithmetic, UB caught by UBSan): a packet from the far past is late, one from the
-// far future too early, and the stream goes on unchanged.
-TEST(Gate, ExtremeFrameIndicesAreLateOrTooEarly) {
+// late-packet arithmetic, UB caught by UBSan): neither is a frame of the run (out_of_run), and
+// the stream goes on unchanged.
+TEST(Gate, ExtremeFrameIndicesAreOutOfTheRun) {
   InputGate g = make_gate();
   run_frame(g, 0, {clean_packet(0)});
   const Frame f =
@@ -184,10 +184,99 @@ TEST(Gate, ExtremeFrameIndicesAreLateOrTooEarly) {
                 {clean_packet(1), input(2, std::numeric_limits<std::int64_t>::min(), {0, 0, 0}),
                  input(3, std::numeric_limits<std::int64_t>::max(), {0, 0, 0})});
   EXPECT_EQ(f.v[0], clean(0, 1));
-  EXPECT_EQ(f.flags, flag::kLate | flag::kTooEarly);
-  EXPECT_EQ(g.counters().late, 1u);
-  EXPECT_EQ(g.counters().too_early, 1u);
+  EXPECT_EQ(f.flags, flag::kBadFrame);
+  EXPECT_EQ(g.counters().out_of_run, 2u);
+  EXPECT_EQ(g.counters().late, 0u);
+  EXPECT_EQ(g.counters().too_early, 0u);
   EXPECT_EQ(g.counters().late_for_missing, 0u);
+}
+
+// Issue 12 item 2: one valid packet for frame 18 445 744 073 710 (of a 1000-frame run) hung the
+// loop. The gate rejects a frame outside the run (out_of_run) or more than kFrameWindow frames
+// from the current one (out_of_window), before any sequence check: such a packet changes
+// nothing, not even the sequence window (its sequence 10^6 ahead would otherwise make every later
+// packet "reordered").
+TEST(Gate, FramesOutsideTheRunOrTheWindowAreRejected) {
+  InputGate g = make_gate();
+  EXPECT_FALSE(g.set_run_frames(0));
+  ASSERT_TRUE(g.set_run_frames(5000));
+  EXPECT_EQ(g.run_frames(), 5000);
+  ASSERT_TRUE(g.begin_frame(0));
+  EXPECT_EQ(g.offer(input(1'000'000, 18'445'744'073'710, {0, 0, 0}).bytes()).status,
+            OfferStatus::kOutOfRun);
+  EXPECT_EQ(g.offer(input(1'000'001, 5000, {0, 0, 0}).bytes()).status, OfferStatus::kOutOfRun);
+  EXPECT_EQ(g.offer(input(1'000'002, -1, {0, 0, 0}).bytes()).status, OfferStatus::kOutOfRun);
+  EXPECT_EQ(g.offer(input(1'000'003, InputGate::kFrameWindow + 1, {0, 0, 0}).bytes()).status,
+            OfferStatus::kOutOfWindow);
+  EXPECT_EQ(g.offer(clean_packet(0).bytes()).status, OfferStatus::kCurrent);
+  Frame f;
+  g.end_frame(f.v, f.flags);
+  EXPECT_EQ(f.flags, flag::kBadFrame);
+  for (std::int64_t k = 1; k < 1000; ++k) {
+    f = run_frame(g, k, {clean_packet(k)});
+    ASSERT_EQ(f.flags, 0) << k;
+  }
+  // The window follows the current frame: 1024 behind is late, 1025 behind is out of the window.
+  g = make_gate();
+  for (std::int64_t k = 0; k <= 2000; ++k)
+    run_frame(g, k, {clean_packet(k)});
+  ASSERT_TRUE(g.begin_frame(2001));
+  EXPECT_EQ(g.offer(input(5000, 2001 - InputGate::kFrameWindow, {0, 0, 0}).bytes()).status,
+            OfferStatus::kLate);
+  EXPECT_EQ(g.offer(input(5001, 2000 - InputGate::kFrameWindow, {0, 0, 0}).bytes()).status,
+            OfferStatus::kOutOfWindow);
+  EXPECT_EQ(g.accept_values(2001 + InputGate::kFrameWindow + 1, std::array<double, 3>{}).status,
+            OfferStatus::kOutOfWindow);
+  const GateCounters& n = g.counters();
+  EXPECT_EQ(n.accepted, 2001u);
+  EXPECT_EQ(n.reordered, 0u);
+  EXPECT_EQ(n.out_of_window, 2u);
+  EXPECT_EQ(n.late, 1u);
+}
+
+// Issue 12 item 15: a sender that restarts its sequence numbers while its frames go on. Before,
+// a restart at 0 after 300 packets lost those 300 as duplicates; a restart after more than
+// kSequenceWindow packets marked every later packet reordered. Rule: a sequence not above the
+// newest, on a packet whose frame is newer than every frame seen, is a sender restart (counted
+// once): the sequence window is re-based on it and the packet is used.
+TEST(Gate, SenderRestartRebasesTheSequence) {
+  for (const std::int64_t restart_at : {std::int64_t{300}, std::int64_t{1500}}) {
+    InputGate g = make_gate();
+    const std::int64_t frames = 2 * restart_at;
+    for (std::int64_t k = 0; k < frames; ++k) {
+      const auto seq = static_cast<std::uint32_t>(k < restart_at ? k : k - restart_at);
+      const Frame f = run_frame(g, k, {input(seq, k, {clean(0, k), clean(1, k), clean(2, k)})});
+      ASSERT_EQ(f.flags, 0) << "restart at " << restart_at << ", frame " << k;
+      ASSERT_EQ(f.v[0], clean(0, k));
+    }
+    const GateCounters& n = g.counters();
+    EXPECT_EQ(n.accepted, static_cast<std::uint64_t>(frames)) << restart_at;
+    EXPECT_EQ(n.sender_restart, 1u);
+    EXPECT_EQ(n.duplicate, 0u);
+    EXPECT_EQ(n.reordered, 0u);
+    EXPECT_EQ(n.missing, 0u);
+  }
+  // Not restarts: a resent copy (same sequence, same frame), a reordered pair (older sequence,
+  // older frame), a second packet for a frame.
+  InputGate g = make_gate();
+  const Datagram p0 = clean_packet(0);
+  run_frame(g, 0, {p0, p0});
+  ASSERT_TRUE(g.begin_frame(1));
+  g.offer(clean_packet(2).bytes());
+  g.offer(clean_packet(1).bytes());
+  g.offer(input(1, 1, {0, 0, 0}).bytes());
+  Frame f;
+  g.end_frame(f.v, f.flags);
+  run_frame(g, 2, {p0});
+  EXPECT_EQ(g.counters().sender_restart, 0u);
+  EXPECT_EQ(g.counters().duplicate, 3u);
+  EXPECT_EQ(g.counters().reordered, 1u);
+  // A restart to a sequence just below the newest, and one that lands on a sequence seen in the
+  // window (a duplicate before): both recognised by the newer frame.
+  run_frame(g, 3, {input(1, 3, {0, 0, 0})});
+  run_frame(g, 4, {input(0, 4, {0, 0, 0})});
+  EXPECT_EQ(g.counters().sender_restart, 2u);
+  EXPECT_EQ(g.counters().accepted, 5u);
 }
 
 TEST(Gate, DuplicatesAreDropped) {

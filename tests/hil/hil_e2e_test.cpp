@@ -4,6 +4,7 @@
 // time (deadlines follow the sender; counts consistent).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -13,10 +14,12 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "ntn/hil/faults.hpp"
 #include "ntn/hil/packet.hpp"
+#include "ntn/hil/udp.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "record.hpp"
 #include "subprocess.hpp"
@@ -514,6 +517,56 @@ TEST(HilE2E, ModelAlarmTriggersAndClearsWithHysteresis) {
             dir / "bad.txt");
     EXPECT_EQ(c.wait(30s), 2) << bad;
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 12 item 2 and the --listen 0 message. `--listen 0` binds a port the OS chooses: the loop
+// prints it (startup line, summary, JSON), so a sender can be pointed at it. One valid packet for
+// frame 18 445 744 073 710 hung the loop (its arrival fixed the deadlines: frame 0 due in ~11
+// days); now it is out of the run, counted, and never fixes the deadlines: the loop waits its
+// --wait-first (0.5 s) for a plausible packet, runs its 50 frames on its own clock and ends.
+// Nothing here depends on timing: the packet is queued before the loop reads its socket, and
+// whenever it is read it is counted the same.
+TEST(HilE2E, ListenZeroPrintsThePortAndAHugeFrameNeverFixesTheDeadlines) {
+  const TempDir dir("hil_e2e_huge_frame");
+  Child hil({NTN_HIL, "run", "--listen", "0", "--frames", "50", "--wait-first", "0.5",
+             "--summary-json", dir / "hil.json"},
+            dir / "hil.txt");
+  ASSERT_TRUE(hil.started());
+  const std::string key = "listening on 127.0.0.1:";
+  long port = -1;
+  const auto give_up = std::chrono::steady_clock::now() + 10s;
+  while (port < 0 && std::chrono::steady_clock::now() < give_up) {
+    const std::string text = read_file(dir / "hil.txt");
+    if (const std::size_t at = text.find(key); at != std::string::npos)
+      port = std::strtol(text.c_str() + at + key.size(), nullptr, 10);
+    else
+      std::this_thread::sleep_for(5ms);
+  }
+  ASSERT_GT(port, 0) << read_file(dir / "hil.txt");
+  ASSERT_LT(port, 65536);
+  ASSERT_TRUE(ntn_test::udp_port_bound(static_cast<std::uint16_t>(port)));
+  UdpSocket sender;
+  ASSERT_TRUE(sender.open().ok());
+  std::array<std::byte, kMaxPacketBytes> buf{};
+  const double value[1] = {0.01};  // frame3d has one input, ag_x
+  const std::size_t n = encode(PacketKind::kInput, 1, 18'445'744'073'710, 0, value, buf);
+  ASSERT_TRUE(sender.send_to(static_cast<std::uint16_t>(port), std::span(buf).first(n)).ok());
+  const int rc = hil.wait(30s);  // a hang is -2
+  const std::string text = read_file(dir / "hil.txt");
+  const std::string json = read_file(dir / "hil.json");
+  std::printf("%s", text.c_str());
+  EXPECT_EQ(rc, 0);
+  EXPECT_NE(text.find("UDP on 127.0.0.1:" + std::to_string(port)), std::string::npos);
+  EXPECT_EQ(json_number(json, "listen_port"), static_cast<double>(port));
+  EXPECT_EQ(json_number(json, "out_of_run", "inputs"), 1.0);
+  EXPECT_EQ(json_number(json, "accepted", "inputs"), 0.0);
+  EXPECT_EQ(json_number(json, "missing", "inputs"), 50.0);
+  EXPECT_EQ(json_number(json, "frames"), 50.0);
+  EXPECT_EQ(json_number(json, "first_packet_frame"), -1.0);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "ntn/hil/gate.hpp"
 #include "ntn/hil/loop.hpp"
+#include "ntn/hil/schedule.hpp"
 #include "ntn/kernel.hpp"
 #include "support/alloc_counter.hpp"
 #include "support/assemble.hpp"
@@ -353,6 +354,239 @@ TEST_F(Loop, NoFalseAlarmAtFullRangeResonance) {
       "E_max)\n",
       omega1 / (2 * std::acos(-1.0)), result.peak_kinetic, result.peak_kinetic / e_max,
       ntn::hil::kKineticLimitFactor);
+}
+
+// ---- The input schedule in real time, on synthetic time (issue 12 items 2 and 3) ----
+// A real-time clock whose time moves only when the loop waits: to the deadline plus a fixed
+// 20 us wake-up latency, or not at all when the deadline is past (a frame that catches up does
+// not sleep). A simulated sender's packets carry
+// arrival times on that clock; the source below reads, at each frame, those that have arrived
+// (as hil_main.cpp's UdpSource reads its socket): the gate, the SenderSchedule and run_loop are
+// the real ones, and no result depends on the machine (compute time is measured but only the
+// overrun flag, not checked here, uses it).
+struct SimClock {
+  std::int64_t t = 5'000'000'000;
+  std::int64_t wait_until(std::int64_t deadline) {
+    if (deadline > t) t = deadline + 20'000;
+    return t;
+  }
+  std::int64_t now() const { return t; }
+  static constexpr bool kVirtual = false;
+};
+
+struct Arrival {
+  std::int64_t t;  // ns, on the SimClock
+  std::int64_t frame;
+  std::uint32_t sequence;
+};
+
+// As UdpSource: frame 0 waits (up to 100 ms) for the first packet whose frame the schedule takes
+// as its anchor; every frame then offers what has arrived, in arrival order, to the gate and the
+// schedule, and ORs the schedule's resync flag into the frame's.
+struct SimUdpSource {
+  ntn::hil::InputGate* gate;
+  ntn::hil::SenderSchedule* schedule;
+  SimClock* clock;
+  const std::vector<Arrival>* arrivals;
+  std::size_t next = 0;
+  ntn::hil::OfferResult offer(const Arrival& a) {
+    const double v[3] = {ntn_test::input_sample(0, a.frame), ntn_test::input_sample(1, a.frame),
+                         10 * ntn_test::input_sample(2, a.frame)};
+    std::array<std::byte, ntn::hil::kMaxPacketBytes> buf{};
+    const std::size_t n =
+        ntn::hil::encode(ntn::hil::PacketKind::kInput, a.sequence, a.frame, 0, v, buf);
+    return gate->offer(std::span<const std::byte>(buf.data(), n));
+  }
+  void frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
+    gate->begin_frame(k);
+    const auto& in = *arrivals;
+    if (k == 0) {
+      const std::int64_t give_up = clock->t + 100'000'000;
+      while (next < in.size() && in[next].t <= give_up && !schedule->anchored()) {
+        clock->t = std::max(clock->t, in[next].t);
+        const auto r = offer(in[next]);
+        using ntn::hil::OfferStatus;
+        if (r.status == OfferStatus::kCurrent || r.status == OfferStatus::kBuffered ||
+            r.status == OfferStatus::kTooEarly)
+          (void)schedule->anchor(r.frame, in[next].t, 0);
+        ++next;
+      }
+    }
+    for (; next < in.size() && in[next].t <= clock->t; ++next)
+      (void)schedule->observe(offer(in[next]), k, clock->t);
+    gate->end_frame(v, flags);
+    flags |= schedule->take_flags();
+  }
+  std::int64_t epoch_ns() const { return schedule->epoch_ns(); }
+};
+
+struct ScheduleRun {
+  ntn::hil::GateCounters counters;
+  std::uint64_t resyncs = 0;
+  std::vector<std::int64_t> resync_frames;  // frames flagged kResync
+  std::int64_t epoch = 0;                   // the loop's frame-0 deadline
+  std::int64_t end = 0;                     // SimClock at the end
+};
+
+ScheduleRun run_schedule(std::int64_t frames, std::vector<Arrival> arrivals,
+                         int resync_after = ntn::hil::SenderSchedule::kResyncAfter) {
+  std::stable_sort(arrivals.begin(), arrivals.end(),
+                   [](const Arrival& a, const Arrival& b) { return a.t < b.t; });
+  state = {};
+  ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
+  EXPECT_TRUE(gate.set_run_frames(frames));
+  ntn::hil::SenderSchedule schedule(1'000'000, frames, resync_after);
+  SimClock clock;
+  SimUdpSource source{&gate, &schedule, &clock, &arrivals};
+  TraceSink sink;
+  ntn::hil::LoopConfig config;
+  config.frames = frames;
+  config.substeps = static_cast<int>(std::llround(config.period / model.dt));
+  ntn::hil::FrameTimes times;
+  times.reserve(frames);
+  std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+  const auto result = ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr,
+                                         config, alarms, times);
+  ScheduleRun r;
+  r.counters = gate.counters();
+  r.resyncs = schedule.resyncs();
+  for (std::size_t k = 0; k < sink.flags.size(); ++k)
+    if ((sink.flags[k] & ntn::hil::flag::kResync) != 0)
+      r.resync_frames.push_back(static_cast<std::int64_t>(k));
+  r.epoch = result.epoch_ns;
+  r.end = clock.t;
+  return r;
+}
+
+// A sender on its schedule: frame f at e + f P + jitter (0..99 us, deterministic), sequence f.
+std::vector<Arrival> stream(std::int64_t e, std::int64_t from, std::int64_t to) {
+  std::vector<Arrival> a;
+  for (std::int64_t f = from; f < to; ++f)
+    a.push_back({e + f * 1'000'000 + (f * 37 % 100) * 1'000, f, static_cast<std::uint32_t>(f)});
+  return a;
+}
+
+// Issue 12 item 2: one valid packet for frame 18 445 744 073 710 came first; the loop took its
+// deadlines from it (arrival - frame x period overflowed: frame 0 due in ~11 days) and hung. Now
+// it is out of the run, never the anchor: the deadlines follow the first plausible packet and the
+// run ends on time with every frame accepted.
+TEST_F(Loop, HugeFrameIndexNeverSetsTheDeadlines) {
+  const std::int64_t e = SimClock{}.t + 3'000'000;
+  std::vector<Arrival> a = stream(e, 0, 1000);
+  a.push_back({e - 1'000'000, 18'445'744'073'710, 77});    // before the stream
+  a.push_back({e + 500'300'000, 18'445'744'073'710, 78});  // and in the middle
+  a.push_back({e + 600'300'000, 999'999, 79});             // beyond the run
+  const ScheduleRun r = run_schedule(1000, a);
+  EXPECT_EQ(r.epoch, e + 0 * 1'000'000 + 500'000);  // packet 0 (jitter 0) + P / 2
+  EXPECT_EQ(r.counters.out_of_run, 3u);
+  EXPECT_EQ(r.counters.accepted, 1000u);
+  EXPECT_EQ(r.resyncs, 0u);
+  // Frame 999 due at epoch + 999 P, woken 20 us later.
+  EXPECT_EQ(r.end, r.epoch + 999 * 1'000'000 + 20'000);
+}
+
+// Issue 12 item 3: the sender's first 15 ms arrive as one burst. The first packet's arrival put
+// every deadline 15 ms late, so every later packet came more than the jitter buffer's 8 frames
+// early and was dropped: 9 of 1000 frames accepted (resync off reproduces that). With the
+// resync rule, K = 8 too-early packets at one lead re-anchor the schedule once;
+// the frames lost are those whose packets were dropped before it: the lead (15) plus the K
+// packets of the run less the 8 frames the jitter buffer held, at most 15 + K.
+TEST_F(Loop, LateFirstBurstResyncsOnce) {
+  const std::int64_t e = SimClock{}.t + 2'000'000;
+  std::vector<Arrival> a = stream(e, 0, 1000);
+  for (Arrival& x : a)
+    if (x.frame < 15) x.t = e + 15'000'000;  // the burst
+  const ScheduleRun off = run_schedule(1000, a, 0);
+  EXPECT_EQ(off.counters.accepted, 9u);  // the rule before issue 12
+  EXPECT_EQ(off.counters.too_early, 991u);
+  const ScheduleRun r = run_schedule(1000, a);
+  EXPECT_EQ(r.resyncs, 1u);
+  ASSERT_EQ(r.resync_frames.size(), 1u);
+  EXPECT_GE(r.counters.accepted,
+            1000u - 15u - static_cast<unsigned>(ntn::hil::SenderSchedule::kResyncAfter));
+  EXPECT_EQ(r.counters.late, 0u);
+  EXPECT_EQ(r.counters.accepted + r.counters.missing, 1000u);
+  std::printf("late first burst: %llu of 1000 accepted, resync at frame %lld\n",
+              static_cast<unsigned long long>(r.counters.accepted),
+              static_cast<long long>(r.resync_frames[0]));
+}
+
+// A DAQ that stalls once for 30 ms and then goes on 30 ms behind its schedule: every later packet
+// would be late (after its frame ran). Late packets at one lead re-anchor the deadlines once,
+// when they are K of the last 2K and the majority (K + 1 of a window full of used packets): the
+// frames lost are the 30 of the stall and those K + 1.
+TEST_F(Loop, SenderStallResyncsOnce) {
+  const std::int64_t e = SimClock{}.t + 2'000'000;
+  std::vector<Arrival> a = stream(e, 0, 2000);
+  for (Arrival& x : a)
+    if (x.frame >= 500) x.t += 30'000'000;
+  const ScheduleRun off = run_schedule(2000, a, 0);
+  EXPECT_LE(off.counters.accepted, 500u);
+  const ScheduleRun r = run_schedule(2000, a);
+  EXPECT_EQ(r.resyncs, 1u);
+  EXPECT_EQ(r.resync_frames.size(), 1u);
+  EXPECT_GE(r.counters.accepted,
+            2000u - 30u - 1u - static_cast<unsigned>(ntn::hil::SenderSchedule::kResyncAfter));
+  EXPECT_EQ(r.counters.accepted + r.counters.missing, 2000u);
+  std::printf("sender stall: %llu of 2000 accepted (%llu without resync)\n",
+              static_cast<unsigned long long>(r.counters.accepted),
+              static_cast<unsigned long long>(off.counters.accepted));
+}
+
+// A DAQ whose clock runs 200 ppm slow: 10 000 frames drift 2 periods. The packets come later
+// and later until they miss their frames; with 100 us of jitter the late ones start as a few and
+// become all over 100 us / 0.2 us = 500 frames. The schedule re-anchors once late packets are the
+// majority of the last 2K (K or more), so before each resync at most about a quarter of those
+// 500 frames (late fraction rising linearly to 1/2) plus K + 1 are lost; a resync moves the
+// deadlines to the latest the packets allow, so the next one comes only after about a period
+// more of drift: at most 2 resyncs, at most 2 x (125 + K + 1) frames lost (measured: 156).
+TEST_F(Loop, SlowSenderClockKeepsRunning) {
+  const std::int64_t e = SimClock{}.t + 2'000'000;
+  std::vector<Arrival> a;
+  for (std::int64_t f = 0; f < 10'000; ++f)
+    a.push_back({e + f * 1'000'200 + (f * 37 % 100) * 1'000, f, static_cast<std::uint32_t>(f)});
+  const ScheduleRun off = run_schedule(10'000, a, 0);
+  EXPECT_LT(off.counters.accepted, 3000u);  // late from ~frame 2000 on
+  const ScheduleRun r = run_schedule(10'000, a);
+  EXPECT_GE(r.resyncs, 1u);
+  EXPECT_LE(r.resyncs, 2u);
+  EXPECT_EQ(r.resync_frames.size(), r.resyncs);
+  EXPECT_GE(r.counters.accepted,
+            10'000u - r.resyncs * (125u + 1u +
+                                   static_cast<unsigned>(ntn::hil::SenderSchedule::kResyncAfter)));
+  std::printf("200 ppm slow sender: %llu of 10000 accepted, %llu resyncs (%llu without resync)\n",
+              static_cast<unsigned long long>(r.counters.accepted),
+              static_cast<unsigned long long>(r.resyncs),
+              static_cast<unsigned long long>(off.counters.accepted));
+}
+
+// Rogue packets in a healthy stream never move the schedule: single packets far ahead or behind
+// (within the window: too early / late), a stale first packet from a previous run excepted: it
+// is the anchor, and the stream corrects it after K packets.
+TEST_F(Loop, RoguePacketsDoNotMoveTheSchedule) {
+  const std::int64_t e = SimClock{}.t + 2'000'000;
+  std::vector<Arrival> a = stream(e, 0, 2000);
+  for (std::int64_t i = 4; i < 17; ++i) {
+    const std::int64_t at = i * 100;
+    a.push_back(
+        {e + at * 1'000'000 + 300'000, at + 200 + i, 1'000'000u + static_cast<unsigned>(i)});
+    a.push_back({e + at * 1'000'000 + 400'000, at - 300, 2'000'000u + static_cast<unsigned>(i)});
+  }
+  const ScheduleRun r = run_schedule(2000, a);
+  EXPECT_EQ(r.resyncs, 0u);
+  EXPECT_EQ(r.counters.accepted, 2000u);
+  EXPECT_EQ(r.counters.too_early, 13u);
+  EXPECT_EQ(r.counters.late, 13u);
+  EXPECT_EQ(r.epoch, e + 500'000);
+  // A stale packet for frame 600 just before the stream: the loop runs frames 0..599 at once,
+  // then sees the stream 600 frames late, K packets in a row: one resync, and the loop waits for
+  // the sender from there (every frame from 600 + K + 2 on accepted).
+  std::vector<Arrival> b = stream(e, 0, 2000);
+  b.push_back({e - 100'000, 600, 5});
+  const ScheduleRun s = run_schedule(2000, b);
+  EXPECT_EQ(s.resyncs, 1u);
+  EXPECT_GE(s.counters.accepted,
+            2000u - 600u - 2u - static_cast<unsigned>(ntn::hil::SenderSchedule::kResyncAfter));
 }
 
 // Soak: 10^6 frames on the virtual clock, no allocation after the start, and a second run gives

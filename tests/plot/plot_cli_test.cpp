@@ -92,7 +92,8 @@ TEST(PlotCli, BadInputExitsTwoWithAMessage) {
   write_file(dir / "empty.csv", "");
   expect_bad_input(dir, "history " + (dir / "run.csv") + " --channels roof_ux,nope",
                    "no channel 'nope' (channels: roof_ux, pin_A1_1_V, pin_A1_1_N)");
-  expect_bad_input(dir, "history " + (dir / "missing.csv"), "missing.csv:0:0: error: cannot open");
+  expect_bad_input(dir, "history " + (dir / "missing.csv"),
+                   "missing.csv: error: cannot open: No such file");
   expect_bad_input(dir, "history " + (dir / "empty.csv"), "the file is empty");
   expect_bad_input(dir, "history " + (dir / "nan.csv"),
                    "nan.csv:43:1: error: channel 'pin_A1_1_V' is NaN at time = 0.405 s");

@@ -53,6 +53,7 @@ ph[MODEL]=$src/config/frame3d.toml
 ph[SENSORS]=$src/tests/modecheck/frame3d_sensors.toml
 ph[AT2]=$src/config/ground-motions/elCentro.AT2
 ph[MODELC_BAD]=$src/tests/modelc/bad
+ph[REGRESSIONS]=$src/tests/fuzz/regressions
 
 # The real-time loop's logs for replay: a valid one of 3 frames, one cut to its header (no frames;
 # header size = size(1 frame) - (size(2) - size(1))), one cut mid-frame.

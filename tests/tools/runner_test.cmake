@@ -49,3 +49,29 @@ execute_process(COMMAND ${RUNNER} --input ag_x=${OUT}/missing.AT2 RESULT_VARIABL
 if(NOT rc EQUAL 2 OR NOT err MATCHES "cannot open")
   message(FATAL_ERROR "missing record: exit ${rc}, '${err}'")
 endif()
+# Units (issue 12 item 16): a record in gal and one in m/s2 feed the input in g converted, and the
+# summary says so (peaks: 3.719808 gal = 0.003793 g; 1 m/s2 = 0.102 g, %.4g as printed).
+foreach(case "at2/units_gal.AT2|peak 0.003793 g, converted from gal"
+             "csv/units_m_s2.csv|peak 0.102 g, converted from m/s2")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case 0 file)
+  list(GET case 1 expected)
+  execute_process(COMMAND ${RUNNER} --input ag_x=${REGRESSIONS}/${file} RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}" "${expected}" at)
+  if(NOT rc EQUAL 0 OR at EQUAL -1)
+    message(FATAL_ERROR "${file}: exit ${rc}, summary lacks '${expected}':\n${out}${err}")
+  endif()
+endforeach()
+# A CSV whose time starts at -1 s (a pre-trigger segment) is played from its first row, and the
+# summary says so (it was shifted silently); one without a unit is taken as the input's, and says
+# so.
+file(WRITE ${OUT}/pretrigger.csv "time[s],ag_x\n-1,0.01\n-0.99,0.02\n-0.98,0\n")
+execute_process(COMMAND ${RUNNER} --input ag_x=${OUT}/pretrigger.csv RESULT_VARIABLE rc
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+foreach(expected "file time -1 s played at t = 0" "the file states no unit: taken as g")
+  string(FIND "${out}" "${expected}" at)
+  if(NOT rc EQUAL 0 OR at EQUAL -1)
+    message(FATAL_ERROR "pretrigger.csv: exit ${rc}, summary lacks '${expected}':\n${out}${err}")
+  endif()
+endforeach()

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
+#include <filesystem>
 
 namespace ntn::io {
 
@@ -67,8 +70,14 @@ std::optional<ReadError> TableReader::open(const std::string& path,
   path_ = path;
   header_.clear();
   line_number_ = 0;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return error(0, 0, "cannot open: it is a directory");
+  errno = 0;
   in_.open(path, std::ios::binary);
-  if (!in_) return error(0, 0, "cannot open the file");
+  if (!in_) {
+    const int e = errno;
+    return error(0, 0, std::string("cannot open: ") + (e != 0 ? std::strerror(e) : "unreadable"));
+  }
   bool found = false;
   while (next_line()) {
     if (!blank(line_)) {

@@ -37,12 +37,14 @@ struct TableField {
 };
 
 // Reads a table row by row, so that the caller checks each row in its own order. Every error is
-// a ReadError of the file, formatted "FILE:LINE:COLUMN: error: message".
+// a ReadError of the file, formatted "FILE:LINE:COLUMN: error: message" ("FILE: error: message"
+// for a file that cannot be opened).
 class TableReader {
  public:
   // Opens `path` and reads the header: the first line that is not blank, split at commas, each
-  // cell trimmed of blanks and quotes. Errors: "cannot open the file" (0:0); a file with no
-  // line that is not blank, "the file is empty; expected a header row '<expected_header>'" (1:1).
+  // cell trimmed of blanks and quotes. Errors: "cannot open: <reason>" (a directory, a missing
+  // file, no permission; line 0: no position); a file with no line that is not blank, "the file
+  // is empty; expected a header row '<expected_header>'" (1:1).
   std::optional<ReadError> open(const std::string& path, std::string_view expected_header);
 
   const std::string& path() const { return path_; }

@@ -6,9 +6,11 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "cli.hpp"  // tools/io: validators that print numbers with %g and refuse NaN and inf
 #include "ntn/modecheck/modecheck.hpp"
 #include "ntn/spectral/error.hpp"
 
@@ -27,13 +29,13 @@ int main(int argc, char** argv) {
                  "CSV of the same shape, or a PEER .AT2 record")
       ->required();
   app.add_option("-n,--modes", o.modes, "number of (selected) model modes to check")
-      ->check(CLI::PositiveNumber)
+      ->check(ntn::cli::Integer(1, std::numeric_limits<int>::max()))
       ->capture_default_str();
   app.add_option("-t,--tolerance", tolerance_pct, "allowed frequency error, %")
-      ->check(CLI::PositiveNumber)
+      ->check(ntn::cli::Positive())
       ->capture_default_str();
   app.add_option("--min-mac", o.min_mac, "MAC needed where the channels give a shape")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(ntn::cli::Number(0.0, 1.0))
       ->capture_default_str();
   app.add_option("-c,--channels", o.channels,
                  "channels to use (comma-separated; default: every channel that maps to a node "
@@ -42,35 +44,35 @@ int main(int argc, char** argv) {
   app.add_option("-r,--resolution", o.resolution_hz,
                  "line spacing in Hz (default: tolerance x lowest checked frequency / 2 if the "
                  "record is long enough, else the whole record as one segment)")
-      ->check(CLI::PositiveNumber);
+      ->check(ntn::cli::Positive());
   app.add_option("-d,--direction", direction,
                  "check only modes with effective mass along x, y or z (base excitation in that "
                  "direction)")
       ->check(CLI::IsMember({"x", "y", "z"}));
   app.add_option("--min-mass", min_mass_pct,
                  "with --direction: effective mass a mode needs, % of the total")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(ntn::cli::Number(0.0, 100.0))
       ->capture_default_str();
   app.add_option("--band", band_pct, "search band around each model frequency, +-%")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(ntn::cli::Number(0.0, 100.0))
       ->capture_default_str();
   app.add_option("--min-visibility", min_visibility_pct,
                  "a mode fails as not seen when the channels move less than this % of its "
                  "largest motion")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(ntn::cli::Number(0.0, 100.0))
       ->capture_default_str();
   app.add_option("--window", window, "hann, hamming, blackman, flattop, rectangular")
       ->capture_default_str();
   app.add_option("--overlap", o.overlap, "Welch segment overlap, fraction")
-      ->check(CLI::Range(0.0, 0.95))
+      ->check(ntn::cli::Number(0.0, 0.95))
       ->capture_default_str();
   app.add_option("--min-prominence", o.min_prominence,
                  "a peak's value over its higher base (power ratio)")
-      ->check(CLI::Range(1.0, 1e12))
+      ->check(ntn::cli::Number(1.0, 1e12))
       ->capture_default_str();
   app.add_option("--min-level", o.min_level,
                  "a peak's value over the largest in the searched range")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(ntn::cli::Number(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--json", json_path, "write the summary as JSON to FILE ('-': stdout, no table)");
   app.add_option("--psd-out", psd_path,

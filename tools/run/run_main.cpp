@@ -5,14 +5,16 @@
 
 #include <CLI/CLI.hpp>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "cli.hpp"  // tools/io
 #include "ntn/kernel.hpp"
 #include "record.hpp"
 #include NTN_MODEL_HEADER
@@ -42,6 +44,53 @@ bool is_translation(const ntn::OutputSpec& o) {
   return o.dof < 3;
 }
 
+// The most steps one run takes: t = n dt stays exact in a double far beyond it, and at ~1 us a
+// step it is 12 days of wall time. A longer run is a slip of --duration (or of a record's DT).
+constexpr double kMaxSteps = 1e12;
+
+// The response CSV, written as the run goes in blocks of ~1 MiB (a long run does not hold its
+// whole response in memory); every write is checked.
+class CsvOut {
+ public:
+  bool open(const std::string& path) {
+    path_ = path;
+    out_.open(path, std::ios::binary | std::ios::trunc);
+    if (!out_) error_ = std::strerror(errno);
+    buffer_.reserve(kBlock + 4096);
+    return static_cast<bool>(out_);
+  }
+  bool is_open() const { return out_.is_open(); }
+  std::string& buffer() { return buffer_; }
+  void maybe_flush() {
+    if (buffer_.size() >= kBlock) flush();
+  }
+  void flush() {
+    if (!out_.is_open() || !error_.empty()) return;
+    errno = 0;
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    if (!out_) error_ = errno != 0 ? std::strerror(errno) : "write failed";
+    buffer_.clear();
+  }
+  // Flushes and closes; the error of any write, or empty.
+  std::string close() {
+    flush();
+    if (out_.is_open()) {
+      errno = 0;
+      out_.close();
+      if (out_.fail() && error_.empty())
+        error_ = errno != 0 ? std::strerror(errno) : "close failed";
+    }
+    return error_;
+  }
+
+ private:
+  static constexpr std::size_t kBlock = 1 << 20;
+  std::string path_;
+  std::ofstream out_;
+  std::string buffer_;
+  std::string error_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -54,52 +103,69 @@ int main(int argc, char** argv) {
   bool quiet = false;
   app.add_option("-i,--input", input_args,
                  "NAME=FILE: feed input channel NAME from a record (AT2 or CSV; "
-                 "FILE:COLUMN picks a CSV column)");
+                 "FILE:COLUMN picks a CSV column; values are converted to the input's unit)");
   app.add_option("-t,--duration", duration, "simulated time in s (default: longest record)")
-      ->check(CLI::PositiveNumber);
+      ->check(ntn::cli::Positive());
   app.add_option("-o,--out", out_path, "CSV file for the response, one row per I/O frame");
   app.add_option("--summary-json", json_path, "also write the summary as JSON");
   app.add_flag("-q,--quiet", quiet, "print only errors and the output hash");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints the message (or --help)
+    return code == 0 ? 0 : 2;      // a usage error is bad input: 2, as every ntn tool
+  }
 
-  // Records for the input channels, by name.
+  // Output files: found unwritable before the run, not after it (the --out directory is
+  // created, as a build step writing into a build tree wants).
+  for (const auto& [path, option] : {std::pair{out_path, "--out"}, {json_path, "--summary-json"}}) {
+    if (path.empty()) continue;
+    if (const auto problem = ntn::cli::output_path_problem(path, option, true)) {
+      std::fprintf(stderr, "error: %s\n", problem->c_str());
+      return 2;
+    }
+  }
+
+  // Records for the input channels, by name, in each input's unit.
+  const ntn::cli::InputArgs inputs = ntn::cli::parse_input_args(input_args, "--input");
+  if (inputs.error) {
+    std::fprintf(stderr, "error: %s\n", inputs.error->c_str());
+    return 2;
+  }
   std::array<ntn::io::Record, kS.inputs> records{};
   std::array<bool, kS.inputs> fed{};
-  for (const std::string& arg : input_args) {
-    const auto eq = arg.find('=');
-    if (eq == std::string::npos) {
-      std::fprintf(stderr, "error: --input wants NAME=FILE, got '%s'\n", arg.c_str());
-      return 2;
-    }
-    const std::string name = arg.substr(0, eq);
-    std::string file = arg.substr(eq + 1), column;
-    if (const auto c = file.rfind(':'); c != std::string::npos && c > 1) {
-      column = file.substr(c + 1);
-      file = file.substr(0, c);
-    }
+  for (const ntn::cli::InputArg& in : inputs.args) {
     int index = -1;
     for (int k = 0; k < kS.inputs; ++k) {
-      if (mdl::kInputNames[static_cast<std::size_t>(k)] == name) index = k;
+      if (mdl::kInputNames[static_cast<std::size_t>(k)] == in.name) index = k;
     }
     if (index < 0) {
-      std::fprintf(stderr, "error: the model has no input channel '%s'\n", name.c_str());
+      std::fprintf(stderr, "error: --input %s: the model has no input channel '%s'\n",
+                   in.name.c_str(), in.name.c_str());
       return 2;
     }
-    ntn::io::ReadResult r = ntn::io::read_record(file, column);
+    ntn::io::ReadResult r = ntn::io::read_record(in.file, in.column);
     if (r.error) {
       std::fprintf(stderr, "%s\n", r.error->format().c_str());
       return 2;
     }
     const auto k = static_cast<std::size_t>(index);
     const ntn::InputSpec& spec = mdl::kSpec.inputs[k];
+    const ntn::io::Unit unit =
+        ntn::io::input_unit(spec.kind == ntn::InputKind::kGroundAcceleration, spec.dof, spec.scale);
+    if (const auto e = r.record->to_unit(unit)) {
+      std::fprintf(stderr, "%s: error: input '%s': %s\n", in.file.c_str(), in.name.c_str(),
+                   e->c_str());
+      return 2;
+    }
     for (std::size_t s = 0; s < r.record->values.size(); ++s) {
       const double v = r.record->values[s];
       if (v < spec.min || v > spec.max) {
         std::fprintf(stderr,
-                     "%s: error: sample %zu (t = %g s) = %g is outside the accepted range "
+                     "%s: error: sample %zu (t = %g s) = %g %s is outside the accepted range "
                      "[%g, %g] of input '%s'\n",
-                     file.c_str(), s + 1, static_cast<double>(s) * r.record->dt, v, spec.min,
-                     spec.max, name.c_str());
+                     in.file.c_str(), s + 1, r.record->t0 + static_cast<double>(s) * r.record->dt,
+                     v, unit.name.c_str(), spec.min, spec.max, in.name.c_str());
         return 2;
       }
     }
@@ -107,17 +173,20 @@ int main(int argc, char** argv) {
     fed[k] = true;
   }
   double record_duration = 0;
+  std::string longest;
   for (int k = 0; k < kS.inputs; ++k) {
+    const auto& r = records[static_cast<std::size_t>(k)];
     if (!fed[static_cast<std::size_t>(k)]) {
       std::fprintf(stderr, "error: no record for input channel '%s' (use --input %s=FILE)\n",
                    std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str(),
                    std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str());
       return 2;
     }
-    record_duration = std::max(record_duration, records[static_cast<std::size_t>(k)].duration());
+    if (r.duration() > record_duration) record_duration = r.duration(), longest = r.source;
   }
-  if (duration < 0) duration = record_duration;  // default: the longest record
-  if (duration <= 0) {
+  const bool from_records = duration < 0;
+  if (from_records) duration = record_duration;  // default: the longest record
+  if (!(duration > 0)) {
     std::fprintf(stderr, "error: give --duration (the model has no input records)\n");
     return 2;
   }
@@ -128,7 +197,23 @@ int main(int argc, char** argv) {
     return 1;
   }
   const double dt = g_model.dt;
-  const auto steps = static_cast<std::int64_t>(std::ceil(duration / dt - 1e-9));
+  // The step count as a checked integer: compared as a double before any conversion or
+  // allocation, and a run of no step at all is refused (it would report nothing as success).
+  const std::string what =
+      from_records ? "the longest record (" + longest + ", " + ntn::cli::num(duration) + " s)"
+                   : "--duration " + ntn::cli::num(duration) + " s";
+  const double wanted_steps = std::ceil(duration / dt - 1e-9);
+  if (!(wanted_steps <= kMaxSteps)) {
+    std::fprintf(stderr, "error: %s is %s steps of dt = %g s; a run takes at most %g steps\n",
+                 what.c_str(), ntn::cli::num(wanted_steps).c_str(), dt, kMaxSteps);
+    return 2;
+  }
+  if (!(wanted_steps >= 1)) {
+    std::fprintf(stderr, "error: %s is shorter than one time step (dt = %g s): nothing would run\n",
+                 what.c_str(), dt);
+    return 2;
+  }
+  const auto steps = static_cast<std::int64_t>(wanted_steps);
   const double period = mdl::kSpec.settings.frame_period;
   // The kernel's frame rule (ntn::frame_substeps), the one the model compiler checked.
   const ntn::Substeps substeps = ntn::frame_substeps(dt, period);
@@ -146,8 +231,13 @@ int main(int argc, char** argv) {
     return in;
   };
 
-  std::string csv;
-  csv.reserve(static_cast<std::size_t>(steps / per_frame + 2) * (kS.outputs + 1) * 24);
+  CsvOut out;
+  if (!out_path.empty() && !out.open(out_path)) {
+    std::fprintf(stderr, "error: --out: cannot write '%s': %s\n", out_path.c_str(),
+                 out.close().c_str());
+    return 2;
+  }
+  std::string& csv = out.buffer();
   csv += "time[s]";
   for (int c = 0; c < kS.outputs; ++c) {
     csv += ',';
@@ -177,7 +267,7 @@ int main(int argc, char** argv) {
       const double v = std::abs(g_scratch.outputs[c]);
       if (v > peaks[c].value) peaks[c] = {v, g_scratch.time};
     }
-    if (n % per_frame == 0) {
+    if (out.is_open() && n % per_frame == 0) {
       std::snprintf(row, sizeof row, "%.9g", g_scratch.time);
       csv += row;
       for (double v : g_scratch.outputs) {
@@ -185,6 +275,7 @@ int main(int argc, char** argv) {
         csv += row;
       }
       csv += '\n';
+      out.maybe_flush();
     }
     if (st == ntn::StepStatus::kDiverged) {
       diverged = true;
@@ -192,7 +283,9 @@ int main(int argc, char** argv) {
       break;
     }
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // At least 1 ns: a run of one step on a coarse clock must not print an infinite speed.
+  const double wall =
+      std::max(1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   XXH3_64bits_update(hash, g_state.u.data(), sizeof g_state.u);
   XXH3_64bits_update(hash, g_state.v.data(), sizeof g_state.v);
   char digest[17];
@@ -200,14 +293,10 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(XXH3_64bits_digest(hash)));
   XXH3_freeState(hash);
 
-  if (!out_path.empty()) {
-    const std::filesystem::path p(out_path);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    std::ofstream out(out_path, std::ios::binary);
-    out << csv;
-    if (!out) {
-      std::fprintf(stderr, "error: cannot write %s\n", out_path.c_str());
-      return 1;
+  if (out.is_open()) {
+    if (const std::string e = out.close(); !e.empty()) {
+      std::fprintf(stderr, "error: --out: writing '%s' failed: %s\n", out_path.c_str(), e.c_str());
+      return 2;
     }
   }
 
@@ -219,9 +308,15 @@ int main(int argc, char** argv) {
                 std::string(mdl::kSourceFile).c_str());
     for (int k = 0; k < kS.inputs; ++k) {
       const auto& r = records[static_cast<std::size_t>(k)];
-      std::printf("  input %-12s %s: %zu samples at %g s, peak %.4g %s\n",
+      std::string notes;
+      if (!r.converted_from.empty()) notes += ", converted from " + r.converted_from;
+      if (r.unit_assumed) notes += " (the file states no unit: taken as " + r.units + ")";
+      if (r.t0 != 0)
+        notes += ", file time " + ntn::cli::num(r.t0) + " s played at t = 0 (its first row)";
+      std::printf("  input %-12s %s: %zu samples at %g s, peak %.4g %s%s\n",
                   std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str(),
-                  r.source.c_str(), r.values.size(), r.dt, r.peak_abs(), r.units.c_str());
+                  r.source.c_str(), r.values.size(), r.dt, r.peak_abs(), r.units.c_str(),
+                  notes.c_str());
     }
     std::printf("  size        %d nodes, %d elements, %d hinges, %d DOFs\n", kS.nodes, kS.elements,
                 kS.hinges, 6 * kS.nodes);
@@ -275,7 +370,8 @@ int main(int argc, char** argv) {
   std::printf("  output hash %s\n", digest);
 
   if (!json_path.empty()) {
-    std::ofstream js(json_path);
+    errno = 0;
+    std::ofstream js(json_path, std::ios::binary | std::ios::trunc);
     js << "{\n  \"model\": \"" << mdl::kName << "\",\n  \"dt\": " << fmt("%.17g", dt)
        << ",\n  \"dt_stable\": " << fmt("%.17g", stable.dt_stable) << ",\n  \"steps\": " << n
        << ",\n  \"simulated_s\": " << fmt("%.17g", simulated)
@@ -289,6 +385,12 @@ int main(int argc, char** argv) {
          << ", \"time\": " << fmt("%.9g", peaks[static_cast<std::size_t>(c)].time) << "}";
     }
     js << "\n  }\n}\n";
+    js.close();
+    if (js.fail()) {
+      std::fprintf(stderr, "error: --summary-json: writing '%s' failed: %s\n", json_path.c_str(),
+                   errno != 0 ? std::strerror(errno) : "write failed");
+      return 2;
+    }
   }
   return diverged ? 3 : 0;
 }

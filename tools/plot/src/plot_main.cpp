@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"  // tools/io: validators that print numbers with %g and refuse NaN and inf
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/plot/plot.hpp"
 #include "ntn/plot/table.hpp"
@@ -232,8 +233,23 @@ pl::Figure psd(const Common& o, const PsdArgs& a) {
                   : a.y_label;
   p.y_scale = a.linear ? pl::Scale::kLinear : pl::Scale::kLog;
   p.x_scale = a.log_x ? pl::Scale::kLog : pl::Scale::kLinear;
-  if (!a.fmin.empty()) p.x_range.min = number(a.fmin, "--fmin");
-  if (!a.fmax.empty()) p.x_range.max = number(a.fmax, "--fmax");
+  // The frequency window must hold data: a window beyond the file's frequencies (--fmin 1e308)
+  // left gnuplot to fail on an empty range.
+  const std::string span =
+      " (the file spans " + fmt("%g", t.x.front()) + " ... " + fmt("%g", t.x.back()) + " Hz)";
+  if (!a.fmin.empty()) {
+    p.x_range.min = number(a.fmin, "--fmin");
+    if (!(*p.x_range.min < t.x.back()))
+      bad("--fmin " + fmt("%g", *p.x_range.min) + " Hz: no data above it" + span);
+  }
+  if (!a.fmax.empty()) {
+    p.x_range.max = number(a.fmax, "--fmax");
+    if (!(*p.x_range.max > t.x.front()))
+      bad("--fmax " + fmt("%g", *p.x_range.max) + " Hz: no data below it" + span);
+  }
+  if (p.x_range.min && p.x_range.max && !(*p.x_range.min < *p.x_range.max))
+    bad("--fmin " + fmt("%g", *p.x_range.min) + " Hz must be below --fmax " +
+        fmt("%g", *p.x_range.max) + " Hz");
   if (!a.marks.empty()) {
     for (const std::string& m : split(a.marks, ',')) {
       const auto eq = m.rfind('=');
@@ -262,16 +278,16 @@ int main(int argc, char** argv) {
   h->add_option("--model", ha.model, "model file (.toml) for --kind");
   h->add_option("--kind", ha.kind, "add a panel per model output of this kind (hinge_force, ...)")
       ->needs("--model");
-  h->add_option("--from", ha.from, "start time in s");
-  h->add_option("--to", ha.to, "end time in s");
+  h->add_option("--from", ha.from, "start time in s")->check(ntn::cli::Finite());
+  h->add_option("--to", ha.to, "end time in s")->check(ntn::cli::Finite());
   CLI::App* s = app.add_subcommand(
       "psd", "spectra from a CSV (frequency[Hz],name[unit],...), with marked frequencies");
   add_common(s, po);
   s->add_option("--columns", pa.columns, "columns to draw, separated by ',' (default: all)");
   s->add_option("-m,--marks", pa.marks, "frequencies to mark, 'F' or 'LABEL=F', separated by ','");
   s->add_option("--ylabel", pa.y_label, "y axis label (default: PSD [unit])");
-  s->add_option("--fmin", pa.fmin, "lowest frequency drawn, Hz");
-  s->add_option("--fmax", pa.fmax, "highest frequency drawn, Hz");
+  s->add_option("--fmin", pa.fmin, "lowest frequency drawn, Hz")->check(ntn::cli::Finite());
+  s->add_option("--fmax", pa.fmax, "highest frequency drawn, Hz")->check(ntn::cli::Finite());
   s->add_flag("--linear", pa.linear, "linear y axis (default: log)");
   s->add_flag("--logx", pa.log_x, "log frequency axis");
   try {

@@ -76,36 +76,11 @@ Channels read_csv_channels(const std::string& path) {
     fail(in.error(in.line_number() + 1, 1,
                   "a record needs at least 2 rows of data, found " + std::to_string(times.size())));
 
-  for (std::size_t k = 1; k < times.size(); ++k) {
-    if (!(times[k] > times[k - 1]))
-      fail(in.error(rows[k], 1,
-                    "time does not increase (t = " + num(times[k]) + " s after " +
-                        num(times[k - 1]) + " s)"));
-  }
-  // The step: least squares over all rows (averages the rounding of printed times out), about
-  // the centre (k - kc) so the sums stay small. Uniform spacing: every time within
-  // 1e-6 dt + 1e-8 |t| of that line (the second term is the rounding of a 9-significant-digit
-  // time column).
-  const double count = static_cast<double>(times.size());
-  const double kc = 0.5 * (count - 1);
-  double t_mean = 0;
-  for (double t : times)
-    t_mean += t;
-  t_mean /= count;
-  double skt = 0;
-  for (std::size_t k = 0; k < times.size(); ++k)
-    skt += (static_cast<double>(k) - kc) * (times[k] - t_mean);
-  const double dt = skt / (count * (count * count - 1) / 12);
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    const double expected = t_mean + (static_cast<double>(k) - kc) * dt;
-    if (std::abs(times[k] - expected) > 1e-6 * dt + 1e-8 * std::abs(times[k])) {
-      fail(in.error(rows[k], 1,
-                    "time is not uniformly spaced: t = " + num(times[k], "%.12g") + " s where " +
-                        num(expected, "%.12g") + " s was expected (step " + num(dt, "%.9g") +
-                        " s fitted to all rows); a dropped or repeated row, or a record with "
-                        "gaps, has no single sample rate"));
-    }
-  }
+  // Strictly increasing and uniform to a fraction of the step, the rule of every record reader
+  // (tools/io check_time_grid): relative to the step, not to |t|, so that a time column counted
+  // from an epoch is held to the same precision as one starting at 0.
+  double dt = 0;
+  if (const auto e = io::check_time_grid(times, dt)) fail(in.error(rows[e->index], 1, e->message));
   ch.fs = 1 / dt;
   ch.t0 = times.front();
   return ch;

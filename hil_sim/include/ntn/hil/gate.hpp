@@ -11,6 +11,11 @@
 // Per input packet, in this order (a packet is counted once, under the first rule it meets):
 //   corrupt      decode error of any kind (also an output packet sent to the gate)   -> dropped
 //   wrong_count  channel count != channels()                                         -> dropped
+//   out_of_run   frame < 0 or frame >= the run's frame count (set_run_frames)        -> dropped
+//   out_of_window |frame - k| > kFrameWindow: not a plausible frame of this stream   -> dropped
+//   (sender_restart: a sequence at or below the newest seen, on a packet whose frame is newer
+//                than every frame seen: the sender restarted its sequence numbers; the
+//                sequence window is re-based on it and the packet goes on as the newest)
 //   duplicate    sequence seen before (window of kSequenceWindow), or a second
 //                packet for a frame that already has one                             -> dropped
 //   late         frame < k: its frame has been processed                             -> dropped
@@ -23,6 +28,8 @@
 // the channel's [min, max] (`out_of_range`) holds the channel's last good value instead.
 // A missing frame whose packet arrives later is counted `late` too (and `late_for_missing`), so
 // the packets that never came are lost() = missing - late_for_missing.
+// The frame checks come before the sequence checks, so a packet with an absurd frame index
+// changes nothing: neither the sequence window nor (schedule.hpp) the deadlines.
 #pragma once
 
 #include <array>
@@ -51,6 +58,9 @@ struct GateCounters {
   std::uint64_t nonfinite = 0;         // values NaN or +-Inf (held)
   std::uint64_t out_of_range = 0;      // values outside [min, max] (held)
   std::uint64_t frame_ends = 0;        // lock-step frame-end markers seen (not a fault)
+  std::uint64_t out_of_run = 0;        // packets for a frame < 0 or >= the run's frames
+  std::uint64_t out_of_window = 0;     // packets more than kFrameWindow frames from the current
+  std::uint64_t sender_restart = 0;    // sequence restarts recognised (packets not dropped)
   std::array<std::uint64_t, kDecodeErrorKinds> decode_errors{};  // corrupt, by DecodeError
 
   // Frames whose packet never arrived at all.
@@ -58,15 +68,17 @@ struct GateCounters {
 };
 
 enum class OfferStatus : std::uint8_t {
-  kCurrent,     // for the current frame: will be used at end_frame
-  kBuffered,    // for a later frame within the jitter buffer (counted early)
-  kFrameEnd,    // a lock-step frame-end marker for OfferResult::frame (not counted as input)
-  kCorrupt,     // see OfferResult::error
-  kWrongCount,  //
-  kDuplicate,   //
-  kLate,        //
-  kTooEarly,    //
-  kNotInFrame,  // offered outside begin_frame / end_frame: ignored, not counted
+  kCurrent,      // for the current frame: will be used at end_frame
+  kBuffered,     // for a later frame within the jitter buffer (counted early)
+  kFrameEnd,     // a lock-step frame-end marker for OfferResult::frame (not counted as input)
+  kCorrupt,      // see OfferResult::error
+  kWrongCount,   //
+  kDuplicate,    //
+  kLate,         //
+  kTooEarly,     //
+  kOutOfRun,     // frame < 0 or >= the run's frame count
+  kOutOfWindow,  // frame more than kFrameWindow from the current frame
+  kNotInFrame,   // offered outside begin_frame / end_frame: ignored, not counted
 };
 
 struct OfferResult {
@@ -80,6 +92,9 @@ class InputGate {
   static constexpr int kJitterFrames = 8;       // packets for frames k+1..k+8 are kept
   static constexpr int kSequenceWindow = 1024;  // duplicate detection reach, in sequences
   static constexpr int kMissingWindow = 1024;   // late_for_missing reach, in frames
+  // Plausibility: a packet more than this many frames before or after the current frame is not
+  // a late or early packet of this stream but a stray or broken one (out_of_window).
+  static constexpr int kFrameWindow = kMissingWindow;
 
   // `channels` (0..kMaxChannels) inputs, any finite value accepted, held values start at 0.
   explicit InputGate(int channels = 0);
@@ -96,6 +111,10 @@ class InputGate {
   // a NaN bound, or an initial value that is not finite and in range.
   bool set_range(int channel, double min, double max);
   bool set_initial(int channel, double value);
+  // The run's frame count: packets for frames >= frames (or < 0, always) are out_of_run.
+  // Default: no upper bound. False (no change) for frames <= 0.
+  bool set_run_frames(std::int64_t frames);
+  std::int64_t run_frames() const { return run_frames_; }
 
   // Starts frame k. Frames must increase: false (and nothing done) if k <= the last frame.
   // Frames skipped over (k > last + 1), and a frame begun but not ended, are closed first as
@@ -133,6 +152,8 @@ class InputGate {
 
   Slot& slot(std::int64_t frame) { return slots_[static_cast<std::size_t>(frame & (kSlots - 1))]; }
   SequenceCheck check_sequence(std::uint32_t sequence);
+  void rebase_sequence(std::uint32_t sequence);
+  bool frame_in_run(std::int64_t frame, OfferResult& r);  // else counts it, sets r.status
   OfferResult place(std::int64_t frame, std::span<const double> values);
   std::uint16_t close_frame(std::int64_t frame);  // the end_frame bookkeeping, returns flags
 
@@ -149,7 +170,9 @@ class InputGate {
   std::uint16_t pending_flags_ = 0;
   std::uint64_t held_mask_ = 0;
 
+  std::int64_t run_frames_ = std::numeric_limits<std::int64_t>::max();
   bool any_sequence_ = false;
+  std::int64_t newest_frame_ = 0;  // largest frame of a packet past the sequence check
   std::uint32_t highest_sequence_ = 0;
   std::bitset<kSequenceWindow> seen_;    // bit s % window: sequence s seen (within the window)
   std::bitset<kMissingWindow> missing_;  // bit f % window: frame f was missing (not yet late)

@@ -78,7 +78,9 @@ struct LoopResult {
 // The deadline of frame 0 a source asks for on the real clock, or -1 (the loop then starts one
 // period from now). A source that takes packets from a sender in real time fixes it from the
 // arrival of the sender's first packet, so that the loop's frames fall between the sender's
-// (hil_main.cpp, UdpSource); a source without `epoch_ns()` leaves it to the loop.
+// (hil_main.cpp, UdpSource, with a SenderSchedule); a source without `epoch_ns()` leaves it to
+// the loop. The loop asks again after every frame's inputs: an epoch that moved (a resync,
+// schedule.hpp) sets the deadlines of the frames after it.
 template <class Source>
 std::int64_t source_epoch_ns(const Source& source) {
   if constexpr (requires { source.epoch_ns(); }) {
@@ -119,8 +121,7 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
   previous = current;
   const auto period_ns = static_cast<std::int64_t>(config.period * 1e9 + 0.5);
   const std::int64_t asked = Clock::kVirtual ? -1 : source_epoch_ns(source);
-  const std::int64_t t0 =
-      Clock::kVirtual ? clock.now() : (asked >= 0 ? asked : clock.now() + period_ns);
+  std::int64_t t0 = Clock::kVirtual ? clock.now() : (asked >= 0 ? asked : clock.now() + period_ns);
   result.epoch_ns = t0;
   std::int64_t late_run = 0;
   bool diverged = false;
@@ -129,6 +130,13 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
     const std::int64_t woke = clock.wait_until(deadline);
     const std::int64_t c0 = monotonic_ns();
     if (k > 0) source.frame_inputs(k, current, in_flags);
+    // The source may move its epoch while the run goes on (a resync to the sender's stream,
+    // schedule.hpp): the next frames are due from the new one.
+    if constexpr (!Clock::kVirtual) {
+      if (k > 0) {
+        if (const std::int64_t e = source_epoch_ns(source); e >= 0) t0 = e;
+      }
+    }
     std::uint16_t flags = in_flags;
     if ((in_flags & flag::kHeld) != 0) ++result.input_held_frames;
     if (!diverged) {

@@ -44,8 +44,9 @@ enum class PacketKind : std::uint8_t {
   kFrameEnd = 3,  // sender -> loop, lock-step mode only: "everything for `frame` has been sent"
 };
 
-// Bits of the flags field. Bits 0-10 are set by the input gate (what happened to the inputs of
-// that frame); bits 12-14 by the loop. An output packet carries the OR of both for its frame.
+// Bits of the flags field. Bits 0-10 and 15 are set by the input gate (what happened to the
+// inputs of that frame); bit 11 by the sender schedule (schedule.hpp); bits 12-14 by the loop. An
+// output packet carries the OR of both for its frame.
 namespace flag {
 inline constexpr std::uint16_t kHeld = 1U << 0;        // at least one channel held its last good
 inline constexpr std::uint16_t kMissing = 1U << 1;     // no valid packet for the frame: all held
@@ -58,7 +59,11 @@ inline constexpr std::uint16_t kLate = 1U << 7;       // a packet for an already
 inline constexpr std::uint16_t kEarly = 1U << 8;      // a packet for a later frame was buffered
 inline constexpr std::uint16_t kReordered = 1U << 9;  // a packet older than the newest seen
 inline constexpr std::uint16_t kTooEarly = 1U << 10;  // a packet beyond the jitter buffer: dropped
-inline constexpr std::uint16_t kGateMask = 0x07FF;    // bits the gate owns
+inline constexpr std::uint16_t kResync = 1U
+                                         << 11;  // schedule: deadlines re-anchored (schedule.hpp)
+inline constexpr std::uint16_t kBadFrame = 1U << 15;  // a packet for a frame outside the run or
+                                                      // the plausibility window: dropped
+inline constexpr std::uint16_t kGateMask = 0x87FF;    // bits the gate owns (0-10, 15)
 inline constexpr std::uint16_t kAlarm = 1U << 12;     // loop: an output limit alarm is active
 inline constexpr std::uint16_t kOverrun = 1U << 13;   // loop: the frame missed its deadline
 inline constexpr std::uint16_t kDiverged = 1U << 14;  // loop: diverged, outputs held

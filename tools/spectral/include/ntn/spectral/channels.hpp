@@ -27,11 +27,11 @@ struct Channels {
 };
 
 // CSV: a header row, then rows of numbers separated by commas. The first column is time in s
-// (its header may say "[s]", no other unit). dt is the slope of the least-squares line through
-// all (n, t_n), t0 the first time; every t_n must lie within 1e-6 dt + 1e-8 |t_n| of that line
-// (the second term allows times printed with 9 significant digits, as ntn-run and ntn-hil write
-// them). Throws Error, as "file:line:column: error: message", on: an unreadable file, fewer than
-// 2 rows, a row of the wrong length, something not a number, a NaN or infinite value (the channel
+// (its header may say "[s]", no other unit), strictly increasing and uniform by the rule of every
+// record reader (ntn::io::check_time_grid): dt is the slope of the least-squares line through
+// all (n, t_n - t0), t0 the first time; every t_n must lie within 1 % of a step of that line.
+// Throws Error, as "file:line:column: error: message", on: an unreadable file, fewer than 2
+// rows, a row of the wrong length, something not a number, a NaN or infinite value (the channel
 // and time named), time that does not increase or is not uniform (a dropped or repeated row).
 Channels read_csv_channels(const std::string& path);
 

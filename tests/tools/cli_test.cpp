@@ -1,0 +1,132 @@
+// The shared command-line checks (tools/io/cli.hpp): every hostile number class, counts written
+// other than as whole numbers, unwritable output paths and NAME=FILE[:COLUMN] parsing.
+#include "cli.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/temp_files.hpp"
+
+namespace {
+
+// What a validator says of `text` (empty: accepted).
+std::string says(const CLI::Validator& v, std::string text) {
+  return v(text);
+}
+
+TEST(Cli, PositiveRefusesEveryNonPositiveOrNonFiniteValue) {
+  const CLI::Validator v = ntn::cli::Positive();
+  for (const char* bad : {"nan", "NaN", "inf", "-inf", "0", "-0", "-1", "1e400", "abc", "", "1x"}) {
+    EXPECT_NE(says(v, bad), "") << bad;
+  }
+  for (const char* good : {"1e-300", "1", "1e308", "0x1p-3"})
+    EXPECT_EQ(says(v, good), "") << good;
+}
+
+TEST(Cli, RangeMessagesPrintNumbersShort) {
+  const CLI::Validator v = ntn::cli::Number(0.0, 1.7976931348623157e308);
+  const std::string m = says(v, "-1");
+  EXPECT_NE(m.find("got '-1'"), std::string::npos) << m;
+  EXPECT_NE(m.find("1.79769e+308"), std::string::npos) << m;
+  // No number of 20 or more digits: CLI11's own Range prints DBL_MAX in full.
+  int run = 0, longest = 0;
+  for (char c : m)
+    longest = std::max(longest, run = (c >= '0' && c <= '9') ? run + 1 : 0);
+  EXPECT_LT(longest, 20) << m;
+  EXPECT_EQ(says(ntn::cli::Number(0, 1), "1"), "");
+  EXPECT_NE(says(ntn::cli::Number(0, 1, true), "0"), "");
+  EXPECT_EQ(says(ntn::cli::NonNegative(), "0"), "");
+  EXPECT_NE(says(ntn::cli::Finite(), "nan"), "");
+}
+
+TEST(Cli, CliElevenPutsTheOptionNameInFront) {
+  CLI::App app;
+  double duration = 1;
+  std::int64_t frames = 1;
+  app.add_option("-t,--duration", duration)->check(ntn::cli::Positive());
+  app.add_option("-n,--frames", frames)->check(ntn::cli::Integer(1, 1000));
+  const auto error_of = [&app](std::vector<std::string> args) -> std::string {
+    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+    try {
+      app.parse(args);
+    } catch (const CLI::ParseError& e) {
+      return e.what();
+    }
+    return {};
+  };
+  EXPECT_NE(error_of({"-t", "nan"}).find("--duration"), std::string::npos);
+  EXPECT_NE(error_of({"-n", "1e308"}).find("--frames"), std::string::npos);
+  EXPECT_EQ(error_of({"-t", "2.5", "-n", "7"}), "");
+  EXPECT_EQ(duration, 2.5);
+  EXPECT_EQ(frames, 7);
+}
+
+TEST(Cli, IntegerWantsDigitsWithinBounds) {
+  const CLI::Validator v = ntn::cli::Integer(1, 1000000);
+  for (const char* bad : {"0", "-1", "1.5", "1e3", "nan", "inf", "1000001", "99999999999999999999",
+                          "", "+", "-", "12a", " 3"}) {
+    EXPECT_NE(says(v, bad), "") << bad;
+  }
+  for (const char* good : {"1", "+7", "1000000"})
+    EXPECT_EQ(says(v, good), "") << good;
+  EXPECT_NE(says(v, "0").find("[1, 1000000]"), std::string::npos);
+}
+
+TEST(Cli, OutputPathProblemsAreFoundBeforeARun) {
+  ntn_test::TempDir dir("cli");
+  const std::string file = dir / "a_file";
+  ntn_test::write_file(file, "x");
+  using ntn::cli::output_path_problem;
+  EXPECT_FALSE(output_path_problem(dir / "out.csv", "--out"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv")) << "the check leaves no empty file";
+  EXPECT_FALSE(output_path_problem(file, "--out"));
+  EXPECT_EQ(ntn_test::read_file(file), "x") << "an existing file is not truncated by the check";
+
+  const auto under_file = output_path_problem(file + "/out.csv", "--out");
+  ASSERT_TRUE(under_file);
+  EXPECT_NE(under_file->find("--out"), std::string::npos);
+  EXPECT_NE(under_file->find("is not a directory"), std::string::npos) << *under_file;
+  const auto is_dir = output_path_problem(dir.str(), "--summary-json");
+  ASSERT_TRUE(is_dir);
+  EXPECT_NE(is_dir->find("--summary-json"), std::string::npos);
+  EXPECT_NE(is_dir->find("is a directory"), std::string::npos);
+  EXPECT_TRUE(output_path_problem(dir / "no_such_dir/out.csv", "--out"));
+  EXPECT_TRUE(output_path_problem("/proc/x/y", "--out"));
+  EXPECT_TRUE(output_path_problem("", "--out"));
+  // Created on request, as ntn-modelc and the runner do for a build tree.
+  EXPECT_FALSE(output_path_problem(dir / "new/deeper/out.csv", "--out", true));
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "new/deeper"));
+  EXPECT_TRUE(output_path_problem(file + "/sub/out.csv", "--out", true));
+  EXPECT_TRUE(output_path_problem("/proc/x/y", "--out", true));
+}
+
+TEST(Cli, InputArgumentsAreReadOneWay) {
+  const ntn::cli::InputArgs ok =
+      ntn::cli::parse_input_args({"ag_x=a.AT2", "ag_y=b.csv:acc", "ag_z=C:/c.csv"});
+  ASSERT_FALSE(ok.error);
+  ASSERT_EQ(ok.args.size(), 3u);
+  EXPECT_EQ(ok.args[0].name, "ag_x");
+  EXPECT_EQ(ok.args[0].file, "a.AT2");
+  EXPECT_EQ(ok.args[0].column, "");
+  EXPECT_EQ(ok.args[1].file, "b.csv");
+  EXPECT_EQ(ok.args[1].column, "acc");
+  EXPECT_EQ(ok.args[2].file, "C:/c.csv") << "a drive letter is not a column";
+
+  for (const char* bad : {"ag_x", "=a.AT2", "ag_x="}) {
+    const auto r = ntn::cli::parse_input_args({bad});
+    ASSERT_TRUE(r.error) << bad;
+    EXPECT_NE(r.error->find("--input"), std::string::npos);
+    EXPECT_NE(r.error->find(bad), std::string::npos);
+  }
+  const auto twice = ntn::cli::parse_input_args({"ag_x=a.AT2", "ag_x=b.AT2"});
+  ASSERT_TRUE(twice.error);
+  EXPECT_NE(twice.error->find("'ag_x' is given twice"), std::string::npos) << *twice.error;
+}
+
+}  // namespace

@@ -1,0 +1,172 @@
+// Command-line checks shared by every ntn tool (CLI11 validators and argument parsers): numbers
+// must be finite and in range, counts must be whole numbers within bounds, output paths must be
+// writable before a run starts, and NAME=FILE[:COLUMN] input arguments are read one way
+// everywhere. Messages print numbers with %g (never DBL_MAX in 300 digits) and name the option:
+// CLI11 puts the option's name in front of a validator's message.
+#pragma once
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace ntn::cli {
+
+// %g with 6 significant digits: how every message prints a number.
+inline std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// The whole text as a double, or nothing (empty text, trailing characters, out of range of a
+// double: strtod's ERANGE for 1e400).
+inline std::optional<double> parse_double(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || errno == ERANGE) return std::nullopt;
+  return v;
+}
+
+// A finite number within [lo, hi] (either bound may be infinite). `open_lo` excludes lo itself,
+// for "positive" (> 0). The message says what was wanted and what was given.
+inline CLI::Validator Number(double lo, double hi, bool open_lo = false) {
+  std::string wanted;
+  if (std::isinf(lo) && std::isinf(hi)) {
+    wanted = "a finite number";
+  } else if (std::isinf(hi)) {
+    wanted = std::string("a finite number ") + (open_lo ? "> " : ">= ") + num(lo);
+  } else {
+    wanted = std::string("a number in ") + (open_lo ? "(" : "[") + num(lo) + ", " + num(hi) + "]";
+  }
+  return CLI::Validator(
+      [lo, hi, open_lo, wanted](std::string& text) -> std::string {
+        const std::optional<double> v = parse_double(text);
+        if (!v || !std::isfinite(*v) || *v < lo || *v > hi || (open_lo && *v == lo)) {
+          return "wants " + wanted + ", got '" + text + "'";
+        }
+        return {};
+      },
+      wanted);
+}
+inline CLI::Validator Finite() {
+  return Number(-INFINITY, INFINITY);
+}
+inline CLI::Validator Positive(double hi = INFINITY) {
+  return Number(0.0, hi, true);
+}
+inline CLI::Validator NonNegative(double hi = INFINITY) {
+  return Number(0.0, hi);
+}
+
+// A whole number in [lo, hi] written as digits (an optional sign): refuses 1.5, 1e3, nan and
+// 99999999999999999999 with the bounds in the message, before CLI11's conversion sees them.
+inline CLI::Validator Integer(std::int64_t lo, std::int64_t hi) {
+  const std::string wanted =
+      "a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, wanted](std::string& text) -> std::string {
+        bool digits = !text.empty();
+        for (std::size_t i = 0; i < text.size(); ++i) {
+          const char c = text[i];
+          const bool sign = i == 0 && (c == '-' || c == '+') && text.size() > 1;
+          if (!sign && (c < '0' || c > '9')) digits = false;
+        }
+        if (!digits) return "wants " + wanted + ", got '" + text + "'";
+        errno = 0;
+        const long long v = std::strtoll(text.c_str(), nullptr, 10);
+        if (errno == ERANGE || v < lo || v > hi) return "wants " + wanted + ", got '" + text + "'";
+        return {};
+      },
+      wanted);
+}
+
+// Whether a file can be written at `path`, checked before a run so that its result is not lost
+// at the end: the path is not a directory, its parent is a directory (created first when
+// `create_parents`, as a build step writing into a build tree wants), and the file opens for
+// writing (an existing file is left as it is; one created by this check is removed again).
+// Returns the message naming the option and the path, or nothing when the path is fine.
+inline std::optional<std::string> output_path_problem(const std::string& path,
+                                                      std::string_view option,
+                                                      bool create_parents = false) {
+  namespace fs = std::filesystem;
+  const std::string where = std::string(option) + ": cannot write '" + path + "': ";
+  if (path.empty()) return std::string(option) + ": the file name is empty";
+  std::error_code ec;
+  const fs::path p(path);
+  if (fs::is_directory(p, ec)) return where + "it is a directory";
+  fs::path parent = p.parent_path();
+  if (parent.empty()) parent = ".";
+  if (create_parents && !fs::exists(parent, ec)) {
+    // The nearest existing ancestor must be a directory; create_directories says why not.
+    fs::create_directories(parent, ec);
+    if (ec)
+      return where + "cannot create the directory '" + parent.string() + "' (" + ec.message() + ")";
+  }
+  if (!fs::exists(parent, ec))
+    return where + "the directory '" + parent.string() + "' does not exist";
+  if (!fs::is_directory(parent, ec)) return where + "'" + parent.string() + "' is not a directory";
+  const bool existed = fs::exists(p, ec);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd < 0) return where + std::strerror(errno);
+  ::close(fd);
+  if (!existed) ::unlink(path.c_str());
+  return std::nullopt;
+}
+
+// One NAME=FILE[:COLUMN] argument of --input. COLUMN is what follows the last ':' of the file
+// part, when that ':' is not the second character (a drive letter).
+struct InputArg {
+  std::string name;
+  std::string file;
+  std::string column;  // empty: the record's first data column
+};
+
+struct InputArgs {
+  std::vector<InputArg> args;
+  std::optional<std::string> error;  // the message naming the option and the argument
+};
+
+// Reads every --input argument; an argument without NAME=, with an empty name or file, or a
+// NAME given twice is an error (the last one silently winning would hide a typo).
+inline InputArgs parse_input_args(const std::vector<std::string>& raw,
+                                  std::string_view option = "--input") {
+  InputArgs out;
+  for (const std::string& arg : raw) {
+    const auto eq = arg.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size()) {
+      out.error = std::string(option) + " wants NAME=FILE[:COLUMN], got '" + arg + "'";
+      return out;
+    }
+    InputArg a{arg.substr(0, eq), arg.substr(eq + 1), {}};
+    if (const auto c = a.file.rfind(':'); c != std::string::npos && c > 1) {
+      a.column = a.file.substr(c + 1);
+      a.file = a.file.substr(0, c);
+    }
+    for (const InputArg& earlier : out.args) {
+      if (earlier.name == a.name) {
+        out.error = std::string(option) + ": channel '" + a.name + "' is given twice ('" + a.name +
+                    "=" + earlier.file + "' and '" + arg + "')";
+        return out;
+      }
+    }
+    out.args.push_back(std::move(a));
+  }
+  return out;
+}
+
+}  // namespace ntn::cli
