@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "cli.hpp"  // tools/io: output_path_problem
 #include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/load_model.hpp"
 
@@ -29,23 +30,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ntn-modelc: --name '%s' is not a C++ identifier\n", ns_name.c_str());
     return 2;
   }
-  // The output before any work: not a directory, and its directory made (a build step writes
-  // into the build tree) or already there.
+  // The output before any work: not a directory, its directory made (a build step writes into
+  // the build tree) and the file writable.
+  if (const auto problem = ntn::cli::output_path_problem(out_path, "--output", true)) {
+    std::fprintf(stderr, "ntn-modelc: %s\n", problem->c_str());
+    return 2;
+  }
   namespace fs = std::filesystem;
   const fs::path out(out_path);
   std::error_code ec;
-  if (fs::is_directory(out, ec)) {
-    std::fprintf(stderr, "ntn-modelc: --output '%s' is a directory\n", out_path.c_str());
-    return 2;
-  }
-  if (out.has_parent_path() && !fs::is_directory(out.parent_path(), ec)) {
-    fs::create_directories(out.parent_path(), ec);
-    if (ec) {
-      std::fprintf(stderr, "ntn-modelc: --output '%s': cannot create its directory: %s\n",
-                   out_path.c_str(), ec.message().c_str());
-      return 2;
-    }
-  }
 
   const ntn::modelc::LoadResult r = ntn::modelc::load_model(model_path);
   if (!r.ok()) {
