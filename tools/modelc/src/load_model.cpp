@@ -2132,9 +2132,9 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
     const LoadSpec& l = d.loads[i];
     (void)check_derived(L, l.value * function_peak(l.time_function),
                         "load (value times the largest |value| of its time function)",
-                        {{"the load", l.value, 1, load_at[i], " N"},
-                         {"the time function's largest |value|", function_peak(l.time_function), 1,
-                          load_at[i], ""}},
+                        {{"value", l.value, 1, load_at[i], " N (or N m)"},
+                         {"the largest |value| of its time function",
+                          function_peak(l.time_function), 1, load_at[i], ""}},
                         false);
   }
   if (L.failed()) return std::nullopt;
