@@ -439,14 +439,15 @@ int hil_main(int argc, char** argv) {
   const double period = mdl::kSpec.settings.frame_period;
   ntn::hil::LoopConfig config;
   config.period = period;
-  config.substeps = static_cast<int>(std::llround(period / g_model.dt));
-  if (config.substeps < 1 ||
-      std::abs(static_cast<double>(config.substeps) * g_model.dt - period) > 1e-9 * period) {
-    std::fprintf(stderr,
-                 "error: dt = %g s does not divide the frame period %g s; use dt = \"auto\"\n",
-                 g_model.dt, period);
+  // The kernel's frame rule, the one the model compiler checked (ntn::frame_substeps).
+  const ntn::Substeps substeps = ntn::frame_substeps(g_model.dt, period);
+  if (!substeps.ok()) {
+    std::fprintf(stderr, "error: model '%s': dt = %g s, frame period %g s: %s\n",
+                 std::string(mdl::kName).c_str(), g_model.dt, period,
+                 ntn::to_string(substeps.error));
     return 1;
   }
+  config.substeps = static_cast<int>(substeps.count);
 
   // ---- replay ----
   if (replay->parsed()) return replay_log(replay_path, config);

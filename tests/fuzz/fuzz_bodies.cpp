@@ -11,7 +11,9 @@
 #include "ntn/hil/gate.hpp"
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/schedule.hpp"
+#include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "ntn/modelc/model_report.hpp"
 #include "record.hpp"
 
 namespace ntn_fuzz {
@@ -56,8 +58,20 @@ void check_record(const ntn::io::ReadResult& r) {
 void modelc(const std::uint8_t* data, std::size_t size) {
   const ntn::modelc::LoadResult r = ntn::modelc::load_model_from_string(text(data, size), "fuzz");
   require(r.ok() == r.errors.empty());  // a model exactly when there is no error
+  // Every listed error is counted; the rest of the list are the cap's summary notes.
+  require(
+      static_cast<std::size_t>(std::count_if(r.errors.begin(), r.errors.end(), [](const auto& d) {
+        return d.severity == ntn::modelc::Severity::kError;
+      })) <= r.error_count);
   for (const auto& d : r.errors)
     (void)d.format();
+  if (!r.ok()) return;
+  // A model that loads can run (the kernel's frame rule), is described and compiles to a header
+  // (emit_header throws on a non-finite number: the loader must have refused it).
+  require(ntn::frame_substeps(r.model->settings.dt, r.model->settings.frame_period).ok());
+  require(r.model->stable.dt_stable > 0 && std::isfinite(r.model->stable.dt_stable));
+  (void)ntn::modelc::info_text(*r.model);
+  (void)ntn::modelc::emit_header(*r.model);
 }
 
 void at2(const std::uint8_t* data, std::size_t size) {

@@ -188,6 +188,16 @@ const Expected kExpected[] = {
   {"MasslessSpring", "hinge_massless_spring.toml", 28, 6, "nodes[2].id", "node 3 has no effective mass in rz (global axes), but a hinge spring, dashpot or curve acts there"},
   {"PenaltyMassless", "hinge_penalty_massless.toml", 29, 6, "nodes[2].id", "node 3 has no effective mass in ux, uy, uz, rx, ry, rz (global axes), but a hinge spring, dashpot or curve acts there: an explicit step cannot integrate a massless spring (its frequency is infinite). Give the node a point mass (with inertia for rotations), or make those hinge directions rigid or free. With hinge_method = \"penalty\" a rigid direction is a stiff spring: penalty needs mass on both nodes; give the joint a point mass or use ntn_exact"},
   {"DtAboveHingeStable", "dt_unstable_hinge.toml", 5, 6, "model.dt", "dt = 1e-05 s is above the stable step "},
+  // Issue 12: nesting refused before parsing (a dotted key 50 000 deep crashed the parser), the
+  // frame rule, and numbers beyond double named at their key.
+  {"DeepNesting", "deep_nesting.toml", 6, 62, "", "nested deeper than 32 levels (tables, arrays and inline tables one inside another"},
+  {"DtTiny", "dt_tiny.toml", 4, 6, "model.dt", "dt = 1e-300 s gives 1e+297 substeps in the frame period 0.001 s (frame_rate = 1000 Hz), more than the limit 1000000"},
+  {"FrameRateRange", "frame_rate_range.toml", 4, 14, "model.frame_rate", "must be between 0.001 and 1e+06 Hz (got 1e-300 Hz)"},
+  {"DampingHuge", "damping_huge.toml", 2, 1, "model.dt", "dt = \"auto\" needs 5.55556e+304 substeps in the frame period 0.001 s (frame_rate = 1000 Hz), more than the limit 1000000 (ntn::kMaxSubsteps): the stable step is 2e-308 s, set by member M1"},
+  {"HugeE", "numbers_beyond_double.toml", 15, 5, "materials[1].E", "E = 1e+308 Pa gives a non-finite bending stiffness 12 E Iz / (l^3 (1 + Phi)) of member M1"},
+  {"SubnormalRho", "numbers_beyond_double.toml", 23, 7, "materials[2].rho", "rho = 1e-310 kg/m^3 is too small: it gives a zero or subnormal end mass rho A l / 2 of member M3"},
+  {"HugeA", "numbers_beyond_double.toml", 34, 5, "sections[1].A", "A = 1e+308 m^2 gives a non-finite axial stiffness E A / l of member M2"},
+  {"HingeSpringHuge", "hinge_spring_huge.toml", 54, 6, "hinges[0].ry", "the stable step is zero (set by hinge H1, direction ry (the spring with the largest share of the governing node's bound) (k = 1e+308 N m/rad, dashpot c = 0 N m s/rad)): an intermediate result of the stable-step bound is beyond double there"},
 };
 // clang-format on
 
@@ -319,7 +329,10 @@ TEST(ModelErrors, MissingFile) {
   ASSERT_EQ(r.errors.size(), 1U);
   EXPECT_EQ(r.errors[0].line, 1);
   EXPECT_EQ(r.errors[0].column, 1);
-  EXPECT_EQ(r.errors[0].message, "cannot open the model file");
+  EXPECT_EQ(r.errors[0].message,
+            "cannot read the model file: no such file (or a path through a file that is not a "
+            "directory)");
+  EXPECT_TRUE(r.unreadable);  // the programs exit 2: a usage error, not a model's
 }
 
 TEST(ModelErrors, DiagnosticFormat) {

@@ -424,9 +424,11 @@ alarm = 1.5e4
   EXPECT_NE(h.find("kAlarmHysteresis{{0.0050000000000000001, 0.0, 0.0}}"), std::string::npos) << h;
 }
 
+// (A dt longer than the frame is refused whatever allow_unstable says: frame_rate 50 Hz here.)
 TEST(ModelLoad, AllowUnstableAcceptsLargeDt) {
   std::string text = kHead + kMember;
-  text.replace(text.find("name = \"m\""), 10, "name = \"m\"\ndt = 1.0e-2\nallow_unstable = true");
+  text.replace(text.find("name = \"m\""), 10,
+               "name = \"m\"\ndt = 1.0e-2\nframe_rate = 50.0\nallow_unstable = true");
   const auto d = load_ok(text);
   EXPECT_EQ(d.settings.dt, 1.0e-2);
   EXPECT_GT(d.settings.dt, d.stable.dt_stable);

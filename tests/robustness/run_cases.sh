@@ -52,6 +52,7 @@ ph[FILE]=$tmp/regular_file
 ph[MODEL]=$src/config/frame3d.toml
 ph[SENSORS]=$src/tests/modecheck/frame3d_sensors.toml
 ph[AT2]=$src/config/ground-motions/elCentro.AT2
+ph[MODELC_BAD]=$src/tests/modelc/bad
 ph[REGRESSIONS]=$src/tests/fuzz/regressions
 
 # The real-time loop's logs for replay (format 2, hil_sim/include/ntn/hil/recorder.hpp: header,

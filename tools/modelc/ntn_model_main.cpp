@@ -2,7 +2,7 @@
 //   ntn-model check MODEL.toml   errors as file:line:column (exit 1), or "ok" (exit 0)
 //   ntn-model info MODEL.toml    sizes, masses, hinges, time step (and with penalty), CFL, memory
 // Notes (mechanisms: DOFs without mass or stiffness, held at zero) go to stderr with exit 0.
-// Exit 2 on a usage error.
+// Exit 2 on a usage error (also a model file that cannot be read: missing, a directory).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
@@ -21,6 +21,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "check" &&
+        std::string(argv[1]) != "info") {
+      std::fprintf(stderr, "ntn-model: unknown command '%s' (give check or info)\n", argv[1]);
+      return 2;
+    }
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
@@ -29,7 +34,8 @@ int main(int argc, char** argv) {
   const ntn::modelc::LoadResult r = ntn::modelc::load_model(path);
   if (!r.ok()) {
     std::fputs(ntn::modelc::format_all(r.errors).c_str(), stderr);
-    std::fprintf(stderr, "%zu error%s\n", r.errors.size(), r.errors.size() == 1 ? "" : "s");
+    if (r.unreadable) return 2;  // a usage error: no model to judge
+    std::fprintf(stderr, "%zu error%s\n", r.error_count, r.error_count == 1 ? "" : "s");
     return 1;
   }
   // Notes (mechanisms held at zero) go to stderr, like a compiler's; `info` lists them too.

@@ -1,13 +1,15 @@
 // ntn-modelc MODEL.toml -o OUT.hpp [--name NAME]: validates a model file and writes its
 // constexpr header. Exit 0 on success, 1 when the model has errors (printed to stderr as
-// file:line:column: error: ...), 2 on a usage error. Notes (file:line:column: note: ...) go to
-// stderr and do not change the exit code.
+// file:line:column: error: ...), 2 on a usage error (also a model file that cannot be read, or
+// an output that cannot be written, checked before the model is read). Notes (file:line:column:
+// note: ...) go to stderr and do not change the exit code.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli.hpp"  // tools/io: output_path_problem
 #include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/load_model.hpp"
 
@@ -24,37 +26,54 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
-  if (!ns_name.empty() && !ntn::modelc::is_cpp_identifier(ns_name)) {
+  if (app.count("--name") > 0 && !ntn::modelc::is_cpp_identifier(ns_name)) {
     std::fprintf(stderr, "ntn-modelc: --name '%s' is not a C++ identifier\n", ns_name.c_str());
     return 2;
   }
+  // The output before any work: not a directory, its directory made (a build step writes into
+  // the build tree) and the file writable.
+  if (const auto problem = ntn::cli::output_path_problem(out_path, "--output", true)) {
+    std::fprintf(stderr, "ntn-modelc: %s\n", problem->c_str());
+    return 2;
+  }
+  namespace fs = std::filesystem;
+  const fs::path out(out_path);
+  std::error_code ec;
 
   const ntn::modelc::LoadResult r = ntn::modelc::load_model(model_path);
   if (!r.ok()) {
     std::fputs(ntn::modelc::format_all(r.errors).c_str(), stderr);
-    std::fprintf(stderr, "ntn-modelc: %zu error%s in %s; no header written\n", r.errors.size(),
-                 r.errors.size() == 1 ? "" : "s", model_path.c_str());
+    if (r.unreadable) return 2;  // a usage error: no model to judge
+    std::fprintf(stderr, "ntn-modelc: %zu error%s in %s; no header written\n", r.error_count,
+                 r.error_count == 1 ? "" : "s", model_path.c_str());
     return 1;
   }
   std::fputs(ntn::modelc::format_all(r.notes).c_str(), stderr);  // mechanisms: not errors
+  std::string text;
   try {
-    const std::string text = ntn::modelc::emit_header(*r.model, ns_name);
-    const std::filesystem::path out(out_path);
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    // Write beside the target, then rename: a reader never sees half a header.
-    const std::filesystem::path tmp = out.string() + ".tmp";
-    {
-      std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-      f << text;
-      if (!f.flush()) {
-        std::fprintf(stderr, "ntn-modelc: cannot write %s\n", tmp.c_str());
-        return 1;
-      }
-    }
-    std::filesystem::rename(tmp, out);
+    text = ntn::modelc::emit_header(*r.model, ns_name);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ntn-modelc: %s\n", e.what());
     return 1;
+  }
+  // Write beside the target, then rename: a reader never sees half a header.
+  const fs::path tmp = out.string() + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << text;
+    if (!f.flush()) {
+      std::fprintf(stderr, "ntn-modelc: --output '%s': cannot write %s\n", out_path.c_str(),
+                   tmp.c_str());
+      fs::remove(tmp, ec);
+      return 2;
+    }
+  }
+  fs::rename(tmp, out, ec);
+  if (ec) {
+    std::fprintf(stderr, "ntn-modelc: --output '%s': cannot write it: %s\n", out_path.c_str(),
+                 ec.message().c_str());
+    fs::remove(tmp, ec);
+    return 2;
   }
   return 0;
 }

@@ -215,7 +215,14 @@ int main(int argc, char** argv) {
   }
   const auto steps = static_cast<std::int64_t>(wanted_steps);
   const double period = mdl::kSpec.settings.frame_period;
-  const auto per_frame = std::max<std::int64_t>(1, std::llround(period / dt));
+  // The kernel's frame rule (ntn::frame_substeps), the one the model compiler checked.
+  const ntn::Substeps substeps = ntn::frame_substeps(dt, period);
+  if (!substeps.ok()) {
+    std::fprintf(stderr, "error: model '%s': dt = %g s, frame period %g s: %s\n",
+                 std::string(mdl::kName).c_str(), dt, period, ntn::to_string(substeps.error));
+    return 1;
+  }
+  const std::int64_t per_frame = substeps.count;
 
   auto inputs_at = [&records](double t) {
     std::array<double, kS.inputs> in{};
@@ -336,11 +343,11 @@ int main(int argc, char** argv) {
       const std::string name(mdl::kOutputNames[static_cast<std::size_t>(c)]);
       if (o.kind == ntn::OutputKind::kDrift) {
         std::printf("  peak drift       %-16s %s %% at t = %.3f s\n", name.c_str(),
-                    fmt("%.4f", 100 * p.value).c_str(), p.time);
+                    fmt("%.5g", 100 * p.value).c_str(), p.time);
       } else if (o.kind == ntn::OutputKind::kReaction) {
         std::printf("  peak base %s %-16s %s %s at t = %.3f s\n",
                     is_translation(o) ? "shear " : "moment", name.c_str(),
-                    fmt("%.2f", p.value / 1e3).c_str(), is_translation(o) ? "kN" : "kN m", p.time);
+                    fmt("%.5g", p.value / 1e3).c_str(), is_translation(o) ? "kN" : "kN m", p.time);
       } else if (o.kind == ntn::OutputKind::kHingeForce) {
         std::printf("  peak hinge force %-16s %s %s at t = %.3f s\n", name.c_str(),
                     fmt("%.4g", p.value / 1e3).c_str(), o.dof < 3 ? "kN" : "kN m", p.time);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <span>
 
 #include "ntn/beam.hpp"
@@ -17,7 +19,7 @@ namespace ntn {
 // Largest circular frequency of one free element: omega_e^2 = lambda_max(M_e^-1 K_e), with the
 // element's own lumped mass in global axes (the same mass that is assembled). By the element
 // eigenvalue theorem max_e omega_e bounds the assembled model's omega_max: added point masses
-// and supports only lower it. Returns 0 for an invalid element.
+// and supports only lower it. Returns 0 for an invalid element, +inf for one beyond double.
 inline double element_omega_max(const ElementSpec& e, const NodeSpec& a, const NodeSpec& b,
                                 bool rotary_inertia) {
   const BeamGeometry g = beam_geometry(a, b, e);
@@ -34,18 +36,36 @@ inline double element_omega_max(const ElementSpec& e, const NodeSpec& a, const N
       A(r, c) = K[static_cast<std::size_t>(r * 12 + c)] / std::sqrt(mr * mc);
     }
   }
+  // A stiffness or mass so extreme that M^-1/2 K M^-1/2 overflows (or underflows to a division
+  // by zero) has no finite frequency: +inf, so that the stable step becomes 0 and is refused,
+  // never a silently dropped element.
+  if (!A.allFinite()) return std::numeric_limits<double>::infinity();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>> eig(A, Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) return 0;
+  if (eig.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
   return std::sqrt(eig.eigenvalues().maxCoeff());
 }
 
 // Delta t_stable = (2 / omega)(sqrt(1 + xi^2) - xi), xi = alpha / (2 omega) for C = alpha M.
-// The same bound holds with the damping velocity lagged to n - 1/2 as in (S 3).
+// The same bound holds with the damping velocity lagged to n - 1/2 as in (S 3). Computed as
+// 2 / (omega (sqrt(1 + xi^2) + xi)), the same number without the cancellation of the first form
+// (which gives 0 for xi above about 1e8 and inf once xi^2 overflows). For xi > 1e150, where xi^2
+// would overflow, sqrt(1 + xi^2) = xi to the last bit and the step is 1 / (omega xi) = 2 / alpha
+// (written so, as xi itself may be inf). 0 for omega <= 0 or NaN, a NaN alpha, omega = inf or
+// alpha = inf.
 inline double damped_stable_step(double omega, double alpha) {
-  if (!(omega > 0)) return 0;
+  if (!(omega > 0) || !(alpha >= 0)) return 0;
   const double xi = alpha / (2.0 * omega);
-  return 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
+  if (xi > 1e150) return 2.0 / alpha;
+  return 2.0 / (omega * (std::sqrt(1.0 + xi * xi) + xi));
 }
+
+// Why a stable step is 0 (StableStepReport::issue).
+enum class StepIssue : std::uint8_t {
+  kNone,
+  kMassless,   // a spring or dashpot on a free DOF without mass (its frequency is infinite)
+  kNonFinite,  // an intermediate result overflowed (omega^2, K / m, k g |b^|^2, ...) at the
+               // governing element or hinge direction: the numbers are beyond double
+};
 
 struct StableStepReport {
   double dt_stable = 0;        // s, from the element eigenvalue bound with damping
@@ -58,6 +78,7 @@ struct StableStepReport {
   int governing_hinge = -1;    // hinge with the largest share of the governing node's bound,
                                // or -1 when the elements' part is the larger
   int hinge_direction = -1;    // its local direction 0..5
+  StepIssue issue = StepIssue::kNone;  // dt_stable = 0 because of ... (governing_* name where)
 };
 
 inline StableStepReport stable_time_step(const SpecView& spec) {
@@ -77,6 +98,12 @@ inline StableStepReport stable_time_step(const SpecView& spec) {
   }
   r.dt_stable = damped_stable_step(r.omega_max, spec.settings.alpha);
   r.dt_elements = r.dt_stable;
+  // An element without a finite frequency, or damping that leaves no step: refused, never
+  // dropped (a model without elements has omega_max = 0 and dt_stable = 0, no issue).
+  if (!(r.omega_max < std::numeric_limits<double>::infinity()) ||
+      (r.omega_max > 0 && !(r.dt_stable > 0))) {
+    r.issue = StepIssue::kNonFinite, r.dt_stable = 0, r.dt_elements = 0;
+  }
   return r;
 }
 
@@ -117,8 +144,12 @@ inline StableStepReport stable_time_step(const SpecView& spec) {
 // strict bound on the assembled system, with or without NTN coupling (constraints only lower
 // omega_max), and never above a spring's own two-node step (one of its two nodes gets g n >= w).
 
-// The largest dt with dt^2 omega2 + 2 dt eta <= 4 (1e300 when both are zero).
+// The largest dt with dt^2 omega2 + 2 dt eta <= 4 (1e300 when both are zero; 0 when either is
+// NaN or inf).
 inline double quadratic_step(double omega2, double eta) {
+  if (!(omega2 >= 0 && omega2 <= std::numeric_limits<double>::max()) ||
+      !(eta >= 0 && eta <= std::numeric_limits<double>::max()))
+    return 0;
   if (omega2 > 0) return damped_stable_step(std::sqrt(omega2), eta);
   if (eta > 0) return 2.0 / eta;
   return 1e300;
@@ -184,10 +215,22 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
   using Block6 = Eigen::Matrix<double, 6, 6>;
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   StableStepReport r = stable_time_step(spec);
+  if (r.issue != StepIssue::kNone) return r;
   const int nodes = static_cast<int>(spec.nodes.size());
   const bool rot = spec.settings.rotary_inertia;
+  // An intermediate result beyond double (a spring of 1e308, a mass of 1e-300): the step is 0
+  // with the first hinge direction or element where it showed, never a term left out.
+  bool overflow = false;
+  auto overflow_at = [&](int hinge, int direction, int element) {
+    if (overflow) return;
+    overflow = true;
+    r.governing_hinge = hinge, r.hinge_direction = direction;
+    if (element >= 0) r.governing_element = element;
+  };
+  auto finite = [](double v) { return std::isfinite(v); };
   // Calls f(i, h, k, s1, s2, n1, n2) for every spring direction k (k or c > 0) of hinge i if
-  // it is valid; false at a massless DOF, with the report set to 0 and that hinge and direction.
+  // it is valid; false at a massless DOF (issue kMassless) or where k w or c w is not finite
+  // (kNonFinite, w = n1 + n2), with the report set to 0 and that hinge and direction.
   auto springs_of = [&](std::size_t i, auto f) {
     HingeData h;
     if (!make_hinge_data(spec.hinges[i], spec.settings, nodes, spec.curves, spec.curve_points, h))
@@ -195,9 +238,11 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
       if (!((h.springs >> k) & 1U) || !(h.stiffness[k] > 0 || h.dashpot[k] > 0)) continue;
       double s1[6], s2[6], n1, n2;
-      if (!scaled_spring_direction(h, k, spec.nodes, mass, s1, s2, n1, n2)) {
+      const bool massless = !scaled_spring_direction(h, k, spec.nodes, mass, s1, s2, n1, n2);
+      if (massless || !finite(h.stiffness[k] * (n1 + n2)) || !finite(h.dashpot[k] * (n1 + n2))) {
         r.dt_hinges = 0, r.dt_stable = 0;
         r.governing_hinge = static_cast<int>(i), r.hinge_direction = static_cast<int>(k);
+        r.issue = massless ? StepIssue::kMassless : StepIssue::kNonFinite;
         return false;
       }
       f(i, h, k, s1, s2, n1, n2);
@@ -242,8 +287,9 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
         const int j = n[t] > 0 ? load_index(node[t]) : -1;
         if (j < 0) continue;
         const Eigen::Map<const Vec6> u(sv[t]);
-        load[static_cast<std::size_t>(j)] +=
-            (h.stiffness[k] * (n1 + n2) / n[t]) * (u * u.transpose());
+        const double kw = h.stiffness[k] * (n1 + n2) / n[t];
+        if (!finite(kw)) overflow_at(static_cast<int>(i), static_cast<int>(k), -1);
+        load[static_cast<std::size_t>(j)] += kw * (u * u.transpose());
       }
     });
   };
@@ -301,8 +347,9 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
             if (!at[t] || !(n[t] > 0)) continue;
             const int j = load_index(t == 0 ? h.node1 : h.node2);
             const Eigen::Map<const Vec6> u(sv[t]);
-            load[static_cast<std::size_t>(j)] +=
-                (h.stiffness[k] * (n1 + n2) / n[t]) * (u * u.transpose());
+            const double kw = h.stiffness[k] * (n1 + n2) / n[t];
+            if (!finite(kw)) overflow_at(static_cast<int>(i), static_cast<int>(k), -1);
+            load[static_cast<std::size_t>(j)] += kw * (u * u.transpose());
           }
         });
       }
@@ -322,9 +369,17 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
             const Eigen::Map<const Vec6> u(sv[t]);
             l[t] = u.dot(load[static_cast<std::size_t>(load_index(node[t]))] * u) / n[t];
           }
+          if (!finite(l[0]) || !finite(l[1])) {
+            overflow_at(static_cast<int>(ii), static_cast<int>(k), -1);
+            return;
+          }
           if ((n1 > 0 && !(l[0] > 0)) || (n2 > 0 && !(l[1] > 0))) l[0] = 1, l[1] = 1;
           const double a = n1 * l[0], b = n2 * l[1];
           const double g[2] = {a > 0 ? (a + b) / a : 0.0, b > 0 ? (a + b) / b : 0.0};
+          if (!finite(g[0]) || !finite(g[1])) {
+            overflow_at(static_cast<int>(ii), static_cast<int>(k), -1);
+            return;
+          }
           f(ii, h, k, s1, s2, n1, n2, g);
         });
       }
@@ -338,24 +393,38 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
   std::array<Block6, kStepChunk> P, Q;  // springs, dashpots
   std::array<Vec6, kStepChunk> E;       // elements (the diagonal E_n)
   std::array<bool, kStepChunk> touched;
-  for (first = lo; first <= hi; first += count) {
+  std::array<std::array<int, 2>, kStepChunk> strongest;  // hinge, direction: largest term
+  std::array<double, kStepChunk> strongest_term;
+  for (first = lo; first <= hi && !overflow; first += count) {
     count = std::min(kStepChunk, hi - first + 1);
-    for (std::size_t j = 0; j < kStepChunk; ++j)
+    for (std::size_t j = 0; j < kStepChunk; ++j) {
       P[j].setZero(), Q[j].setZero(), E[j].setZero(), touched[j] = false;
-    pass_springs([&](std::size_t, const HingeData& h, std::size_t k, const double* s1,
-                     const double* s2, double, double, const double* g) {
+      strongest[j] = {-1, -1}, strongest_term[j] = -1;
+    }
+    pass_springs([&](std::size_t i, const HingeData& h, std::size_t k, const double* s1,
+                     const double* s2, double n1, double n2, const double* g) {
       const int node[2] = {h.node1, h.node2};
       const double* sv[2] = {s1, s2};
+      const double n[2] = {n1, n2};
       for (int t = 0; t < 2; ++t) {
         if (!in_pass(node[t]) || !(g[t] > 0)) continue;
         const auto j = static_cast<std::size_t>(node[t] - first);
         const Eigen::Map<const Vec6> u(sv[t]);
-        P[j] += (h.stiffness[k] * g[t]) * (u * u.transpose());
-        if (h.dashpot[k] > 0) Q[j] += (h.dashpot[k] * g[t]) * (u * u.transpose());
+        const double kg = h.stiffness[k] * g[t], cg = h.dashpot[k] * g[t];
+        const double term = std::max(kg * n[t], cg * n[t]);  // the largest entry's bound
+        if (!finite(term)) overflow_at(static_cast<int>(i), static_cast<int>(k), -1);
+        if (term > strongest_term[j]) {
+          strongest_term[j] = term;
+          strongest[j] = {static_cast<int>(i), static_cast<int>(k)};
+        }
+        P[j] += kg * (u * u.transpose());
+        if (h.dashpot[k] > 0) Q[j] += cg * (u * u.transpose());
         touched[j] = true;
       }
     });
-    for (const ElementSpec& e : spec.elements) {
+    if (overflow) break;
+    for (std::size_t ei = 0; ei < spec.elements.size(); ++ei) {
+      const ElementSpec& e = spec.elements[ei];
       const int end[2] = {e.node_i, e.node_j};
       bool near = false;
       for (int t = 0; t < 2; ++t)
@@ -371,8 +440,9 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
         const auto n = static_cast<std::size_t>(end[t]);
         for (std::size_t c = 0; c < 6; ++c) {
           if ((spec.nodes[n].fixed >> c) & 1U) continue;
-          E[n - static_cast<std::size_t>(first)](static_cast<Eigen::Index>(c)) +=
-              w * w * me[c] / mass[kDofsPerNode * n + c];
+          const double term = w * w * me[c] / mass[kDofsPerNode * n + c];
+          if (!finite(term)) overflow_at(-1, -1, static_cast<int>(ei));
+          E[n - static_cast<std::size_t>(first)](static_cast<Eigen::Index>(c)) += term;
         }
       }
     }
@@ -387,10 +457,15 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
       all.diagonal() += E[js];
       const double omega2 = top_eigen(all, vk);
       const double eta = top_eigen(Q[js], vc);
+      if (!finite(springs) || !finite(omega2) || !finite(alpha + eta)) {  // sums of huge terms
+        overflow_at(strongest[js][0], strongest[js][1], -1);
+        break;
+      }
       dt_springs = std::min(dt_springs, quadratic_step(springs, eta));
       const double dt = quadratic_step(omega2, alpha + eta);
       if (dt < dt_best) dt_best = dt, best = first + j, top_k = vk, top_c = vc;
     }
+    if (overflow) break;
     if (best < 0) continue;
     // The spring with the largest share of that node's bound.
     double share_max = -1;
@@ -410,6 +485,10 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
     });
   }
 
+  if (overflow) {
+    r.dt_stable = 0, r.dt_hinges = 0, r.issue = StepIssue::kNonFinite;
+    return r;
+  }
   r.dt_hinges = dt_springs;
   r.dt_stable = std::min(dt_best, r.dt_elements);
   if (!(r.dt_hinges < r.dt_elements)) r.governing_hinge = -1, r.hinge_direction = -1;
@@ -417,11 +496,93 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
 }
 
 // dt = "auto" (DESIGN §6): the largest period / N with N integer and period / N <= 0.9 dt_stable.
+// 0 when there is no such step (dt_stable or frame_period not positive and finite); N is not
+// bounded here: frame_substeps() below judges the result.
 inline double auto_time_step(double dt_stable, double frame_period) {
-  if (!(dt_stable > 0) || !(frame_period > 0)) return 0;
+  if (!(dt_stable > 0) || !(frame_period > 0) || !std::isfinite(frame_period)) return 0;
   double n = std::ceil(frame_period / (0.9 * dt_stable));
   if (n < 1) n = 1;
   return frame_period / n;
+}
+
+// ---- The frame and its substeps (DESIGN §6, §8) ---------------------------------------------
+//
+// A model runs in I/O frames of frame_period seconds, each N kernel steps of dt: N is a whole
+// number, 1 <= N <= kMaxSubsteps, and N dt equals the period to 1e-9 relative (the same test the
+// real-time loop and every tool make, through frame_substeps, the one place the rule lives).
+// kMaxSubsteps = 10^6 per frame: at 1 kHz that is a step of 1 ns, 10^9 kernel steps per second,
+// beyond any machine (a step of the 104-element demo frame takes about 3 us; the loop runs 9 per
+// frame). A model that needs more (nodes 1e-12 m apart want dt = 1e-29 s) cannot run and must
+// be refused before it tries; N also has to fit the loop's int and the logs' u32 substeps.
+// The frame period itself lies in [kMinFramePeriod, kMaxFramePeriod]: the loop counts whole
+// nanoseconds (period * 1e9 in an int64), so 1 us (1 MHz, already beyond a Linux wake-up's
+// precision) is the shortest frame and 1000 s (a frame rate of 0.001 Hz) the longest that is
+// still an I/O frame of a monitoring loop.
+inline constexpr long long kMaxSubsteps = 1000000;
+inline constexpr double kMinFramePeriod = 1e-6;    // s
+inline constexpr double kMaxFramePeriod = 1e3;     // s
+inline constexpr double kSubstepTolerance = 1e-9;  // |N dt - period| <= this x period
+
+enum class SubstepError : std::uint8_t {
+  kNone,
+  kBadPeriod,        // frame_period not finite, or outside [kMinFramePeriod, kMaxFramePeriod]
+  kBadTimeStep,      // dt not finite and positive
+  kLongerThanFrame,  // dt > period (beyond the tolerance): less than one step per frame
+  kNotWhole,         // period / dt not a whole number to kSubstepTolerance
+  kTooMany,          // period / dt above kMaxSubsteps
+};
+
+struct Substeps {
+  long long count = 0;  // N, 1..kMaxSubsteps when error == kNone, else 0
+  double ratio = 0;     // period / dt as computed (inf or NaN for absurd inputs)
+  SubstepError error = SubstepError::kNone;
+  constexpr bool ok() const { return error == SubstepError::kNone; }
+};
+
+inline Substeps frame_substeps(double dt, double frame_period) {
+  Substeps s;
+  if (!(frame_period >= kMinFramePeriod && frame_period <= kMaxFramePeriod)) {
+    s.error = SubstepError::kBadPeriod;
+    return s;
+  }
+  if (!(dt > 0) || !std::isfinite(dt)) {
+    s.error = SubstepError::kBadTimeStep;
+    return s;
+  }
+  s.ratio = frame_period / dt;
+  if (!(s.ratio <= static_cast<double>(kMaxSubsteps) + 0.5)) {  // also inf
+    s.error = SubstepError::kTooMany;
+    return s;
+  }
+  if (dt > frame_period * (1 + kSubstepTolerance)) {
+    s.error = SubstepError::kLongerThanFrame;
+    return s;
+  }
+  const double n = std::round(s.ratio);  // >= 1 here
+  if (!(std::abs(n * dt - frame_period) <= kSubstepTolerance * frame_period)) {
+    s.error = SubstepError::kNotWhole;
+    return s;
+  }
+  s.count = static_cast<long long>(n);
+  return s;
+}
+
+constexpr const char* to_string(SubstepError e) {
+  switch (e) {
+    case SubstepError::kNone:
+      return "ok";
+    case SubstepError::kBadPeriod:
+      return "the frame period is not between 1 us and 1000 s (frame rate 0.001 Hz to 1 MHz)";
+    case SubstepError::kBadTimeStep:
+      return "dt is not a finite positive number";
+    case SubstepError::kLongerThanFrame:
+      return "dt is longer than the frame";
+    case SubstepError::kNotWhole:
+      return "dt does not divide the frame into a whole number of substeps";
+    case SubstepError::kTooMany:
+      return "more than 1000000 substeps per frame";
+  }
+  return "unknown";
 }
 
 }  // namespace ntn

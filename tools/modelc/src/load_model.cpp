@@ -17,10 +17,12 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
-#include <sstream>
+#include <unordered_map>
 #include <utility>
 
 #include "ntn/beam.hpp"
@@ -28,6 +30,7 @@
 #include "ntn/model.hpp"
 #include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/hinge_checks.hpp"
+#include "ntn/modelc/limits.hpp"
 #include "ntn/time_step.hpp"
 
 namespace ntn::modelc {
@@ -108,31 +111,47 @@ struct Where {
   std::string key;
 };
 
+// The diagnostics sink: every error and note goes through add(), which keeps the first
+// kShownPerKind of each kind (severity and key with the array indices taken out: every
+// "nodes[i].id" error is one kind) and counts the rest; take_errors() / take_notes() end each
+// capped kind with one summary note. A million unconnected nodes give 50 errors and one line
+// "999950 more ...", not 238 MB.
+constexpr std::size_t kShownPerKind = 50;
+
+std::string kind_key(const std::string& key) {
+  std::string k;
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    k += key[i];
+    if (key[i] != '[') continue;
+    std::size_t j = i + 1;
+    while (j < key.size() && key[j] >= '0' && key[j] <= '9')
+      ++j;
+    if (j > i + 1 && j < key.size() && key[j] == ']') i = j - 1;
+  }
+  return k;
+}
+
 class Loader {
  public:
   explicit Loader(std::string file) : file_(std::move(file)) {}
 
   void error(const toml::source_region& r, const std::string& key, std::string message) {
-    errors_.push_back({file_, std::max(1, static_cast<int>(r.begin.line)),
-                       std::max(1, static_cast<int>(r.begin.column)), key, std::move(message)});
+    add({file_, std::max(1, static_cast<int>(r.begin.line)),
+         std::max(1, static_cast<int>(r.begin.column)), key, std::move(message)});
   }
   void error(const Where& w, std::string message) { error(w.region, w.key, std::move(message)); }
   void error_at_start(const std::string& key, std::string message) {
-    errors_.push_back({file_, 1, 1, key, std::move(message)});
+    add({file_, 1, 1, key, std::move(message)});
   }
   void note(const Where& w, std::string message) {
-    notes_.push_back({file_, std::max(1, static_cast<int>(w.region.begin.line)),
-                      std::max(1, static_cast<int>(w.region.begin.column)), w.key,
-                      std::move(message), Severity::kNote});
+    add({file_, std::max(1, static_cast<int>(w.region.begin.line)),
+         std::max(1, static_cast<int>(w.region.begin.column)), w.key, std::move(message),
+         Severity::kNote});
   }
-  std::vector<Diagnostic> take_notes() { return std::move(notes_); }
-  bool failed() const { return !errors_.empty(); }
-  std::vector<Diagnostic> take_errors() {
-    std::stable_sort(errors_.begin(), errors_.end(), [](const Diagnostic& a, const Diagnostic& b) {
-      return a.line != b.line ? a.line < b.line : a.column < b.column;
-    });
-    return std::move(errors_);
-  }
+  std::vector<Diagnostic> take_notes() { return take(notes_, Severity::kNote); }
+  bool failed() const { return error_count_ > 0; }
+  std::size_t error_count() const { return error_count_; }
+  std::vector<Diagnostic> take_errors() { return take(errors_, Severity::kError); }
 
   // --- values (n is the value node, key its full path) ---
   std::optional<double> number(const toml::node& n, const std::string& key) {
@@ -235,9 +254,45 @@ class Loader {
   }
 
  private:
+  struct Kind {
+    std::size_t shown = 0, hidden = 0;
+    Diagnostic first_hidden;
+  };
+  void add(Diagnostic d) {
+    const bool is_error = d.severity == Severity::kError;
+    if (is_error) ++error_count_;
+    Kind& k = kinds_[std::string(is_error ? "e" : "n") + kind_key(d.key)];
+    if (k.shown < kShownPerKind) {
+      ++k.shown;
+      (is_error ? errors_ : notes_).push_back(std::move(d));
+    } else if (k.hidden++ == 0) {
+      k.first_hidden = std::move(d);
+    }
+  }
+  // Sorted by place, each capped kind summarized at its first diagnostic left out.
+  std::vector<Diagnostic> take(std::vector<Diagnostic>& v, Severity severity) {
+    for (const auto& [name, k] : kinds_) {
+      if (k.hidden == 0 || k.first_hidden.severity != severity) continue;
+      const std::string what = severity == Severity::kError ? " error" : " note";
+      v.push_back({file_, k.first_hidden.line, k.first_hidden.column, kind_key(k.first_hidden.key),
+                   "... and " + std::to_string(k.hidden) + " more" + what +
+                       (k.hidden == 1 ? "" : "s") +
+                       " of this kind (this key, any index), the first of them here: only the "
+                       "first " +
+                       std::to_string(kShownPerKind) + " of each kind are listed",
+                   Severity::kNote});
+    }
+    std::stable_sort(v.begin(), v.end(), [](const Diagnostic& a, const Diagnostic& b) {
+      return a.line != b.line ? a.line < b.line : a.column < b.column;
+    });
+    return std::move(v);
+  }
+
   std::string file_;
   std::vector<Diagnostic> errors_;
   std::vector<Diagnostic> notes_;
+  std::map<std::string, Kind> kinds_;
+  std::size_t error_count_ = 0;
 };
 
 enum class Need { kRequired, kOptional };
@@ -355,11 +410,13 @@ struct IdAt {
 struct Material {
   IdAt id;
   double E = 0, G = 0, rho = 0;
+  Where E_at, G_at, rho_at;  // G_at: E's place when G comes from nu (G = E / (2 (1 + nu)))
 };
 
 struct Section {
   IdAt id;
   double A = 0, Iy = 0, Iz = 0, J = 0, shear_y = 0, shear_z = 0;
+  Where A_at, Iy_at, Iz_at, J_at, shear_at;
 };
 
 struct UserNode {
@@ -500,8 +557,10 @@ struct ModelTable {
   double dt = 0;
   Where dt_at;
   double frame_rate = 1000;
+  Where frame_rate_at;
   bool rotary_inertia = false, allow_unstable = false;
   std::array<double, 3> gravity{};
+  Where gravity_at;
   std::optional<IdAt> gravity_function;
   double alpha = 0;
   double damping_ratio = 0, damping_frequency = 0;
@@ -528,9 +587,23 @@ struct Parsed {
   std::vector<HingeIn> hinges;
 };
 
-std::optional<IdAt> read_id(Table& t, std::string_view k, Need need = Need::kRequired) {
+// An id or channel name: any text but control characters (bytes below 0x20 and 0x7F: newline,
+// tab, NUL, ...). Ids name things in diagnostics (one a line), CSV headers, command lines
+// (--input NAME=FILE) and the generated header.
+std::optional<IdAt> read_id(Loader& L, Table& t, std::string_view k, Need need = Need::kRequired) {
   auto s = t.string(k, need);
   if (!s) return std::nullopt;
+  for (const char c : *s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02X",
+                    static_cast<unsigned>(static_cast<unsigned char>(c)));
+      L.error(t.where(k), std::string("must not contain control characters (it has ") + code +
+                              "): ids and names appear in messages, CSV headers, command lines "
+                              "and the generated header");
+      return std::nullopt;
+    }
+  }
   return IdAt{*s, t.where(k)};
 }
 
@@ -598,11 +671,23 @@ void read_model(Loader& L, const toml::table& root, ModelTable& m) {
   } else {
     m.dt_at = {mt->source(), "model.dt"};
   }
-  if (auto f = t.positive("frame_rate", Need::kOptional)) m.frame_rate = *f;
+  m.frame_rate_at = t.where("frame_rate");
+  if (auto f = t.positive("frame_rate", Need::kOptional)) {
+    // The kernel's frame rule (ntn::frame_substeps): a period of 1 us to 1000 s.
+    if (!(1.0 / *f >= kMinFramePeriod && 1.0 / *f <= kMaxFramePeriod)) {
+      L.error(m.frame_rate_at, "must be between " + num(1.0 / kMaxFramePeriod) + " and " +
+                                   num(1.0 / kMinFramePeriod) + " Hz (got " + num(*f) +
+                                   " Hz): the frame period 1 / frame_rate must be 1 us to 1000 s "
+                                   "(the real-time loop counts whole nanoseconds)");
+    } else {
+      m.frame_rate = *f;
+    }
+  }
   if (auto b = t.boolean("rotary_inertia", Need::kOptional)) m.rotary_inertia = *b;
   if (auto b = t.boolean("allow_unstable", Need::kOptional)) m.allow_unstable = *b;
   if (auto g = t.numbers("gravity", Need::kOptional, 3)) m.gravity = {(*g)[0], (*g)[1], (*g)[2]};
-  m.gravity_function = read_id(t, "gravity_function", Need::kOptional);
+  m.gravity_at = t.where("gravity");
+  m.gravity_function = read_id(L, t, "gravity_function", Need::kOptional);
   if (auto hm = t.choice("hinge_method", Need::kOptional, kHingeMethods)) {
     m.hinge_method = static_cast<HingeMethod>(*hm);
   }
@@ -635,6 +720,13 @@ void read_model(Loader& L, const toml::table& root, ModelTable& m) {
       if (ratio && f) {
         m.alpha = 2.0 * *ratio * (2.0 * std::numbers::pi * *f);
         m.damping_ratio = *ratio, m.damping_frequency = *f;
+        if (!std::isfinite(m.alpha)) {
+          const bool blame_ratio = std::abs(std::log10(*ratio)) >= std::abs(std::log10(*f));
+          L.error(dmp.where(blame_ratio ? "ratio" : "frequency"),
+                  "ratio = " + num(*ratio) + " at frequency = " + num(*f) +
+                      " Hz gives alpha = 2 ratio (2 pi frequency) beyond the largest double "
+                      "(1.8e308)");
+        }
       }
     }
   }
@@ -673,7 +765,7 @@ std::optional<BehaviourIn> read_behaviour(Loader& L, const toml::node& n, const 
       L.error(tb.where("dashpot"), "only applies with 'linear'");
       return std::nullopt;
     }
-    auto c = read_id(tb, "curve");
+    auto c = read_id(L, tb, "curve");
     if (!c) return std::nullopt;
     b.kind = HingeBehaviour::kCurve;
     b.curve = *c;
@@ -804,7 +896,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     Table t(L, tt, path, {"id", "E", "G", "nu", "rho"});
     t.check_unknown();
     Material m;
-    auto id = read_id(t, "id");
+    auto id = read_id(L, t, "id");
     auto E = t.positive("E", Need::kRequired);
     auto rho = t.positive("rho", Need::kRequired);
     std::optional<double> G;
@@ -824,6 +916,8 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     }
     if (!id || !E || !rho || !G) return;
     m.id = *id, m.E = *E, m.G = *G, m.rho = *rho;
+    m.E_at = t.where("E"), m.rho_at = t.where("rho");
+    m.G_at = t.where(t.has("nu") ? "E" : "G");  // G = E / (2 (1 + nu)) follows E
     p.materials.push_back(m);
   });
 
@@ -831,7 +925,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     Table t(L, tt, path, {"id", "A", "Iy", "Iz", "J", "shear", "kappa_y", "kappa_z"});
     t.check_unknown();
     Section s;
-    auto id = read_id(t, "id");
+    auto id = read_id(L, t, "id");
     auto A = t.positive("A", Need::kRequired);
     auto Iy = t.positive("Iy", Need::kRequired);
     auto Iz = t.positive("Iz", Need::kRequired);
@@ -855,6 +949,8 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     }
     if (!ok) return;
     s.id = *id, s.A = *A, s.Iy = *Iy, s.Iz = *Iz, s.J = *J;
+    s.A_at = t.where("A"), s.Iy_at = t.where("Iy"), s.Iz_at = t.where("Iz"), s.J_at = t.where("J");
+    s.shear_at = t.where("shear");
     if (shear.value_or(0) == 1) s.shear_y = ky * *A, s.shear_z = kz * *A;
     p.sections.push_back(s);
   });
@@ -880,10 +976,10 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
         m.release[e] = read_release(L, *r, t.key(k));
       }
     }
-    auto id = read_id(t, "id");
+    auto id = read_id(L, t, "id");
     auto nodes = t.node_ids("nodes", Need::kRequired, 2);
-    auto mat = read_id(t, "material");
-    auto sec = read_id(t, "section");
+    auto mat = read_id(L, t, "material");
+    auto sec = read_id(L, t, "section");
     auto div = t.integer("divisions", Need::kOptional, 1, kMaxDivisions);
     bool ok = id && nodes && mat && sec && (div || !t.has("divisions"));
     if (!t.conflict("orientation", "roll")) {
@@ -970,7 +1066,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
   for_each_table(L, root, "time_functions", [&](const toml::table& tt, const std::string& path) {
     Table t(L, tt, path, {"id", "points"});
     t.check_unknown();
-    auto id = read_id(t, "id");
+    auto id = read_id(L, t, "id");
     const toml::node* pts = t.get("points", Need::kRequired);
     if (pts == nullptr) return;
     const std::string pkey = t.key("points");
@@ -1016,7 +1112,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       ok = ok && dof && v;
     }
     if (t.has("function")) {
-      l.function = read_id(t, "function");
+      l.function = read_id(L, t, "function");
       ok = ok && l.function;
     }
     if (!ok) return;
@@ -1028,7 +1124,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
     Input in;
     const std::vector<std::string_view> kinds = {"ground_acceleration", "nodal_force"};
     Table head(L, tt, path, {});
-    auto name = read_id(head, "name");
+    auto name = read_id(L, head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
     if (!kind) return;
     const bool ground = *kind == 0;
@@ -1077,7 +1173,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
         "element_force",         "drift",       "reaction",
         "absolute_acceleration", "hinge_force", "hinge_displacement"};
     Table head(L, tt, path, {});
-    auto name = read_id(head, "name");
+    auto name = read_id(L, head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
     if (!kind) return;
     bool ok = name.has_value();
@@ -1099,7 +1195,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
               {"name", "kind", "member", "end", "component", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kElementForce;
-      auto member = read_id(t, "member");
+      auto member = read_id(L, t, "member");
       auto end = t.choice("end", Need::kRequired, {"start", "end"});
       auto comp = t.choice("component", Need::kRequired, kComponents);
       if (member) o.member = *member;
@@ -1120,7 +1216,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       t.check_unknown();
       o.kind = OutKind::kHinge;
       o.node_kind = *kind == 7 ? OutputKind::kHingeForce : OutputKind::kHingeDisplacement;
-      auto hinge = read_id(t, "hinge");
+      auto hinge = read_id(L, t, "hinge");
       auto dir = t.choice("direction", Need::kRequired, kDofNames);
       if (hinge) o.hinge = *hinge;
       if (dir) o.dof = *dir;
@@ -1159,7 +1255,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
   for_each_table(L, root, "curves", [&](const toml::table& tt, const std::string& path) {
     Table t(L, tt, path, {"id", "points"});
     t.check_unknown();
-    auto id = read_id(t, "id");
+    auto id = read_id(L, t, "id");
     const toml::node* pts = t.get("points", Need::kRequired);
     if (pts == nullptr) return;
     const std::string pkey = t.key("points");
@@ -1186,7 +1282,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
             {"id", "nodes", "frame", "axes", "eccentric", "ux", "uy", "uz", "rx", "ry", "rz"});
     t.check_unknown();
     HingeIn h;
-    auto id = read_id(t, "id");
+    auto id = read_id(L, t, "id");
     bool ok = id.has_value();
     if (const toml::node* nn = t.get("nodes", Need::kRequired)) {
       const std::string nkey = t.key("nodes");
@@ -1231,7 +1327,7 @@ void read_tables(Loader& L, const toml::table& root, Parsed& p) {
       } else if (const auto* ft = f->as_table()) {
         Table fr(L, *ft, fkey, {"member"});
         fr.check_unknown();
-        auto m = read_id(fr, "member");
+        auto m = read_id(L, fr, "member");
         if (m) {
           h.frame = FrameKind::kMember;
           h.frame_member = *m;
@@ -1283,6 +1379,45 @@ std::map<std::string, int> index_by_id(Loader& L, const std::vector<T>& items, G
     }
   }
   return index;
+}
+
+// --- Numbers beyond double (issue 12, item 9) ---
+//
+// Every input number is finite, but what the kernel derives from them (E A / l, 12 E I / l^3,
+// rho A l / 2, k / m, ...) can still overflow to inf or underflow to zero or a subnormal, and
+// then fail far from its cause ("a spring acts on a DOF without mass" for E = 1e308). A derived
+// quantity is checked as the kernel computes it, and refused naming the input that drives it
+// out of range the most: the factor with the largest power x log10(value), towards overflow or
+// underflow.
+struct Factor {
+  std::string name;  // "E", "A", "l"
+  double value = 0;
+  int power = 1;
+  Where at;
+  std::string unit;
+};
+
+// True when v is finite (and, with `normal`, at least the smallest normal double).
+bool check_derived(Loader& L, double v, const std::string& what, const std::vector<Factor>& f,
+                   bool normal) {
+  const bool over = !std::isfinite(v);
+  const bool under = normal && !over && !(std::abs(v) >= std::numeric_limits<double>::min());
+  if (!over && !under) return true;
+  std::size_t blame = 0;
+  double worst = -std::numeric_limits<double>::infinity();
+  std::string all;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const double c = f[i].power * std::log10(std::abs(f[i].value)) * (under ? -1.0 : 1.0);
+    if (c > worst) worst = c, blame = i;
+    all += (i > 0 ? ", " : "") + f[i].name + " = " + num(f[i].value) + f[i].unit;
+  }
+  const Factor& b = f[blame];
+  L.error(b.at, b.name + " = " + num(b.value) + b.unit +
+                    (over ? " gives a non-finite " + what + " (" + all +
+                                "): beyond the largest double, 1.8e308"
+                          : " is too small: it gives a zero or subnormal " + what + " (" + all +
+                                "), below the smallest normal double 2.2e-308"));
+  return false;
 }
 
 // Pass 2 and 3: references, meshing, geometry, mass, time step.
@@ -1666,6 +1801,7 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
     }
   }
 
+  std::vector<Where> load_at;  // per kernel load: the [[loads]] table that made it
   for (const Load& l : p.loads) {
     const int n = node_ref(l.node, l.at);
     int f = kConstant;
@@ -1673,6 +1809,7 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
     if (n < 0 || (l.function && f < 0)) continue;
     for (const auto& [dof, value] : l.components) {
       d.loads.push_back({n, dof, value, f});
+      load_at.push_back(l.at);
     }
   }
 
@@ -1798,16 +1935,155 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
   }
   if (L.failed()) return std::nullopt;
 
+  // What the kernel derives from each element, checked before anything uses it: length,
+  // stiffness terms, end masses, the element's highest frequency (one error per member).
+  for (std::size_t mi = 0; mi < p.members.size(); ++mi) {
+    const Member& m = p.members[mi];
+    const MemberInfo& info = d.members[mi];
+    const Material& ma = p.materials[static_cast<std::size_t>(materials.at(m.material.id))];
+    const Section& se = p.sections[static_cast<std::size_t>(sections.at(m.section.id))];
+    const std::string of = " of member " + m.id.id;
+    for (int k = 0; k < info.element_count; ++k) {
+      const ElementSpec& e = d.elements[static_cast<std::size_t>(info.first_element + k)];
+      const NodeSpec& na = d.nodes[static_cast<std::size_t>(e.node_i)];
+      const NodeSpec& nb = d.nodes[static_cast<std::size_t>(e.node_j)];
+      const BeamGeometry g = beam_geometry(na, nb, e);
+      const double l = g.length;
+      if (!std::isfinite(l)) {
+        L.error(m.nodes_at, "the length of member " + m.id.id +
+                                " is beyond the largest double (1.8e308 m): its nodes' "
+                                "coordinates are too far apart");
+        break;
+      }
+      const Factor E{"E", e.E, 1, ma.E_at, " Pa"}, G{"G", e.G, 1, ma.G_at, " Pa"};
+      const Factor rho{"rho", e.rho, 1, ma.rho_at, " kg/m^3"}, A{"A", e.A, 1, se.A_at, " m^2"};
+      const Factor Iy{"Iy", e.Iy, 1, se.Iy_at, " m^4"}, Iz{"Iz", e.Iz, 1, se.Iz_at, " m^4"};
+      const Factor J{"J", e.J, 1, se.J_at, " m^4"};
+      auto len = [&](int power) {
+        return Factor{"l", l, power, m.nodes_at, " m (element length)"};
+      };
+      auto inv = [](Factor f) {
+        f.power = -f.power;
+        return f;
+      };
+      const BeamStiffness ks = beam_stiffness(e, l);
+      bool ok =
+          check_derived(L, ks.axial, "axial stiffness E A / l" + of, {E, A, len(-1)}, false) &&
+          check_derived(L, ks.torsion, "torsional stiffness G J / l" + of, {G, J, len(-1)}, false);
+      for (int plane = 0; ok && plane < 2; ++plane) {
+        const auto& t = plane == 0 ? ks.xy : ks.xz;
+        const Factor& I = plane == 0 ? Iz : Iy;
+        const double shear = plane == 0 ? e.shear_area_y : e.shear_area_z;
+        std::vector<Factor> f{E, I, len(-3)};
+        if (shear > 0)
+          f.push_back(inv(G)), f.push_back(inv(Factor{"kappa A", shear, 1, se.shear_at, " m^2"}));
+        double worst = 0;
+        for (double v : t)
+          worst = std::isfinite(v) ? std::max(worst, std::abs(v)) : v;
+        ok = check_derived(L, worst, "bending stiffness 12 E " + I.name + " / (l^3 (1 + Phi))" + of,
+                           f, false);
+      }
+      if (!ok) break;
+      const auto me = beam_end_mass(e, g, d.settings.rotary_inertia);
+      ok = check_derived(L, me[0], "end mass rho A l / 2" + of, {rho, A, len(1)}, true);
+      for (std::size_t c = 3; ok && c < 6; ++c) {
+        Factor I{"Iy + Iz", e.Iy + e.Iz, 1, se.Iy_at, " m^4"};
+        ok =
+            check_derived(L, me[c], "rotational end mass rho (Iy + Iz) l / 2 + rho A l^3 / 78" + of,
+                          {rho, A, I, len(1)}, true);
+      }
+      if (!ok) break;
+      const double w = element_omega_max(e, na, nb, d.settings.rotary_inertia);
+      if (!check_derived(
+              L, w, "highest frequency sqrt(lambda_max(M^-1 K)) (about sqrt(E / rho) / l)" + of,
+              {E, inv(rho), len(-1)}, true))
+        break;
+    }
+  }
+  if (L.failed()) return std::nullopt;
+
   std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * d.nodes.size());
   assemble_lumped_mass(d.view(), mass);
-  std::vector<bool> hinged(d.nodes.size(), false);
+  // Point masses add up with the elements' masses on a node: the sum must stay finite, and be
+  // 0 (no mass) or a normal number (1 / m finite).
+  for (std::size_t i = 0; i < d.nodes.size(); ++i) {
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      const double m = mass[i * kDofsPerNode + k];
+      if (m == 0 || (m >= std::numeric_limits<double>::min() && std::isfinite(m))) continue;
+      L.error(i < p.nodes.size() ? p.nodes[i].at : Where{toml::source_region{}, ""},
+              "the lumped mass of " + d.describe_node(static_cast<int>(i)) + " in " +
+                  std::string(kDofNames[k]) + " (its members' masses and point masses added up) " +
+                  (std::isfinite(m) ? "is " + num(m) +
+                                          " kg, subnormal: too small to be a mass (give 0 or at "
+                                          "least 2.2e-308)"
+                                    : std::string("is beyond the largest double, 1.8e308")));
+      break;
+    }
+  }
+  if (L.failed()) return std::nullopt;
+
+  std::vector<bool> hinged(d.nodes.size(), false), connected(d.nodes.size(), false);
   for (const HingeSpec& h : d.hinges) {
     hinged[static_cast<std::size_t>(h.node1)] = true;
     if (h.node2 != kGround) hinged[static_cast<std::size_t>(h.node2)] = true;
   }
+  for (const ElementSpec& e : d.elements)
+    connected[static_cast<std::size_t>(e.node_i)] = connected[static_cast<std::size_t>(e.node_j)] =
+        true;
+  for (std::size_t i = 0; i < d.nodes.size(); ++i)
+    connected[i] = connected[i] || hinged[i];
+  // A given node that no member or hinge connects, at the same place (to kCoincident) as
+  // another node: most likely a typo for that node. Cells of kCoincident hold the nodes; the
+  // 27 cells around one hold every node within kCoincident of it.
+  struct CellHash {
+    std::size_t operator()(const std::array<double, 3>& c) const {
+      std::size_t h = 0;
+      for (double v : c)
+        h = h * 1000003U ^ std::hash<double>{}(v);
+      return h;
+    }
+  };
+  std::unordered_map<std::array<double, 3>, std::vector<int>, CellHash> cells;
+  auto cell_of = [](const NodeSpec& n) {
+    return std::array<double, 3>{std::floor(n.x / kCoincident), std::floor(n.y / kCoincident),
+                                 std::floor(n.z / kCoincident)};
+  };
+  bool any_loose = false;
+  for (std::size_t i = 0; i < p.nodes.size(); ++i)
+    any_loose = any_loose || !connected[i];
+  if (any_loose) {
+    for (std::size_t i = 0; i < d.nodes.size(); ++i)
+      cells[cell_of(d.nodes[i])].push_back(static_cast<int>(i));
+  }
+  auto twin_of = [&](std::size_t i) -> int {  // the first other node within kCoincident, or -1
+    const NodeSpec& n = d.nodes[i];
+    const auto c = cell_of(n);
+    int best = -1;
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == cells.end()) continue;
+          for (int j : it->second) {
+            if (j == static_cast<int>(i)) continue;
+            const NodeSpec& o = d.nodes[static_cast<std::size_t>(j)];
+            const double ex = o.x - n.x, ey = o.y - n.y, ez = o.z - n.z;
+            if (std::sqrt(ex * ex + ey * ey + ez * ez) <= kCoincident && (best < 0 || j < best))
+              best = j;
+          }
+        }
+      }
+    }
+    return best;
+  };
   // A node no hinge touches gets its mass from elements and point masses only; generated
   // nodes always have elements.
   for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+    const int twin = connected[i] ? -1 : twin_of(i);
+    const std::string same_place =
+        twin < 0 ? ""
+                 : " It is connected to no member or hinge, at the same place as " +
+                       d.describe_node(twin) + " (within 1e-9 m): did you mean that node?";
     if (hinged[i]) continue;
     std::string missing;
     for (int k = 0; k < kDofsPerNode; ++k) {
@@ -1821,8 +2097,45 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
       L.error(p.nodes[i].at, "node " + std::to_string(p.nodes[i].id) +
                                  " has no mass in its free DOFs " + missing +
                                  ": connect it to a member, give it a point mass (with inertia "
-                                 "for rotations) or support those DOFs");
+                                 "for rotations) or support those DOFs." +
+                                 same_place);
+    } else if (twin >= 0) {
+      L.note(p.nodes[i].at, "node " + std::to_string(p.nodes[i].id) +
+                                " moves on its own (its point mass or support only)." + same_place);
     }
+  }
+  if (L.failed()) return std::nullopt;
+
+  // Gravity and nodal loads as forces: M g f(t) and value f(t) must be finite (f: the largest
+  // |value| of the time function scaling them, 1 without).
+  auto function_peak = [&](int f) {
+    double peak = 1;
+    if (f < 0) return peak;
+    const TimeFunctionSpec& tf = d.time_functions[static_cast<std::size_t>(f)];
+    peak = 0;
+    for (int k = 0; k < tf.count; ++k)
+      peak = std::max(peak, std::abs(d.time_points[static_cast<std::size_t>(tf.first + k)].value));
+    return peak;
+  };
+  const double g_peak = function_peak(s.gravity_function);
+  const double g_max =
+      std::max({std::abs(s.gravity[0]), std::abs(s.gravity[1]), std::abs(s.gravity[2])});
+  if (g_max > 0) {
+    const double m_max = *std::max_element(mass.begin(), mass.end());
+    std::vector<Factor> f{{"|gravity|", g_max, 1, p.model.gravity_at, " m/s^2"},
+                          {"the largest nodal mass", m_max, 1, p.model.gravity_at, " kg"}};
+    if (s.gravity_function >= 0)
+      f.push_back({"the largest |value| of gravity_function", g_peak, 1, p.model.gravity_at, ""});
+    (void)check_derived(L, g_max * m_max * g_peak, "gravity force M g", f, false);
+  }
+  for (std::size_t i = 0; i < d.loads.size(); ++i) {
+    const LoadSpec& l = d.loads[i];
+    (void)check_derived(L, l.value * function_peak(l.time_function),
+                        "load (value times the largest |value| of its time function)",
+                        {{"value", l.value, 1, load_at[i], " N (or N m)"},
+                         {"the largest |value| of its time function",
+                          function_peak(l.time_function), 1, load_at[i], ""}},
+                        false);
   }
   if (L.failed()) return std::nullopt;
 
@@ -1830,13 +2143,37 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
   // EA/l; bending 4EI/l with the larger I). The limit default does not follow a given penalty
   // stiffness, so that which curve segments are rigid never depends on the method.
   double axial = 0, bending = 0;
-  for (const ElementSpec& e : d.elements) {
+  std::size_t axial_at = 0, bending_at = 0;  // their elements
+  for (std::size_t ei = 0; ei < d.elements.size(); ++ei) {
+    const ElementSpec& e = d.elements[ei];
     const double l = beam_geometry(d.nodes[static_cast<std::size_t>(e.node_i)],
                                    d.nodes[static_cast<std::size_t>(e.node_j)], e)
                          .length;
-    axial = std::max(axial, e.E * e.A / l);
-    bending = std::max(bending, 4.0 * e.E * std::max(e.Iy, e.Iz) / l);
+    if (e.E * e.A / l > axial) axial = e.E * e.A / l, axial_at = ei;
+    if (4.0 * e.E * std::max(e.Iy, e.Iz) / l > bending)
+      bending = 4.0 * e.E * std::max(e.Iy, e.Iz) / l, bending_at = ei;
   }
+  // The defaults must be numbers too (they go into the header even without hinges).
+  for (int rotational = 0; rotational < 2; ++rotational) {
+    const bool given = rotational == 0 ? p.model.penalty_stiffness && p.model.limit_stiffness
+                                       : p.model.penalty_rotational_stiffness &&
+                                             p.model.limit_rotational_stiffness;
+    const double v = kPenaltyFactor * (rotational == 0 ? axial : bending);
+    const std::size_t ei = rotational == 0 ? axial_at : bending_at;
+    const Member& m = p.members[static_cast<std::size_t>(d.element_member[ei])];
+    const Material& ma = p.materials[static_cast<std::size_t>(materials.at(m.material.id))];
+    if (!given && !std::isfinite(v)) {
+      L.error(ma.E_at,
+              "E = " + num(d.elements[ei].E) + " Pa in member " + m.id.id + " gives a default " +
+                  (rotational == 0 ? "penalty and limit stiffness 1e4 E A / l"
+                                   : "rotational penalty and limit stiffness 1e4 x 4 E I / l") +
+                  " beyond the largest double (1.8e308): give model." +
+                  (rotational == 0 ? "penalty_stiffness and model.limit_stiffness"
+                                   : "penalty_rotational_stiffness and "
+                                     "model.limit_rotational_stiffness"));
+    }
+  }
+  if (L.failed()) return std::nullopt;
   s.penalty_stiffness = p.model.penalty_stiffness.value_or(kPenaltyFactor * axial);
   s.penalty_rotational_stiffness =
       p.model.penalty_rotational_stiffness.value_or(kPenaltyFactor * bending);
@@ -1940,6 +2277,39 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
                                 "these DOFs at zero");
   }
 
+  // Hinge springs against the masses they join: k w and c w (w = b^T M^-1 b = n1 + n2 of the
+  // kernel's scaled_spring_direction) are the spring's own frequency^2 and damping rate, the
+  // seeds of its stable-step terms: beyond double, there is no step to compute.
+  for (std::size_t hi = 0; hi < d.hinges.size(); ++hi) {
+    HingeData hd;
+    if (!make_hinge_data(d.hinges[hi], s, static_cast<int>(d.nodes.size()), d.curves,
+                         d.curve_points, hd))
+      continue;
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (!((hd.springs >> k) & 1U)) continue;
+      double s1[6], s2[6], n1 = 0, n2 = 0;
+      if (!scaled_spring_direction(hd, k, d.nodes, mass, s1, s2, n1, n2)) continue;  // massless
+      const double w = n1 + n2;
+      const std::string of = " of " + d.describe_hinge(static_cast<int>(hi)) + ", direction " +
+                             std::string(kDofNames[k]);
+      const HingeBehaviour b = d.hinges[hi].behaviour[k];
+      const std::string unit = k < 3 ? " N/m" : " N m/rad";
+      const Factor inv_mass{"1/m1 + 1/m2 (along the direction)", w, 1, dir_at[hi][k], " 1/kg"};
+      const Factor stiff{b == HingeBehaviour::kRigid   ? "the penalty stiffness"
+                         : b == HingeBehaviour::kCurve ? "the curve's steepest soft slope"
+                                                       : "linear",
+                         hd.stiffness[k], 1, dir_at[hi][k], unit};
+      if (!check_derived(L, hd.stiffness[k] * w, "frequency^2 k (1/m1 + 1/m2)" + of,
+                         {stiff, inv_mass}, false))
+        continue;
+      (void)check_derived(
+          L, hd.dashpot[k] * w, "damping rate c (1/m1 + 1/m2)" + of,
+          {{"dashpot", hd.dashpot[k], 1, dir_at[hi][k], k < 3 ? " N s/m" : " N m s/rad"}, inv_mass},
+          false);
+    }
+  }
+  if (L.failed()) return std::nullopt;
+
   // Time step (DESIGN §6, kernel/README.md "Stable time step"): the element eigenvalue bound and
   // the node-by-node bound of the hinge springs, with damping, for the model's hinge method.
   d.stable = stable_time_step(d.view(), mass);
@@ -1951,9 +2321,40 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
     }
     return d.describe_element(r.governing_element);
   };
-  if (!(d.stable.dt_stable > 0)) {
-    L.error(p.model.dt_at, "the stable step is zero (set by " + governing(d.stable) +
-                               "): a spring acts on a DOF without mass");
+  if (!(d.stable.dt_stable > 0) || !std::isfinite(d.stable.dt_stable)) {
+    // Where it showed: the hinge direction's value, or the governing element's member.
+    const StableStepReport& st = d.stable;
+    Where at = p.model.dt_at;
+    if (st.governing_hinge >= 0) {
+      at = dir_at[static_cast<std::size_t>(st.governing_hinge)]
+                 [static_cast<std::size_t>(st.hinge_direction)];
+    } else if (st.governing_element >= 0) {
+      at = p.members[static_cast<std::size_t>(
+                         d.element_member[static_cast<std::size_t>(st.governing_element)])]
+               .nodes_at;
+    }
+    // The values there: the spring's k and c, or the element's E, rho and A.
+    std::string values;
+    if (st.governing_hinge >= 0) {
+      const auto h = static_cast<std::size_t>(st.governing_hinge);
+      const auto k = static_cast<std::size_t>(st.hinge_direction);
+      HingeData hd;
+      if (make_hinge_data(d.hinges[h], s, static_cast<int>(d.nodes.size()), d.curves,
+                          d.curve_points, hd)) {
+        values = " (k = " + num(hd.stiffness[k]) + (k < 3 ? " N/m" : " N m/rad") +
+                 ", dashpot c = " + num(hd.dashpot[k]) + (k < 3 ? " N s/m)" : " N m s/rad)");
+      }
+    } else if (st.governing_element >= 0) {
+      const ElementSpec& e = d.elements[static_cast<std::size_t>(st.governing_element)];
+      values =
+          " (E = " + num(e.E) + " Pa, rho = " + num(e.rho) + " kg/m^3, A = " + num(e.A) + " m^2)";
+    }
+    L.error(at, "the stable step is zero (set by " + governing(st) + values + "): " +
+                    (st.issue == StepIssue::kMassless
+                         ? std::string("a spring acts on a DOF without mass")
+                         : std::string("an intermediate result of the stable-step bound is "
+                                       "beyond double there (stiffness, damping or mass too "
+                                       "large or too small by hundreds of orders of magnitude)")));
     return std::nullopt;
   }
   if (d.dt_auto) {
@@ -1966,6 +2367,46 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
                                  "; use dt = \"auto\" or a smaller dt");
     }
   }
+  // The frame rule (ntn::frame_substeps, kernel/README.md "Frames and substeps"): the same test
+  // the real-time loop makes, so that a model that passes here runs there.
+  const Substeps n = frame_substeps(s.dt, s.frame_period);
+  const std::string frame =
+      " the frame period " + num(s.frame_period) + " s (frame_rate = " + num(d.frame_rate) + " Hz)";
+  const std::string stable_by =
+      "the stable step is " + num(d.stable.dt_stable) + " s, set by " + governing(d.stable);
+  switch (n.error) {
+    case SubstepError::kNone:
+      break;
+    case SubstepError::kTooMany:
+      if (d.dt_auto) {
+        L.error(p.model.dt_at,
+                "dt = \"auto\" needs " +
+                    num(std::ceil(s.frame_period / (0.9 * d.stable.dt_stable))) + " substeps in" +
+                    frame + ", more than the limit " + std::to_string(kMaxSubsteps) +
+                    " (ntn::kMaxSubsteps): " + stable_by +
+                    ". No machine runs such a model; check the units and the geometry there "
+                    "(nodes almost coincident?), or lower frame_rate");
+      } else {
+        L.error(p.model.dt_at, "dt = " + num(s.dt) + " s gives " + num(n.ratio) + " substeps in" +
+                                   frame + ", more than the limit " + std::to_string(kMaxSubsteps) +
+                                   " (ntn::kMaxSubsteps)");
+      }
+      break;
+    case SubstepError::kNotWhole:
+      L.error(p.model.dt_at, "dt = " + num(s.dt) + " s does not divide" + frame +
+                                 " into a whole number of substeps (period / dt = " + num(n.ratio) +
+                                 "); use dt = \"auto\" or the period / N");
+      break;
+    case SubstepError::kLongerThanFrame:
+      L.error(p.model.dt_at, "dt = " + num(s.dt) + " s is longer than" + frame +
+                                 ": a frame needs at least one step; use dt = \"auto\", or "
+                                 "lower frame_rate");
+      break;
+    case SubstepError::kBadTimeStep:
+    case SubstepError::kBadPeriod:
+      L.error(p.model.dt_at, "dt = " + num(s.dt) + " s and" + frame + ": " + to_string(n.error));
+      break;
+  }
   if (L.failed()) return std::nullopt;
   return d;
 }
@@ -1975,6 +2416,7 @@ LoadResult load_parsed(Loader& L, const toml::table& root, const std::string& fi
   read_tables(L, root, p);
   LoadResult r;
   if (!L.failed()) r.model = build(L, p, file);
+  r.error_count = L.error_count();
   r.errors = L.take_errors();
   if (!r.errors.empty()) {
     r.model.reset();
@@ -1986,6 +2428,13 @@ LoadResult load_parsed(Loader& L, const toml::table& root, const std::string& fi
 
 LoadResult load_text(std::string_view text, const std::string& file) {
   Loader L(file);
+  // Size and nesting first: the parser's recursion must never see input that overflows it.
+  if (auto limit = check_model_text_limits(text, file)) {
+    LoadResult r;
+    r.errors.push_back(std::move(*limit));
+    r.error_count = 1;
+    return r;
+  }
   try {
     const toml::table root = toml::parse(text, file);
     return load_parsed(L, root, file);
@@ -1995,6 +2444,7 @@ LoadResult load_text(std::string_view text, const std::string& file) {
     L.error_at_start("", std::string("internal error: ") + e.what());
   }
   LoadResult r;
+  r.error_count = L.error_count();
   r.errors = L.take_errors();
   return r;
 }
@@ -2002,15 +2452,28 @@ LoadResult load_text(std::string_view text, const std::string& file) {
 }  // namespace
 
 LoadResult load_model(const std::string& path) {
+  auto unreadable = [&](const std::string& why) {
+    LoadResult r;
+    r.unreadable = true;
+    r.errors.push_back({path, 1, 1, "", "cannot read the model file: " + why});
+    r.error_count = 1;
+    return r;
+  };
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return unreadable("it is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    LoadResult r;
-    r.errors.push_back({path, 1, 1, "", "cannot open the model file"});
-    return r;
+    return unreadable(std::filesystem::exists(path, ec) ? "permission denied"
+                                                        : "no such file (or a path through a "
+                                                          "file that is not a directory)");
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_text(text.str(), path);
+  // At most one byte more than the limit: a huge file is refused without reading it all.
+  std::string text;
+  char buf[1 << 16];
+  while (text.size() <= kMaxModelFileBytes && in.read(buf, sizeof buf).gcount() > 0)
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) return unreadable("read error");
+  return load_text(text, path);
 }
 
 LoadResult load_model_from_string(std::string_view toml_text, const std::string& source_name) {

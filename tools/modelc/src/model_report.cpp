@@ -108,12 +108,12 @@ std::string info_text(const ModelDescription& m) {
     line("alarm", "|" + m.output_names[c] + "| > " + f("%g", a.limit) + unit + ", off below " +
                       f("%g", a.limit - a.hysteresis) + unit);
   }
-  line("mass", "translational, all nodes: x " + f("%.1f", mt.all[0]) + " kg, y " +
-                   f("%.1f", mt.all[1]) + " kg, z " + f("%.1f", mt.all[2]) + " kg");
-  line("", "  = elements (sum rho A l) " + f("%.1f", mt.elements) + " kg + point masses " +
-               f("%.1f", mt.point_masses) + " kg");
-  line("", "on free DOFs: x " + f("%.1f", mt.free[0]) + " kg, y " + f("%.1f", mt.free[1]) +
-               " kg, z " + f("%.1f", mt.free[2]) + " kg");
+  line("mass", "translational, all nodes: x " + f("%.6g", mt.all[0]) + " kg, y " +
+                   f("%.6g", mt.all[1]) + " kg, z " + f("%.6g", mt.all[2]) + " kg");
+  line("", "  = elements (sum rho A l) " + f("%.6g", mt.elements) + " kg + point masses " +
+               f("%.6g", mt.point_masses) + " kg");
+  line("", "on free DOFs: x " + f("%.6g", mt.free[0]) + " kg, y " + f("%.6g", mt.free[1]) +
+               " kg, z " + f("%.6g", mt.free[2]) + " kg");
   line("", "rotational (sum of lumped): rx " + f("%.4g", mt.all[3]) + ", ry " +
                f("%.4g", mt.all[4]) + ", rz " + f("%.4g", mt.all[5]) + " kg m^2");
   if (s.alpha > 0) {
@@ -154,12 +154,12 @@ std::string info_text(const ModelDescription& m) {
   }
 
   const StableStepReport& st = m.stable;
-  const double substeps = s.frame_period / s.dt;
-  const bool whole = std::abs(substeps - std::round(substeps)) <= 1e-9 * substeps;
+  // The kernel's frame rule; a loaded model passes it (the compiler refuses the others).
+  const Substeps substeps = frame_substeps(s.dt, s.frame_period);
   line("dt", f("%.6g", s.dt) + " s, " +
                  (m.dt_auto ? std::string("auto (0.9 x stable, rounded down to fill a frame)")
                             : std::string("as given")) +
-                 ", dt / dt_stable = " + f("%.4f", s.dt / st.dt_stable));
+                 ", dt / dt_stable = " + f("%.4g", s.dt / st.dt_stable));
   line("stable dt", f("%.6g", st.dt_stable) +
                         " s (element eigenvalue bound and hinge springs, with damping, "
                         "omega_max = " +
@@ -192,10 +192,11 @@ std::string info_text(const ModelDescription& m) {
   }
   line("CFL (seed)",
        f("%.6g", st.dt_cfl) + " s = l / sqrt(E / rho) at " + m.describe_element(st.cfl_element));
-  line("substeps", (whole ? std::to_string(std::llround(substeps))
-                          : f("%.6g", substeps) + " (not a whole number)") +
-                       " per frame of " + f("%g", s.frame_period * 1e3) + " ms (" +
-                       f("%g", m.frame_rate) + " Hz)");
+  line("substeps",
+       (substeps.ok() ? std::to_string(substeps.count)
+                      : f("%.6g", substeps.ratio) + " (" + to_string(substeps.error) + ")") +
+           " per frame of " + f("%g", s.frame_period * 1e3) + " ms (" + f("%g", m.frame_rate) +
+           " Hz)");
 
   const MemoryFootprint mem = memory_footprint(z);
   line("memory", "Model " + std::to_string(mem.model) + " B + State " + std::to_string(mem.state) +
