@@ -430,11 +430,7 @@ int feeder_main(int argc, char** argv) {
       }
       out << ',' << outputs.flags[u] << '\n';
     }
-    out.close();
-    if (!out) {
-      write_errors.push_back("--out: write error in " + out_path + ": " +
-                             std::strerror(errno != 0 ? errno : EIO));
-    }
+    if (auto e = ntn::cli::close_output(out, "--out", out_path)) write_errors.push_back(*e);
   }
 
   // Summary.
@@ -518,11 +514,8 @@ int feeder_main(int argc, char** argv) {
       first = false;
     }
     js << "}\n}\n";
-    js.close();
-    if (!js) {
-      write_errors.push_back("--summary-json: write error in " + json_path + ": " +
-                             std::strerror(errno != 0 ? errno : EIO));
-    }
+    if (auto e = ntn::cli::close_output(js, "--summary-json", json_path))
+      write_errors.push_back(*e);
   }
   for (const std::string& e : write_errors)
     std::fprintf(stderr, "error: %s\n", e.c_str());

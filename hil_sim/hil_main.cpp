@@ -863,11 +863,8 @@ int hil_main(int argc, char** argv) {
        << ", \"state_restored\": " << (result.state_restored ? "true" : "false") << "}"
        << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"output_hash\": \""
        << std::hex << hash_value << std::dec << "\"\n}\n";
-    js.close();
-    if (!js) {
-      write_errors.push_back("--summary-json: write error in " + json_path + ": " +
-                             std::strerror(errno != 0 ? errno : EIO));
-    }
+    if (auto e = ntn::cli::close_output(js, "--summary-json", json_path))
+      write_errors.push_back(*e);
   }
   for (const std::string& e : write_errors)
     std::fprintf(stderr, "error: %s\n", e.c_str());

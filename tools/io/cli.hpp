@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -126,6 +127,16 @@ inline std::optional<std::string> output_path_problem(const std::string& path,
   ::close(fd);
   if (!existed) ::unlink(path.c_str());
   return std::nullopt;
+}
+
+// Closes an output stream written during a run; a failed write or close (disk full) is an error
+// of the run: the message names the option and the file.
+inline std::optional<std::string> close_output(std::ofstream& out, std::string_view option,
+                                               const std::string& path) {
+  out.close();
+  if (out) return std::nullopt;
+  return std::string(option) + ": write error in " + path + ": " +
+         std::strerror(errno != 0 ? errno : EIO);
 }
 
 // One NAME=FILE[:COLUMN] argument of --input. COLUMN is what follows the last ':' of the file

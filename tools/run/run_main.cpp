@@ -385,10 +385,8 @@ int main(int argc, char** argv) {
          << ", \"time\": " << fmt("%.9g", peaks[static_cast<std::size_t>(c)].time) << "}";
     }
     js << "\n  }\n}\n";
-    js.close();
-    if (js.fail()) {
-      std::fprintf(stderr, "error: --summary-json: writing '%s' failed: %s\n", json_path.c_str(),
-                   errno != 0 ? std::strerror(errno) : "write failed");
+    if (auto e = ntn::cli::close_output(js, "--summary-json", json_path)) {
+      std::fprintf(stderr, "error: %s\n", e->c_str());
       return 2;
     }
   }
