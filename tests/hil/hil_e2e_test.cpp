@@ -145,15 +145,20 @@ PairRun run_pair(const TempDir& dir, std::int64_t frames, const std::vector<std:
 // half a period after packet k is expected), so packets do not come after their frame ran.
 // Before the loop took its deadlines from the first packet, ~90 % of them were late here.
 // Both run under SCHED_FIFO (--fifo; a warning and normal priority where that is not permitted).
-// Tolerance: at most 1 % of the frames missing (a late packet's frame is missing too). A packet
-// misses its frame only when the feeder sends it more than half a period behind its schedule
-// (relative to its first packet), or when the loop stalls for more than the jitter buffer's
-// 8 frames; on this shared 2-core VM, with builds running beside, stalls of 3-7 ms still happen
-// now and then under SCHED_FIFO, each costing that many frames (8 in the worst trial).
+// How many frames miss their packet depends on the machine (a stall of the loop or the feeder
+// beyond the jitter buffer's 8 frames costs that many frames; this shared 2-core VM shows
+// wake-up stalls of 3-19 ms under load, and `cyclictest` at 1 kHz the same), so that figure is
+// reported, not asserted (issue 13: no default test passes or fails with the machine's load).
+// Asserted is what holds whatever the machine does: every frame ran and is accounted for as
+// accepted or missing, each late packet's frame is among the missing, nothing is corrupt, and
+// the outputs equal a virtual-clock run on the inputs the gate accepted (the log replays bit for
+// bit).
 TEST(HilE2E, RealTimeDeadlinesFollowTheSender) {
   constexpr std::int64_t kFrames = 3000;
   const TempDir dir("hil_e2e_rt_aligned");
-  const PairRun pair = run_pair(dir, kFrames, {"--clock", "real", "--fifo"}, {"--fifo", "70"}, 30s);
+  const PairRun pair =
+      run_pair(dir, kFrames, {"--clock", "real", "--fifo", "--record", dir / "run.ntnlog"},
+               {"--fifo", "70"}, 30s);
   EXPECT_EQ(pair.feeder_rc, 0) << pair.feeder_text;
   ASSERT_EQ(pair.hil_rc, 0) << pair.hil_text;
   const std::string& js = pair.hil_json;
@@ -162,11 +167,22 @@ TEST(HilE2E, RealTimeDeadlinesFollowTheSender) {
   EXPECT_EQ(json_number(js, "frames"), kFrames);
   EXPECT_EQ(json_number(js, "first_packet_frame"), 0);
   const double missing = json_number(js, "missing", "inputs");
-  EXPECT_LE(missing, 0.01 * kFrames) << js;
+  std::printf(
+      "real time, 3000 frames: %g missing, %g late, %g overruns, latency p50 %g us, "
+      "max %g us\n",
+      missing, json_number(js, "late", "inputs"), json_number(js, "overruns"),
+      json_number(js, "p50", "latency_us"), json_number(js, "max", "latency_us"));
   EXPECT_LE(json_number(js, "late", "inputs"), missing);  // each late packet's frame was missing
   EXPECT_EQ(json_number(js, "accepted", "inputs") + missing, kFrames);
   EXPECT_EQ(json_number(js, "corrupt", "inputs"), 0);
-  EXPECT_EQ(json_number(fs, "outputs_received"), kFrames) << fs;
+  // UDP on loopback may drop an output when the feeder stalls longer than its socket buffer
+  // holds; none is ever invented.
+  EXPECT_LE(json_number(fs, "outputs_received"), kFrames) << fs;
+
+  Child replay({NTN_HIL, "replay", dir / "run.ntnlog"}, dir / "replay.txt");
+  EXPECT_EQ(replay.wait(60s), 0);
+  EXPECT_NE(read_file(dir / "replay.txt").find("bit-identical over 3000 frames"), std::string::npos)
+      << read_file(dir / "replay.txt");
 }
 
 FaultPlan plan_of(const std::string& faults, std::int64_t frames) {
@@ -344,8 +360,8 @@ TEST(HilE2E, LockStepEveryFaultKind) {
 
 // Real time, 2000 frames at 1 kHz with a few faults whose counts do not depend on timing:
 // the summary is written, its counts add up and agree with the feeder's, and the run replays
-// bit for bit. Missing frames beyond the three injected ones: same tolerance and reason as
-// RealTimeDeadlinesFollowTheSender (1 % of the frames).
+// bit for bit. How many frames miss their packet beyond the three injected ones depends on the
+// machine's load: reported, not asserted (see RealTimeDeadlinesFollowTheSender).
 TEST(HilE2E, RealTimeWithFaults) {
   constexpr std::int64_t kFrames = 2000;
   const std::string faults = "corrupt@300,duplicate@600,lost@700,nan@900,corrupt@1100";
@@ -370,16 +386,23 @@ TEST(HilE2E, RealTimeWithFaults) {
   EXPECT_GE(counted("lost"), 3);  // frames 300, 700 and 1100 never arrive
   EXPECT_LE(counted("nonfinite"), 1);
   EXPECT_EQ(counted("accepted") + counted("missing"), kFrames);
-  EXPECT_LE(counted("missing") - 3, 0.01 * kFrames) << js;
-  // Every output came back, and the frames the feeder saw flagged are the loop's counts.
-  EXPECT_EQ(json_number(fs, "outputs_received"), kFrames) << fs;
-  EXPECT_EQ(std::isnan(json_number(fs, "missing", "output_flag_frames"))
-                ? 0
-                : json_number(fs, "missing", "output_flag_frames"),
-            counted("missing"));
-  const double overruns = json_number(js, "overruns");
-  const double overrun_frames = json_number(fs, "overrun", "output_flag_frames");
-  EXPECT_EQ(std::isnan(overrun_frames) ? 0 : overrun_frames, overruns);
+  std::printf("real time with faults, 2000 frames: %g missing (3 injected), %g overruns\n",
+              counted("missing"), json_number(js, "overruns"));
+  // The frames the feeder saw flagged are the loop's counts, exactly when every output came back
+  // (a stalled feeder may lose some on loopback UDP: then at most the loop's counts).
+  const double received = json_number(fs, "outputs_received");
+  EXPECT_LE(received, kFrames) << fs;
+  const auto flagged = [&](const char* key) {
+    const double n = json_number(fs, key, "output_flag_frames");
+    return std::isnan(n) ? 0.0 : n;
+  };
+  if (received == kFrames) {
+    EXPECT_EQ(flagged("missing"), counted("missing"));
+    EXPECT_EQ(flagged("overrun"), json_number(js, "overruns"));
+  } else {
+    EXPECT_LE(flagged("missing"), counted("missing"));
+    EXPECT_LE(flagged("overrun"), json_number(js, "overruns"));
+  }
   EXPECT_GE(json_number(js, "max", "latency_us"), json_number(js, "p50", "latency_us"));
   EXPECT_GT(json_number(js, "p50", "compute_fraction"), 0);
 
