@@ -3,10 +3,10 @@
 # write the same CSV, byte for byte (the runner with --flags, which adds the loop's flags
 # column). Each sampling must also change the response (else the option would do nothing), and
 # each program's default must be the one its README names: ntn-run step, ntn-hil hold.
-# 6 s of El Centro (6 000 frames of 9 steps) hold its peaks (t = 5.25 .. 5.57 s); exact
-# comparisons throughout: both programs must take the same steps to the same bits.
+# 2 s of El Centro (2 000 frames of 9 steps: the first strong pulses, quick under ASan too);
+# exact comparisons throughout: both programs must take the same steps to the same bits.
 file(MAKE_DIRECTORY ${OUT})
-set(common -q --input ag_x=${RECORD} --duration 6)
+set(common -q --input ag_x=${RECORD} --duration 2)
 
 function(run_it name)  # run_it(NAME COMMAND...) -> hash_NAME in the parent scope
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -63,10 +63,12 @@ execute_process(COMMAND ${RUNNER} ${common} --sampling hold --out ${OUT}/run_hol
 file(STRINGS ${OUT}/run_hold_plain.csv plain)
 list(GET with_flags 0 head_flags)
 list(GET plain 0 head_plain)
-list(GET with_flags 3000 row_flags)
-list(GET plain 3000 row_plain)
+list(GET with_flags 1500 row_flags)
+list(GET plain 1500 row_plain)
+string(FIND "${row_flags}" "," last_comma REVERSE)
+string(SUBSTRING "${row_flags}" 0 ${last_comma} row_flags_cut)
 if(NOT rc EQUAL 0 OR NOT head_flags STREQUAL "${head_plain},flags"
-   OR NOT row_flags MATCHES "^${row_plain},[0-9]+$")
+   OR NOT row_flags_cut STREQUAL row_plain)
   message(FATAL_ERROR "ntn-run without --flags: exit ${rc}, '${head_plain}' / '${row_plain}' "
                       "against the loop's '${head_flags}' / '${row_flags}'")
 endif()
