@@ -1,8 +1,9 @@
 // ntn-hil-<model>: the model in the fixed-rate frame loop (DESIGN §8). Inputs from recorded
 // files or from UDP on loopback through the input gate; outputs to CSV and back over UDP;
 // real-time or virtual clock; a log for bit-exact replay; a summary on screen and as JSON.
-#include <xxhash.h>
-
+// The record source, the CSV sink and the output hash are the loop library's, shared with
+// ntn-run-<model> (tools/run): for the same --sampling, `run --clock virtual` and ntn-run give
+// the same output hash and CSV.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
@@ -19,10 +20,14 @@
 
 #include "cli.hpp"
 #include "ntn/hil/clock.hpp"
+#include "ntn/hil/csv_sink.hpp"
 #include "ntn/hil/gate.hpp"
 #include "ntn/hil/loop.hpp"
+#include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/packet.hpp"
+#include "ntn/hil/record_source.hpp"
 #include "ntn/hil/recorder.hpp"
+#include "ntn/hil/sampling.hpp"
 #include "ntn/hil/schedule.hpp"
 #include "ntn/hil/udp.hpp"
 #include "ntn/kernel.hpp"
@@ -54,21 +59,6 @@ extern "C" void on_stop_signal(int signal) {
 // their files through 1 MiB buffers; the output hash is computed as the run goes.
 constexpr std::int64_t kMaxFrames = 1'000'000'000;
 constexpr std::int64_t kTimedFrames = std::int64_t{1} << 22;
-
-// Recorded inputs (AT2, CSV), sampled at frame times, through the gate (NaN, range).
-struct FileSource {
-  std::array<ntn::io::Record, kS.inputs>* records;
-  ntn::hil::InputGate* gate;
-  double period;
-  void frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
-    Inputs x{};
-    for (std::size_t c = 0; c < x.size(); ++c)
-      x[c] = (*records)[c].at(static_cast<double>(k) * period);
-    gate->begin_frame(k);
-    (void)gate->accept_values(k, x);
-    gate->end_frame(v, flags);
-  }
-};
 
 // Input packets on a loopback port, through the gate. In lock-step mode (virtual clock) frame k
 // waits for the sender's frame-end marker for k, so the accepted inputs do not depend on timing.
@@ -196,41 +186,30 @@ struct ReplaySink {
   }
 };
 
-// CSV rows streamed to the file (opened before the run, 1 MiB buffer); output packets back to
-// the sender; the output hash as the run goes.
+// CSV rows (the library's CsvWriter, opened before the run); output packets back to the
+// sender; the output hash (output_hash.hpp: every kernel step's outputs, then the final state).
 struct Sink {
-  std::FILE* csv = nullptr;
+  ntn::hil::CsvWriter* csv = nullptr;
   ntn::hil::UdpSocket* socket = nullptr;
   std::uint16_t reply_port = 0;
   std::uint32_t sequence = 0;
   double period = 1e-3;
   std::array<std::byte, ntn::hil::kMaxPacketBytes> packet{};
-  XXH3_state_t* run_hash = nullptr;                   // XXH3 of the frames' output hashes
+  ntn::hil::OutputHash* hash = nullptr;
   std::array<double, kS.outputs> peak{};              // largest |value| per channel
   std::array<std::int64_t, kS.outputs> peak_frame{};  // and its first frame
+  void after_step(const ntn::State<kS>&, const ntn::Scratch<kS>& w) {
+    if (hash != nullptr) hash->add_step(w);
+  }
   void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t flags) {
     for (std::size_t c = 0; c < peak.size(); ++c) {
       if (std::abs(v[c]) > peak[c]) peak[c] = std::abs(v[c]), peak_frame[c] = k;
     }
-    if (csv != nullptr) {
-      char row[64];
-      std::snprintf(row, sizeof row, "%.9g", static_cast<double>(k) * period);
-      std::fputs(row, csv);
-      for (double x : v) {
-        std::snprintf(row, sizeof row, ",%.17g", x);
-        std::fputs(row, csv);
-      }
-      std::snprintf(row, sizeof row, ",%u\n", static_cast<unsigned>(flags));
-      std::fputs(row, csv);
-    }
+    if (csv != nullptr && csv->is_open()) csv->row(static_cast<double>(k) * period, v, flags);
     if (socket != nullptr && reply_port != 0) {
       const std::size_t n =
           ntn::hil::encode(ntn::hil::PacketKind::kOutput, sequence++, k, flags, v, packet);
       (void)socket->send_to(reply_port, std::span<const std::byte>(packet.data(), n));
-    }
-    if (run_hash != nullptr) {
-      const std::uint64_t h = ntn::hil::hash_outputs(v);
-      (void)XXH3_64bits_update(run_hash, &h, sizeof h);
     }
   }
 };
@@ -332,7 +311,8 @@ int replay_log(const std::string& path, ntn::hil::LoopConfig config) {
   }
   volatile std::sig_atomic_t stop = 0;
   config.frames = frames;
-  config.interpolate = h.interpolate != 0;
+  config.sampling = h.interpolate != 0 ? ntn::hil::InputSampling::kFrameInterpolated
+                                       : ntn::hil::InputSampling::kFrameHeld;
   config.stop = &stop;
   ReplaySource source{&reader, &stop, {}, {}};
   ReplaySink sink{&source, &stop};
@@ -388,7 +368,7 @@ int hil_main(int argc, char** argv) {
   auto* replay = app.add_subcommand("replay", "re-run a log on the virtual clock and compare");
 
   std::vector<std::string> input_args, alarm_args;
-  std::string clock_name = "real", out_path, json_path, log_path, replay_path;
+  std::string clock_name = "real", out_path, json_path, log_path, replay_path, sampling_name;
   double duration = -1, first_wait_s = 10;
   std::int64_t frames = -1;
   int listen_port = -1, reply_port = 0, cpu = -1;
@@ -410,8 +390,14 @@ int hil_main(int argc, char** argv) {
       ->check(ntn::cli::Positive());
   run->add_option("-n,--frames", frames, "frames to run (overrides --duration)")
       ->check(ntn::cli::Integer(1, kMaxFrames));
-  run->add_flag("--interpolate", interpolate,
-                "interpolate inputs linearly within a frame (one frame of delay); default: hold");
+  auto* sampling_option =
+      run->add_option("-s,--sampling", sampling_name,
+                      "hold (inputs at frame times, held over the frame; default), interpolate "
+                      "(linear over the frame, one frame of delay) or step (--input records at "
+                      "every kernel step, as ntn-run-<model> by default)")
+          ->check(CLI::IsMember({"step", "hold", "interpolate"}));
+  run->add_flag("--interpolate", interpolate, "the same as --sampling interpolate")
+      ->excludes(sampling_option);
   run->add_option("--alarm", alarm_args,
                   "NAME=LIMIT[:HYSTERESIS] or NAME=off: limit alarm on an output, replacing the "
                   "model file's for that channel");
@@ -470,6 +456,26 @@ int hil_main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", inputs.error->c_str());
     return 2;
   }
+  const ntn::hil::InputSampling sampling =
+      interpolate ? ntn::hil::InputSampling::kFrameInterpolated
+                  : ntn::hil::parse_sampling(sampling_name.empty() ? "hold" : sampling_name)
+                        .value_or(ntn::hil::InputSampling::kFrameHeld);
+  const bool per_step = sampling == ntn::hil::InputSampling::kStep;
+  // Per-step sampling reads the records between frames: a sender's packets carry one value per
+  // frame, and a log holds the inputs the loop accepted per frame, which replay cannot turn
+  // back into per-step values.
+  if (per_step && listen_port >= 0) {
+    std::fprintf(stderr,
+                 "error: --sampling step reads --input records at every kernel step; --listen "
+                 "takes one value per frame (use --sampling hold or interpolate)\n");
+    return 2;
+  }
+  if (per_step && !log_path.empty()) {
+    std::fprintf(stderr,
+                 "error: --sampling step with --record: the log holds one input per frame and "
+                 "could not replay the per-step inputs (use --sampling hold or interpolate)\n");
+    return 2;
+  }
   std::array<ntn::io::Record, kS.inputs> records{};
   double record_duration = 0;
   for (const ntn::cli::InputArg& arg : inputs.args) {
@@ -481,21 +487,15 @@ int hil_main(int argc, char** argv) {
                    arg.name.c_str(), arg.name.c_str());
       return 2;
     }
-    ntn::io::ReadResult r = ntn::io::read_record(arg.file, arg.column);
-    if (r.error) {
-      std::fprintf(stderr, "%s\n", r.error->format().c_str());
+    // The record's values in the input's unit (gal to g, ...), as ntn-run reads them; per step
+    // (not through the gate, which sees frame values) every sample must be in range.
+    const auto c = static_cast<std::size_t>(index);
+    if (const auto e = ntn::hil::load_input_record(mdl::kSpec.inputs[c], arg.name, arg.file,
+                                                   arg.column, per_step, records[c])) {
+      std::fprintf(stderr, "%s\n", e->c_str());
       return 2;
     }
-    // The record's values in the input's unit (gal to g, ...): the runner's rule (tools/io).
-    const ntn::InputSpec& spec = mdl::kSpec.inputs[static_cast<std::size_t>(index)];
-    if (const auto e = r.record->to_unit(ntn::io::input_unit(
-            spec.kind == ntn::InputKind::kGroundAcceleration, spec.dof, spec.scale))) {
-      std::fprintf(stderr, "%s: error: input '%s': %s\n", arg.file.c_str(), arg.name.c_str(),
-                   e->c_str());
-      return 2;
-    }
-    record_duration = std::max(record_duration, r.record->duration());
-    records[static_cast<std::size_t>(index)] = std::move(*r.record);
+    record_duration = std::max(record_duration, records[c].duration());
   }
   const bool udp_in = listen_port >= 0;
   if (!udp_in && inputs.args.size() != static_cast<std::size_t>(kS.inputs) && kS.inputs > 0) {
@@ -533,7 +533,7 @@ int hil_main(int argc, char** argv) {
     frames = static_cast<std::int64_t>(n);
   }
   config.frames = frames;
-  config.interpolate = interpolate;
+  config.sampling = sampling;
 
   // Alarms: the model file's ([[outputs]] alarm, alarm_hysteresis), then --alarm per channel.
   std::vector<ntn::hil::Alarm> alarms(kS.outputs);
@@ -572,43 +572,33 @@ int hil_main(int argc, char** argv) {
     return 2;
   }
   ntn::hil::UdpSocket socket;  // opened last, when the loop is ready (below)
-  std::FILE* csv = nullptr;
-  std::vector<char> csv_buffer;
+  ntn::hil::CsvWriter csv;
   if (!out_path.empty()) {
-    csv = std::fopen(out_path.c_str(), "wb");
-    if (csv == nullptr) {
+    if (!csv.open(out_path)) {
       std::fprintf(stderr, "error: --out: cannot write '%s': %s\n", out_path.c_str(),
-                   std::strerror(errno));
+                   csv.error().c_str());
       return 2;
     }
-    csv_buffer.resize(1 << 20);
-    std::setvbuf(csv, csv_buffer.data(), _IOFBF, csv_buffer.size());
-    std::string head = "time[s]";
-    for (int c = 0; c < kS.outputs; ++c) {
-      head += "," + std::string(mdl::kOutputNames[static_cast<std::size_t>(c)]) + "[" +
-              std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]) + "]";
-    }
-    head += ",flags\n";
-    std::fputs(head.c_str(), csv);
+    csv.header(mdl::kOutputNames, mdl::kOutputUnits, true);
   }
-  XXH3_state_t* run_hash = XXH3_createState();
-  if (run_hash == nullptr || XXH3_64bits_reset(run_hash) != XXH_OK) {
+  ntn::hil::OutputHash run_hash;
+  if (!run_hash.ok()) {
     std::fprintf(stderr, "error: cannot set up the output hash\n");
     return 2;
   }
   Sink sink;
-  sink.csv = csv;
+  sink.csv = &csv;
   sink.socket = reply_port != 0 ? &socket : nullptr;
   sink.reply_port = static_cast<std::uint16_t>(reply_port);
   sink.period = period;
-  sink.run_hash = run_hash;
+  sink.hash = &run_hash;
 
   ntn::hil::Recorder recorder;
   if (!log_path.empty()) {
     ntn::hil::LogHeader h;
     h.inputs = kS.inputs, h.outputs = kS.outputs;
     h.substeps = static_cast<std::uint32_t>(config.substeps);
-    h.interpolate = interpolate ? 1U : 0U;
+    h.interpolate = sampling == ntn::hil::InputSampling::kFrameInterpolated ? 1U : 0U;
     h.period = period, h.dt = g_model.dt, h.model = std::string(mdl::kName);
     if (!recorder.open(log_path, h)) {
       std::fprintf(stderr, "error: --record: %s\n", recorder.error().c_str());
@@ -655,7 +645,7 @@ int hil_main(int argc, char** argv) {
       first_frame = source.first_frame;
       first_waited_ns = source.waited_ns;
     } else {
-      FileSource source{&records, &gate, period};
+      ntn::hil::RecordSource source(records, gate, period, g_model.dt);
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
                                   log_path.empty() ? nullptr : &recorder, config, alarms, times,
                                   &g_checkpoint);
@@ -680,17 +670,11 @@ int hil_main(int argc, char** argv) {
   // Files are finished whatever happened; a write error (disk full) is an error of the run.
   std::vector<std::string> write_errors;
   if (!log_path.empty() && !recorder.close()) write_errors.push_back(recorder.error());
-  if (csv != nullptr) {
-    int err = std::fflush(csv) != 0 || std::ferror(csv) != 0 ? (errno != 0 ? errno : EIO) : 0;
-    if (std::fclose(csv) != 0 && err == 0) err = errno != 0 ? errno : EIO;
-    csv = nullptr;
-    if (err != 0) {
-      write_errors.push_back("--out: write error in " + out_path + ": " + std::strerror(err) +
-                             " (the CSV is incomplete)");
-    }
+  if (csv.is_open() && !csv.close()) {
+    write_errors.push_back("--out: write error in " + out_path + ": " + csv.error() +
+                           " (the CSV is incomplete)");
   }
-  const std::uint64_t hash_value = XXH3_64bits_digest(run_hash);
-  XXH3_freeState(run_hash);
+  const std::uint64_t hash_value = run_hash.finish(g_state);
   const char* stop_signal = g_stop == SIGINT ? "SIGINT" : g_stop == SIGTERM ? "SIGTERM" : "";
 
   // ---- summary ----
@@ -709,7 +693,9 @@ int hil_main(int argc, char** argv) {
         "ntn-hil  %s, %s clock, %lld frames of %g ms x %d substeps (dt %.4g us), %s inputs%s\n",
         std::string(mdl::kName).c_str(), clock_name.c_str(), static_cast<long long>(result.frames),
         period * 1e3, config.substeps, g_model.dt * 1e6, udp_in ? "UDP" : "file",
-        interpolate ? " interpolated" : " held");
+        sampling == ntn::hil::InputSampling::kStep                ? " per kernel step"
+        : sampling == ntn::hil::InputSampling::kFrameInterpolated ? " interpolated"
+                                                                  : " held");
     std::printf("  wall %.3f s for %.3f s simulated (%.1fx real time)\n", wall,
                 static_cast<double>(result.frames) * period,
                 static_cast<double>(result.frames) * period / wall);
@@ -807,6 +793,7 @@ int hil_main(int argc, char** argv) {
   if (!json_path.empty()) {
     std::ofstream js(json_path);
     js << "{\n  \"model\": \"" << mdl::kName << "\",\n  \"clock\": \"" << clock_name
+       << "\",\n  \"sampling\": \"" << ntn::hil::to_string(sampling)
        << "\",\n  \"frames\": " << result.frames << ",\n  \"frames_requested\": " << frames
        << ",\n  \"stopped_by\": "
        << (result.stopped ? "\"" + std::string(stop_signal) + "\"" : std::string("null"))

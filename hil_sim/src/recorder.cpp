@@ -53,10 +53,6 @@ std::string hex(std::uint64_t v) {
 
 }  // namespace
 
-std::uint64_t hash_outputs(std::span<const double> outputs) {
-  return XXH3_64bits(outputs.data(), outputs.size_bytes());
-}
-
 // ---- Recorder ----
 
 Recorder::~Recorder() {

@@ -591,6 +591,110 @@ TEST_F(Loop, RoguePacketsDoNotMoveTheSchedule) {
 
 // Soak: 10^6 frames on the virtual clock, no allocation after the start, and a second run gives
 // the same hash of every frame's outputs (label soak: about a minute in Release).
+// Input sampling (sampling.hpp, issue 13 item 5): with kStep every kernel step n gets the
+// source's step_inputs(n), in order, and a step count that is not whole frames cuts the last
+// frame short. The loop's state must equal, bit for bit, a plain start / step loop fed the same
+// values (the runner's semantics before it ran the loop); the held run must not (the option does
+// something). Synthetic values through start (frame 0's, which are step 0's) and every step.
+struct StepSource {
+  ntn::hil::InputGate* gate;
+  int substeps = 1;
+  std::int64_t next_step = 0;  // the step_inputs call expected next
+  bool in_order = true;
+  static std::array<double, kS.inputs> at(std::int64_t n) {
+    return {ntn_test::input_sample(0, n), ntn_test::input_sample(1, n),
+            10 * ntn_test::input_sample(2, n)};
+  }
+  void frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
+    gate->begin_frame(k);
+    (void)gate->accept_values(k, at(k * substeps));
+    gate->end_frame(v, flags);
+  }
+  void step_inputs(std::int64_t n, std::span<double> v) {
+    in_order = in_order && n == next_step++;
+    const auto x = at(n);
+    std::copy(x.begin(), x.end(), v.begin());
+  }
+};
+
+struct StepCountSink {
+  std::int64_t steps = 0, frames = 0;
+  void after_step(const ntn::State<kS>&, const ntn::Scratch<kS>&) { ++steps; }
+  void frame_outputs(std::int64_t, std::span<const double>, std::uint16_t) { ++frames; }
+};
+
+TEST_F(Loop, StepSamplingFeedsEveryStepAndCutsTheLastFrame) {
+  const int n_sub = static_cast<int>(std::llround(1e-3 / model.dt));
+  ASSERT_GT(n_sub, 1);
+  const std::int64_t steps = 57 * n_sub + n_sub / 2 + 1;  // 57 frames and part of one
+  ntn::State<kS> reference;
+  ntn::Scratch<kS> w;
+  (void)ntn::start(model, reference, w, StepSource::at(0));
+  for (std::int64_t n = 0; n < steps; ++n)
+    (void)ntn::step(model, reference, w, StepSource::at(n));
+
+  const auto run_with = [&](ntn::hil::InputSampling sampling, StepSource& source,
+                            StepCountSink& sink) {
+    state = {};
+    ntn::hil::LoopConfig config;
+    config.period = 1e-3;
+    config.substeps = n_sub;
+    config.steps = steps;
+    config.frames = (steps + n_sub - 1) / n_sub;
+    config.sampling = sampling;
+    ntn::hil::VirtualClock clock;
+    ntn::hil::FrameTimes times;
+    std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+    return ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config, alarms,
+                              times);
+  };
+  ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
+  StepSource source{&gate, n_sub};
+  StepCountSink sink;
+  const ntn::hil::LoopResult r = run_with(ntn::hil::InputSampling::kStep, source, sink);
+  EXPECT_EQ(r.frames, 58);
+  EXPECT_EQ(sink.frames, 58);
+  EXPECT_EQ(sink.steps, steps);
+  EXPECT_EQ(state.tick, steps);
+  EXPECT_EQ(source.next_step, steps);
+  EXPECT_TRUE(source.in_order);
+  EXPECT_EQ(std::memcmp(state.u.data(), reference.u.data(), sizeof state.u), 0);
+  EXPECT_EQ(std::memcmp(state.v.data(), reference.v.data(), sizeof state.v), 0);
+
+  ntn::hil::InputGate gate_held(std::span<const ntn::InputSpec>(spec.inputs));
+  StepSource held{&gate_held, n_sub};
+  StepCountSink held_sink;
+  (void)run_with(ntn::hil::InputSampling::kFrameHeld, held, held_sink);
+  EXPECT_EQ(held.next_step, 0);  // step_inputs is not asked for
+  EXPECT_EQ(held_sink.steps, steps);
+  EXPECT_NE(std::memcmp(state.u.data(), reference.u.data(), sizeof state.u), 0);
+}
+
+// stop_at_divergence ends the run at the diverged frame (ntn-run-<model>); without it the loop
+// holds its safe state to the last frame.
+TEST_F(Loop, StopAtDivergenceEndsTheRun) {
+  for (const bool stop : {false, true}) {
+    state = {};
+    ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
+    StepSource source{&gate, 1};
+    StepCountSink sink;
+    ntn::hil::LoopConfig config;
+    config.frames = 50;
+    config.substeps = static_cast<int>(std::llround(config.period / model.dt));
+    config.kinetic_limit = 0;  // any motion is "diverged": frame 0 already
+    config.stop_at_divergence = stop;
+    ntn::hil::VirtualClock clock;
+    ntn::hil::FrameTimes times;
+    std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+    const ntn::hil::LoopResult r = ntn::hil::run_loop(model, state, scratch, clock, source, sink,
+                                                      nullptr, config, alarms, times);
+    ASSERT_EQ(r.diverged_frame, 0);
+    EXPECT_EQ(r.frames, stop ? 1 : 50);
+    EXPECT_EQ(sink.frames, stop ? 1 : 50);
+    EXPECT_FALSE(r.stopped);
+  }
+}
+
 TEST_F(Loop, SoakMillionFramesRepeatable) {
   ntn::hil::VirtualClock clock;
   ntn::hil::FrameTimes t1, t2;

@@ -43,6 +43,8 @@ awk 'BEGIN { print "time[s],roof_ux[m],roof_uy[m]";
 # A history (ntn-plot history) and a spectrum (ntn-plot psd).
 awk 'BEGIN { print "time[s],a[m]"; for (k = 0; k < 200; ++k) printf "%g,%g\n", k / 100, sin(k / 10) }' \
   >"$tmp/history.csv"
+# A ground motion of 5 g at t = 0.01 s: outside frame3d's accepted range [-3, 3] g of ag_x.
+printf 'time[s],ag_x[g]\n0,0\n0.01,5\n0.02,0\n' >"$tmp/out_of_range.csv"
 awk 'BEGIN { print "frequency[Hz],s1[m^2/Hz]"; for (k = 1; k < 200; ++k) printf "%g,%g\n", k / 20, 1 / (1 + (k / 20 - 2) ^ 2) }' \
   >"$tmp/psd.csv"
 

@@ -1,8 +1,14 @@
 // ntn-run-<model>: runs one compiled model on recorded inputs as fast as possible and writes
 // the response as CSV with a one-screen summary. The model comes from the header that
 // ntn_add_model() generated (NTN_MODEL_HEADER, namespace NTN_MODEL_NS).
-#include <xxhash.h>
-
+//
+// The run is the real-time loop's (hil_sim: ntn::hil::run_loop on the virtual clock, the record
+// source, the CSV sink and the output hash), so that for the same --sampling this program and
+// `ntn-hil-<model> run --clock virtual` compute the same steps, hash and CSV. What differs from
+// ntn-hil: the length is ceil(duration / dt) kernel steps (the last frame may be cut short), the
+// inputs are fed at every kernel step by default (--sampling step), every record sample is
+// checked against the input's range before the run, no kinetic energy limit (a run is diverged
+// when its state is no longer finite) and the run ends at the frame that diverged.
 #include <CLI/CLI.hpp>
 #include <array>
 #include <cerrno>
@@ -11,10 +17,18 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "cli.hpp"  // tools/io
+#include "ntn/hil/clock.hpp"
+#include "ntn/hil/csv_sink.hpp"
+#include "ntn/hil/gate.hpp"
+#include "ntn/hil/loop.hpp"
+#include "ntn/hil/output_hash.hpp"
+#include "ntn/hil/record_source.hpp"
+#include "ntn/hil/sampling.hpp"
 #include "ntn/kernel.hpp"
 #include "record.hpp"
 #include NTN_MODEL_HEADER
@@ -48,47 +62,31 @@ bool is_translation(const ntn::OutputSpec& o) {
 // step it is 12 days of wall time. A longer run is a slip of --duration (or of a record's DT).
 constexpr double kMaxSteps = 1e12;
 
-// The response CSV, written as the run goes in blocks of ~1 MiB (a long run does not hold its
-// whole response in memory); every write is checked.
-class CsvOut {
- public:
-  bool open(const std::string& path) {
-    path_ = path;
-    out_.open(path, std::ios::binary | std::ios::trunc);
-    if (!out_) error_ = std::strerror(errno);
-    buffer_.reserve(kBlock + 4096);
-    return static_cast<bool>(out_);
-  }
-  bool is_open() const { return out_.is_open(); }
-  std::string& buffer() { return buffer_; }
-  void maybe_flush() {
-    if (buffer_.size() >= kBlock) flush();
-  }
-  void flush() {
-    if (!out_.is_open() || !error_.empty()) return;
-    errno = 0;
-    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    if (!out_) error_ = errno != 0 ? std::strerror(errno) : "write failed";
-    buffer_.clear();
-  }
-  // Flushes and closes; the error of any write, or empty.
-  std::string close() {
-    flush();
-    if (out_.is_open()) {
-      errno = 0;
-      out_.close();
-      if (out_.fail() && error_.empty())
-        error_ = errno != 0 ? std::strerror(errno) : "close failed";
+// The loop's sink: every kernel step's outputs into the output hash and the peaks (at the step's
+// time), every frame's outputs as a CSV row (with the loop's flags under --flags).
+struct RunSink {
+  ntn::hil::OutputHash* hash;
+  ntn::hil::CsvWriter* csv;
+  bool flags = false;
+  double period = 1e-3;
+  std::array<Peak, kS.outputs> peaks{};
+  std::int64_t steps = 0;
+  void after_step(const ntn::State<kS>&, const ntn::Scratch<kS>& w) {
+    ++steps;
+    hash->add_step(w);
+    for (std::size_t c = 0; c < peaks.size(); ++c) {
+      const double v = std::abs(w.outputs[c]);
+      if (v > peaks[c].value) peaks[c] = {v, w.time};
     }
-    return error_;
   }
-
- private:
-  static constexpr std::size_t kBlock = 1 << 20;
-  std::string path_;
-  std::ofstream out_;
-  std::string buffer_;
-  std::string error_;
+  void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t f) {
+    if (!csv->is_open()) return;
+    if (flags) {
+      csv->row(static_cast<double>(k) * period, v, f);
+    } else {
+      csv->row(static_cast<double>(k) * period, v);
+    }
+  }
 };
 
 }  // namespace
@@ -100,13 +98,23 @@ int main(int argc, char** argv) {
   double duration = -1;
   std::string out_path;
   std::string json_path;
+  std::string sampling_name = "step";
   bool quiet = false;
+  bool flags = false;
   app.add_option("-i,--input", input_args,
                  "NAME=FILE: feed input channel NAME from a record (AT2 or CSV; "
                  "FILE:COLUMN picks a CSV column; values are converted to the input's unit)");
   app.add_option("-t,--duration", duration, "simulated time in s (default: longest record)")
       ->check(ntn::cli::Positive());
+  app.add_option("-s,--sampling", sampling_name,
+                 "step (the records at every kernel step; default), hold (at frame times, held "
+                 "over the frame) or interpolate (at frame times, linear over the frame, one "
+                 "frame of delay): hold and interpolate are what ntn-hil's loop does")
+      ->check(CLI::IsMember({"step", "hold", "interpolate"}));
   app.add_option("-o,--out", out_path, "CSV file for the response, one row per I/O frame");
+  app.add_flag("--flags", flags,
+               "add the loop's flags column to the CSV (input gate, alarm, diverged bits), as "
+               "ntn-hil writes it");
   app.add_option("--summary-json", json_path, "also write the summary as JSON");
   app.add_flag("-q,--quiet", quiet, "print only errors and the output hash");
   try {
@@ -115,6 +123,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // prints the message (or --help)
     return code == 0 ? 0 : 2;      // a usage error is bad input: 2, as every ntn tool
   }
+  const ntn::hil::InputSampling sampling = *ntn::hil::parse_sampling(sampling_name);
 
   // Output files: found unwritable before the run, not after it (the --out directory is
   // created, as a build step writing into a build tree wants).
@@ -126,7 +135,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Records for the input channels, by name, in each input's unit.
+  // Records for the input channels, by name, in each input's unit, every sample in range.
   const ntn::cli::InputArgs inputs = ntn::cli::parse_input_args(input_args, "--input");
   if (inputs.error) {
     std::fprintf(stderr, "error: %s\n", inputs.error->c_str());
@@ -144,32 +153,12 @@ int main(int argc, char** argv) {
                    in.name.c_str(), in.name.c_str());
       return 2;
     }
-    ntn::io::ReadResult r = ntn::io::read_record(in.file, in.column);
-    if (r.error) {
-      std::fprintf(stderr, "%s\n", r.error->format().c_str());
-      return 2;
-    }
     const auto k = static_cast<std::size_t>(index);
-    const ntn::InputSpec& spec = mdl::kSpec.inputs[k];
-    const ntn::io::Unit unit =
-        ntn::io::input_unit(spec.kind == ntn::InputKind::kGroundAcceleration, spec.dof, spec.scale);
-    if (const auto e = r.record->to_unit(unit)) {
-      std::fprintf(stderr, "%s: error: input '%s': %s\n", in.file.c_str(), in.name.c_str(),
-                   e->c_str());
+    if (const auto e = ntn::hil::load_input_record(mdl::kSpec.inputs[k], in.name, in.file,
+                                                   in.column, true, records[k])) {
+      std::fprintf(stderr, "%s\n", e->c_str());
       return 2;
     }
-    for (std::size_t s = 0; s < r.record->values.size(); ++s) {
-      const double v = r.record->values[s];
-      if (v < spec.min || v > spec.max) {
-        std::fprintf(stderr,
-                     "%s: error: sample %zu (t = %g s) = %g %s is outside the accepted range "
-                     "[%g, %g] of input '%s'\n",
-                     in.file.c_str(), s + 1, r.record->t0 + static_cast<double>(s) * r.record->dt,
-                     v, unit.name.c_str(), spec.min, spec.max, in.name.c_str());
-        return 2;
-      }
-    }
-    records[k] = std::move(*r.record);
     fed[k] = true;
   }
   double record_duration = 0;
@@ -224,83 +213,61 @@ int main(int argc, char** argv) {
   }
   const std::int64_t per_frame = substeps.count;
 
-  auto inputs_at = [&records](double t) {
-    std::array<double, kS.inputs> in{};
-    for (std::size_t k = 0; k < in.size(); ++k)
-      in[k] = records[k].at(t);
-    return in;
-  };
-
-  CsvOut out;
-  if (!out_path.empty() && !out.open(out_path)) {
+  ntn::hil::CsvWriter csv;
+  if (!out_path.empty() && !csv.open(out_path)) {
     std::fprintf(stderr, "error: --out: cannot write '%s': %s\n", out_path.c_str(),
-                 out.close().c_str());
+                 csv.error().c_str());
     return 2;
   }
-  std::string& csv = out.buffer();
-  csv += "time[s]";
-  for (int c = 0; c < kS.outputs; ++c) {
-    csv += ',';
-    csv += mdl::kOutputNames[static_cast<std::size_t>(c)];
-    csv += '[';
-    csv += mdl::kOutputUnits[static_cast<std::size_t>(c)];
-    csv += ']';
+  csv.header(mdl::kOutputNames, mdl::kOutputUnits, flags);
+  ntn::hil::OutputHash hash;
+  if (!hash.ok()) {
+    std::fprintf(stderr, "error: cannot set up the output hash\n");
+    return 2;
   }
-  csv += '\n';
 
-  std::array<Peak, kS.outputs> peaks{};
-  XXH3_state_t* hash = XXH3_createState();
-  XXH3_64bits_reset(hash);
-  int held = 0;
-  bool diverged = false;
+  // The loop (hil_sim/include/ntn/hil/loop.hpp) on the virtual clock: the frames that hold
+  // the steps, the last one cut short; the model file's alarms (they only set the flags).
+  ntn::hil::LoopConfig config;
+  config.period = period;
+  config.substeps = static_cast<int>(per_frame);
+  config.steps = steps;
+  config.frames = (steps + per_frame - 1) / per_frame;
+  config.sampling = sampling;
+  config.kinetic_limit = std::numeric_limits<double>::infinity();
+  config.stop_at_divergence = true;
+  std::vector<ntn::hil::Alarm> alarms(kS.outputs);
+  for (std::size_t c = 0; c < alarms.size(); ++c) {
+    alarms[c].enabled = mdl::kAlarmLimits[c] > 0;
+    alarms[c].limit = mdl::kAlarmLimits[c];
+    alarms[c].hysteresis = mdl::kAlarmHysteresis[c];
+  }
+  ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(mdl::kSpec.inputs));
+  ntn::hil::RecordSource source(records, gate, period, dt);
+  RunSink sink{&hash, &csv, flags, period};
+  ntn::hil::VirtualClock clock;
+  ntn::hil::FrameTimes times;  // not kept: no latency on the virtual clock
 
   const auto t0 = std::chrono::steady_clock::now();
-  if (ntn::start(g_model, g_state, g_scratch, inputs_at(0.0)) != ntn::StepStatus::kOk) ++held;
-  char row[64];
-  std::int64_t n = 0;
-  for (; n < steps; ++n) {
-    const double t = static_cast<double>(n) * dt;
-    const ntn::StepStatus st = ntn::step(g_model, g_state, g_scratch, inputs_at(t));
-    if (st == ntn::StepStatus::kInputHeld) ++held;
-    XXH3_64bits_update(hash, g_scratch.outputs.data(), sizeof g_scratch.outputs);
-    for (std::size_t c = 0; c < peaks.size(); ++c) {
-      const double v = std::abs(g_scratch.outputs[c]);
-      if (v > peaks[c].value) peaks[c] = {v, g_scratch.time};
-    }
-    if (out.is_open() && n % per_frame == 0) {
-      std::snprintf(row, sizeof row, "%.9g", g_scratch.time);
-      csv += row;
-      for (double v : g_scratch.outputs) {
-        std::snprintf(row, sizeof row, ",%.17g", v);
-        csv += row;
-      }
-      csv += '\n';
-      out.maybe_flush();
-    }
-    if (st == ntn::StepStatus::kDiverged) {
-      diverged = true;
-      ++n;
-      break;
-    }
-  }
+  const ntn::hil::LoopResult result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source,
+                                                         sink, nullptr, config, alarms, times);
   // At least 1 ns: a run of one step on a coarse clock must not print an infinite speed.
   const double wall =
       std::max(1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  XXH3_64bits_update(hash, g_state.u.data(), sizeof g_state.u);
-  XXH3_64bits_update(hash, g_state.v.data(), sizeof g_state.v);
+  const std::int64_t n = sink.steps;
+  const bool diverged = result.diverged_frame >= 0;
   char digest[17];
   std::snprintf(digest, sizeof digest, "%016llx",
-                static_cast<unsigned long long>(XXH3_64bits_digest(hash)));
-  XXH3_freeState(hash);
+                static_cast<unsigned long long>(hash.finish(g_state)));
 
-  if (out.is_open()) {
-    if (const std::string e = out.close(); !e.empty()) {
-      std::fprintf(stderr, "error: --out: writing '%s' failed: %s\n", out_path.c_str(), e.c_str());
-      return 2;
-    }
+  if (csv.is_open() && !csv.close()) {
+    std::fprintf(stderr, "error: --out: writing '%s' failed: %s\n", out_path.c_str(),
+                 csv.error().c_str());
+    return 2;
   }
 
   const double simulated = static_cast<double>(n) * dt;
+  const auto& peaks = sink.peaks;
   const auto& stable = g_model.stable;
   const int gov = stable.governing_element;
   if (!quiet) {
@@ -332,6 +299,12 @@ int main(int argc, char** argv) {
     std::printf("  time step   dt = %.6g s (stable %.6g s, %s), %lld per %g ms frame\n", dt,
                 stable.dt_stable, governing.c_str(), static_cast<long long>(per_frame),
                 period * 1e3);
+    if (sampling != ntn::hil::InputSampling::kStep) {
+      std::printf("  sampling    %s: inputs at frame times%s\n", ntn::hil::to_string(sampling),
+                  sampling == ntn::hil::InputSampling::kFrameHeld
+                      ? ", held over the frame"
+                      : ", linear over the frame (one frame of delay)");
+    }
     std::printf(
         "  run         %lld steps, %.3f s simulated, wall %.3f s, real-time factor %.1fx, "
         "%.3f us/step\n",
@@ -357,14 +330,16 @@ int main(int argc, char** argv) {
                     std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]).c_str(), p.time);
       }
     }
-    if (held > 0)
-      std::printf("  inputs held %d steps had a non-finite input (last good value held)\n", held);
+    if (result.input_held_frames > 0)
+      std::printf(
+          "  inputs held %llu frames had an input the gate refused (last good value held)\n",
+          static_cast<unsigned long long>(result.input_held_frames));
     if (diverged)
       std::printf("  DIVERGED    the state became non-finite at step %lld\n",
                   static_cast<long long>(n));
     if (!out_path.empty()) {
       std::printf("  response    %s (%lld rows, one per frame)\n", out_path.c_str(),
-                  static_cast<long long>((n + per_frame - 1) / per_frame));
+                  static_cast<long long>(result.frames));
     }
   }
   std::printf("  output hash %s\n", digest);
@@ -373,7 +348,8 @@ int main(int argc, char** argv) {
     errno = 0;
     std::ofstream js(json_path, std::ios::binary | std::ios::trunc);
     js << "{\n  \"model\": \"" << mdl::kName << "\",\n  \"dt\": " << fmt("%.17g", dt)
-       << ",\n  \"dt_stable\": " << fmt("%.17g", stable.dt_stable) << ",\n  \"steps\": " << n
+       << ",\n  \"dt_stable\": " << fmt("%.17g", stable.dt_stable) << ",\n  \"sampling\": \""
+       << ntn::hil::to_string(sampling) << "\",\n  \"steps\": " << n
        << ",\n  \"simulated_s\": " << fmt("%.17g", simulated)
        << ",\n  \"wall_s\": " << fmt("%.6g", wall)
        << ",\n  \"real_time_factor\": " << fmt("%.6g", simulated / wall)

@@ -1,6 +1,8 @@
 // The fixed-rate frame loop (DESIGN §8): one I/O frame per period, N kernel substeps per frame
-// (dt = period / N), inputs held or linearly interpolated within the frame, outputs and alarms
-// per frame, per-frame wake-up latency, compute time and overruns, and an optional log.
+// (dt = period / N), inputs sampled per kernel step or per frame, held or linearly interpolated
+// within the frame (sampling.hpp), outputs and alarms per frame, per-frame wake-up latency,
+// compute time and overruns, and an optional log. ntn-hil-<model> runs it on either clock and
+// ntn-run-<model> on the virtual clock (the one run driver of both, issue 13).
 //
 // Overrun policy: catch up. Frames are processed strictly in index order, each with its own
 // accepted inputs; a late frame is followed at once by the next one, without sleeping, until
@@ -25,15 +27,25 @@
 #include "ntn/hil/divergence.hpp"
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/recorder.hpp"
+#include "ntn/hil/sampling.hpp"
 #include "ntn/kernel.hpp"
 
 namespace ntn::hil {
 
 struct LoopConfig {
   std::int64_t frames = 0;
-  int substeps = 1;           // kernel steps per frame: period = substeps x dt
-  bool interpolate = false;   // linear between the previous and this frame's value (one frame
-                              // of delay, since the next sample is not known yet); else hold
+  int substeps = 1;  // kernel steps per frame: period = substeps x dt
+  // What each kernel step is given (sampling.hpp): the frame's inputs held, interpolated from
+  // the previous frame's (one frame of delay), or the source's value at that step (a source
+  // with `step_inputs`; one without it is held).
+  InputSampling sampling = InputSampling::kFrameHeld;
+  // When >= 0: the run ends after this many kernel steps, its last frame cut short (its outputs
+  // are still those after its first substep); `frames` must then be ceil(steps / substeps).
+  // ntn-run-<model> runs ceil(duration / dt) steps. < 0: frames x substeps.
+  std::int64_t steps = -1;
+  // End the run after the frame that diverged (its outputs given to the sink and recorded)
+  // instead of holding the safe state to the last frame (ntn-run-<model>).
+  bool stop_at_divergence = false;
   double period = 1e-3;       // s
   double kinetic_limit = -1;  // J: a frame whose 1/2 v^T M v passes it is diverged; < 0: the
                               // model's kinetic_energy_limit (+Inf where it has no bound)
@@ -104,6 +116,8 @@ std::int64_t source_epoch_ns(const Source& source) {
 // std::span<const double> v, std::uint16_t flags)` gets the outputs with the gate's bits and
 // the loop's (flag::kAlarm, kOverrun, kDiverged).
 // Outputs of frame k are the channels at t_k = k period (after the frame's first substep).
+// With InputSampling::kStep the source also has `void step_inputs(std::int64_t n,
+// std::span<double> v)`, kernel step n's inputs (n = k substeps + i for substep i of frame k).
 // A sink may also have `void after_step(const State<S>&, const Scratch<S>&)`, called after every
 // kernel step (soak tests measure energy and constraints there).
 // `checkpoint`, when given, holds the state at the end of the last good frame (at the start
@@ -145,11 +159,23 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
     std::uint16_t flags = in_flags;
     if ((in_flags & flag::kHeld) != 0) ++result.input_held_frames;
     if (!diverged) {
-      for (int i = 0; i < config.substeps; ++i) {
-        if (config.interpolate) {
+      const std::int64_t first_step = k * config.substeps;
+      const int substeps = config.steps < 0 ? config.substeps
+                                            : static_cast<int>(std::min<std::int64_t>(
+                                                  config.substeps, config.steps - first_step));
+      for (int i = 0; i < substeps; ++i) {
+        if (config.sampling == InputSampling::kFrameInterpolated) {
           const double s = static_cast<double>(i) / static_cast<double>(config.substeps);
           for (std::size_t c = 0; c < step_in.size(); ++c)
             step_in[c] = previous[c] + s * (current[c] - previous[c]);
+        } else if constexpr (requires {
+                               source.step_inputs(first_step, std::span<double>(step_in));
+                             }) {
+          if (config.sampling == InputSampling::kStep) {
+            source.step_inputs(first_step + i, step_in);
+          } else {
+            step_in = current;
+          }
         } else {
           step_in = current;
         }
@@ -220,6 +246,7 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
       times.compute_ns.push_back(monotonic_ns() - c0);
     }
     ++result.frames;
+    if (diverged && config.stop_at_divergence) break;
     if (config.stop != nullptr && *config.stop != 0) {
       result.stopped = result.frames < config.frames;
       break;

@@ -50,8 +50,6 @@ struct LogFrame {
   std::vector<double> outputs;
 };
 
-std::uint64_t hash_outputs(std::span<const double> outputs);
-
 // Writes a log. open() allocates the FILE buffer (1 MiB) and the frame buffer; write_frame()
 // does not allocate. A write error (disk full) is kept and reported by close().
 class Recorder {

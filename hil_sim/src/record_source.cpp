@@ -1,0 +1,52 @@
+#include "ntn/hil/record_source.hpp"
+
+#include <cstdio>
+
+namespace ntn::hil {
+
+std::optional<std::string> load_input_record(const InputSpec& spec, const std::string& name,
+                                             const std::string& file, const std::string& column,
+                                             bool check_range, io::Record& record) {
+  io::ReadResult r = io::read_record(file, column);
+  if (r.error) return r.error->format();
+  const io::Unit unit =
+      io::input_unit(spec.kind == InputKind::kGroundAcceleration, spec.dof, spec.scale);
+  if (const auto e = r.record->to_unit(unit)) return file + ": error: input '" + name + "': " + *e;
+  if (check_range) {
+    for (std::size_t s = 0; s < r.record->values.size(); ++s) {
+      const double v = r.record->values[s];
+      if (v < spec.min || v > spec.max) {
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      "%s: error: sample %zu (t = %g s) = %g %s is outside the accepted range "
+                      "[%g, %g] of input '%s'",
+                      file.c_str(), s + 1, r.record->t0 + static_cast<double>(s) * r.record->dt, v,
+                      unit.name.c_str(), spec.min, spec.max, name.c_str());
+        return std::string(text);
+      }
+    }
+  }
+  record = std::move(*r.record);
+  return std::nullopt;
+}
+
+RecordSource::RecordSource(std::span<const io::Record> records, InputGate& gate, double period,
+                           double dt)
+    : records_(records), gate_(&gate), period_(period), dt_(dt), sample_(records.size()) {}
+
+void RecordSource::frame_inputs(std::int64_t k, std::span<double> v, std::uint16_t& flags) {
+  const double t = static_cast<double>(k) * period_;
+  for (std::size_t c = 0; c < sample_.size(); ++c)
+    sample_[c] = records_[c].at(t);
+  gate_->begin_frame(k);
+  (void)gate_->accept_values(k, sample_);
+  gate_->end_frame(v, flags);
+}
+
+void RecordSource::step_inputs(std::int64_t n, std::span<double> v) const {
+  const double t = static_cast<double>(n) * dt_;
+  for (std::size_t c = 0; c < records_.size() && c < v.size(); ++c)
+    v[c] = records_[c].at(t);
+}
+
+}  // namespace ntn::hil
