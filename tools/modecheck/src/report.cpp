@@ -3,6 +3,7 @@
 #include <fstream>
 #include <string>
 
+#include "json.hpp"  // tools/io
 #include "ntn/modecheck/modecheck.hpp"
 
 namespace ntn::modecheck {
@@ -18,33 +19,7 @@ std::string num(double v, const char* f = "%.6g") {
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
 std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        o += "\\\"";
-        break;
-      case '\\':
-        o += "\\\\";
-        break;
-      case '\n':
-        o += "\\n";
-        break;
-      case '\t':
-        o += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char u[8];
-          std::snprintf(u, sizeof u, "\\u%04x",
-                        static_cast<unsigned>(static_cast<unsigned char>(c)));
-          o += u;
-        } else {
-          o += c;
-        }
-    }
-  }
-  return o + "\"";
+  return json::quoted(s);
 }
 
 std::string json_number(double v) {
