@@ -12,6 +12,37 @@
 #include "ntn/beam.hpp"
 
 namespace ntn::modelc::compile {
+namespace {
+
+// The orientation vector of member m's elements (DESIGN §3): given, or the default reference
+// turned by `roll`; (dx, dy, dz) and len: the member's axis and length.
+void set_orientation(const Member& m, double dx, double dy, double dz, double len, ElementSpec& e) {
+  if (m.orientation) {
+    e.ref_x = (*m.orientation)[0], e.ref_y = (*m.orientation)[1], e.ref_z = (*m.orientation)[2];
+  } else if (len > 0) {
+    const double ex[3] = {dx / len, dy / len, dz / len};
+    // Vertical members (axis within 1e-3 rad of global Z) take global X as the reference,
+    // all others global Z.
+    const bool vertical = std::sqrt(ex[0] * ex[0] + ex[1] * ex[1]) < 1e-3;
+    const double r0[3] = {vertical ? 1.0 : 0.0, 0.0, vertical ? 0.0 : 1.0};
+    const double along = r0[0] * ex[0] + r0[1] * ex[1] + r0[2] * ex[2];
+    double ez[3] = {r0[0] - along * ex[0], r0[1] - along * ex[1], r0[2] - along * ex[2]};
+    const double zn = std::sqrt(ez[0] * ez[0] + ez[1] * ez[1] + ez[2] * ez[2]);
+    for (double& c : ez)
+      c /= zn;
+    const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
+                          ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
+    // Right-handed turn by `roll` about local x: z' = cos(roll) z - sin(roll) y.
+    const double th = m.roll_deg * std::numbers::pi / 180.0;
+    const double c = m.roll_deg == 0.0 ? 1.0 : std::cos(th);
+    const double sn = m.roll_deg == 0.0 ? 0.0 : std::sin(th);
+    e.ref_x = c * ez[0] - sn * ey[0];
+    e.ref_y = c * ez[1] - sn * ey[1];
+    e.ref_z = c * ez[2] - sn * ey[2];
+  }
+}
+
+}  // namespace
 
 void mesh_members(Compilation& comp) {
   DiagnosticSink& L = comp.L;
@@ -58,29 +89,7 @@ void mesh_members(Compilation& comp) {
     // Orientation vector (DESIGN §3): given, or the default reference turned by `roll`.
     const double dx = nb.x - na.x, dy = nb.y - na.y, dz = nb.z - na.z;
     const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
-    if (m.orientation) {
-      e.ref_x = (*m.orientation)[0], e.ref_y = (*m.orientation)[1], e.ref_z = (*m.orientation)[2];
-    } else if (len > 0) {
-      const double ex[3] = {dx / len, dy / len, dz / len};
-      // Vertical members (axis within 1e-3 rad of global Z) take global X as the reference,
-      // all others global Z.
-      const bool vertical = std::sqrt(ex[0] * ex[0] + ex[1] * ex[1]) < 1e-3;
-      const double r0[3] = {vertical ? 1.0 : 0.0, 0.0, vertical ? 0.0 : 1.0};
-      const double along = r0[0] * ex[0] + r0[1] * ex[1] + r0[2] * ex[2];
-      double ez[3] = {r0[0] - along * ex[0], r0[1] - along * ex[1], r0[2] - along * ex[2]};
-      const double zn = std::sqrt(ez[0] * ez[0] + ez[1] * ez[1] + ez[2] * ez[2]);
-      for (double& c : ez)
-        c /= zn;
-      const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
-                            ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
-      // Right-handed turn by `roll` about local x: z' = cos(roll) z - sin(roll) y.
-      const double th = m.roll_deg * std::numbers::pi / 180.0;
-      const double c = m.roll_deg == 0.0 ? 1.0 : std::cos(th);
-      const double sn = m.roll_deg == 0.0 ? 0.0 : std::sin(th);
-      e.ref_x = c * ez[0] - sn * ey[0];
-      e.ref_y = c * ez[1] - sn * ey[1];
-      e.ref_z = c * ez[2] - sn * ey[2];
-    }
+    set_orientation(m, dx, dy, dz, len, e);
 
     // Whole-member geometry with the kernel's own check.
     e.node_i = a, e.node_j = b;
