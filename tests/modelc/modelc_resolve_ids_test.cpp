@@ -21,8 +21,6 @@ points = [[0, 0], [1, 1]]
 id = "step"
 points = [[0, 0], [0.5, 1], [2, 1]]
 
-[model.damping]
-alpha = 0
 )")};
   ASSERT_TRUE(s.read()) << s.errors();
   resolve_ids(s.comp());
@@ -56,7 +54,7 @@ TEST(ModelcResolveIds, DuplicatesNameTheFirstLine) {
 }
 
 TEST(ModelcResolveIds, UnknownReferencesAreReportedWhereTheyAre) {
-  Staged s{column("[model.damping]\nalpha = 0\n")};
+  Staged s{column("")};
   ASSERT_TRUE(s.read()) << s.errors();
   resolve_ids(s.comp());
   Compilation& c = s.comp();
