@@ -1,0 +1,172 @@
+// Stage mesh_members: the user's nodes in file order, then each member: its material and
+// section, its orientation vector (given, or the default reference turned by `roll`), the
+// kernel's geometry check (zero length, orientation parallel to the axis), `divisions` equal
+// elements with the interior nodes between, and for a member-end release a node at that end
+// and a pending hinge in the member's local axes (added by add_hinges).
+#include "compile.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "messages.hpp"
+#include "ntn/beam.hpp"
+
+namespace ntn::modelc::compile {
+namespace {
+
+// The orientation vector of member m's elements (DESIGN §3): given, or the default reference
+// turned by `roll`; (dx, dy, dz) and len: the member's axis and length.
+void set_orientation(const Member& m, double dx, double dy, double dz, double len, ElementSpec& e) {
+  if (m.orientation) {
+    e.ref_x = (*m.orientation)[0], e.ref_y = (*m.orientation)[1], e.ref_z = (*m.orientation)[2];
+  } else if (len > 0) {
+    const double ex[3] = {dx / len, dy / len, dz / len};
+    // Vertical members (axis within 1e-3 rad of global Z) take global X as the reference,
+    // all others global Z.
+    const bool vertical = std::sqrt(ex[0] * ex[0] + ex[1] * ex[1]) < 1e-3;
+    const double r0[3] = {vertical ? 1.0 : 0.0, 0.0, vertical ? 0.0 : 1.0};
+    const double along = r0[0] * ex[0] + r0[1] * ex[1] + r0[2] * ex[2];
+    double ez[3] = {r0[0] - along * ex[0], r0[1] - along * ex[1], r0[2] - along * ex[2]};
+    const double zn = std::sqrt(ez[0] * ez[0] + ez[1] * ez[1] + ez[2] * ez[2]);
+    for (double& c : ez)
+      c /= zn;
+    const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
+                          ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
+    // Right-handed turn by `roll` about local x: z' = cos(roll) z - sin(roll) y.
+    const double th = m.roll_deg * std::numbers::pi / 180.0;
+    const double c = m.roll_deg == 0.0 ? 1.0 : std::cos(th);
+    const double sn = m.roll_deg == 0.0 ? 0.0 : std::sin(th);
+    e.ref_x = c * ez[0] - sn * ey[0];
+    e.ref_y = c * ez[1] - sn * ey[1];
+    e.ref_z = c * ez[2] - sn * ey[2];
+  }
+}
+
+}  // namespace
+
+void mesh_members(Compilation& comp) {
+  DiagnosticSink& L = comp.L;
+  const SourceModel& p = comp.p;
+  ModelDescription& d = comp.d;
+  auto node_ref = [&comp](long long id, const Where& at) { return comp.node_ref(id, at); };
+  auto ref = [&comp](const std::map<std::string, int>& index, const IdAt& id,
+                     const std::string& what) { return comp.ref(index, id, what); };
+  const auto& materials = comp.ids.materials;
+  const auto& sections = comp.ids.sections;
+  std::vector<PendingHinge>& releases = comp.releases;
+
+  // User nodes first, in file order; generated nodes follow, member by member.
+  for (const UserNode& n : p.nodes) {
+    NodeSpec ns;
+    ns.x = n.x, ns.y = n.y, ns.z = n.z;
+    d.nodes.push_back(ns);
+    d.node_ids.push_back(static_cast<int>(n.id));
+  }
+
+  if (p.members.empty()) {
+    L.error_at_start("members",
+                     "the model has no members, so it has no mass and nothing to integrate");
+  }
+
+  for (std::size_t mi = 0; mi < p.members.size(); ++mi) {
+    const Member& m = p.members[mi];
+    const int a = node_ref(m.nodes[0], m.nodes_at);
+    const int b = node_ref(m.nodes[1], m.nodes_at);
+    const int mat = ref(materials, m.material, "material");
+    const int sec = ref(sections, m.section, "section");
+    if (a < 0 || b < 0 || mat < 0 || sec < 0) continue;
+    const Material& ma = p.materials[static_cast<std::size_t>(mat)];
+    const Section& se = p.sections[static_cast<std::size_t>(sec)];
+    const NodeSpec na = d.nodes[static_cast<std::size_t>(a)];
+    const NodeSpec nb = d.nodes[static_cast<std::size_t>(b)];
+
+    ElementSpec e;
+    e.E = ma.E, e.G = ma.G, e.rho = ma.rho;
+    e.A = se.A, e.Iy = se.Iy, e.Iz = se.Iz, e.J = se.J;
+    e.shear_area_y = se.shear_y, e.shear_area_z = se.shear_z;
+    e.member = static_cast<int>(mi);
+
+    // Orientation vector (DESIGN §3): given, or the default reference turned by `roll`.
+    const double dx = nb.x - na.x, dy = nb.y - na.y, dz = nb.z - na.z;
+    const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
+    set_orientation(m, dx, dy, dz, len, e);
+
+    // Whole-member geometry with the kernel's own check.
+    e.node_i = a, e.node_j = b;
+    const BeamGeometry g = beam_geometry(na, nb, e);
+    if (g.check == ElementCheck::kZeroLength) {
+      L.error(m.nodes_at, "member " + m.id.id + " has zero length: nodes " +
+                              std::to_string(m.nodes[0]) + " and " + std::to_string(m.nodes[1]) +
+                              " are both at (" + num(na.x) + ", " + num(na.y) + ", " + num(na.z) +
+                              ")");
+      continue;
+    }
+    if (g.check == ElementCheck::kOrientationParallel) {
+      L.error(m.orientation_at, "orientation (" + num(e.ref_x) + ", " + num(e.ref_y) + ", " +
+                                    num(e.ref_z) + ") is parallel to the axis of member " +
+                                    m.id.id);
+      continue;
+    }
+
+    // Mesh: divisions equal elements, interior nodes at x_a + (k / N)(x_b - x_a).
+    MemberInfo info;
+    info.name = m.id.id;
+    info.material = ma.id.id;
+    info.section = se.id.id;
+    info.first_element = static_cast<int>(d.elements.size());
+    info.element_count = m.divisions;
+    info.start_node = a;
+    info.end_node = b;
+    info.first_interior_node = static_cast<int>(d.nodes.size());
+    info.interior_node_count = m.divisions - 1;
+    int prev = a;
+    for (int k = 1; k <= m.divisions; ++k) {
+      int next = b;
+      if (k < m.divisions) {
+        const double t = static_cast<double>(k) / static_cast<double>(m.divisions);
+        NodeSpec n;
+        n.x = na.x + t * dx, n.y = na.y + t * dy, n.z = na.z + t * dz;
+        next = static_cast<int>(d.nodes.size());
+        d.nodes.push_back(n);
+        d.node_ids.push_back(kGeneratedNode);
+      }
+      ElementSpec el = e;
+      el.node_i = prev, el.node_j = next;
+      d.elements.push_back(el);
+      d.element_member.push_back(static_cast<int>(mi));
+      prev = next;
+    }
+    // Member-end releases: a node at the end, coincident with the joint, takes the end element;
+    // a hinge in the member's local axes (the end element's rotation) joins it to the joint.
+    for (int end = 0; end < 2; ++end) {
+      if (!m.release[end]) continue;
+      const int joint = end == 0 ? a : b;
+      const int el_index =
+          end == 0 ? info.first_element : info.first_element + info.element_count - 1;
+      NodeSpec rn;
+      rn.x = d.nodes[static_cast<std::size_t>(joint)].x;
+      rn.y = d.nodes[static_cast<std::size_t>(joint)].y;
+      rn.z = d.nodes[static_cast<std::size_t>(joint)].z;
+      const int rnode = static_cast<int>(d.nodes.size());
+      d.nodes.push_back(rn);
+      d.node_ids.push_back(kGeneratedNode);
+      ElementSpec& el = d.elements[static_cast<std::size_t>(el_index)];
+      (end == 0 ? el.node_i : el.node_j) = rnode;
+      PendingHinge ph;
+      ph.spec.node1 = rnode;
+      ph.spec.node2 = joint;
+      ph.spec.frame = beam_geometry(d.nodes[static_cast<std::size_t>(el.node_i)],
+                                    d.nodes[static_cast<std::size_t>(el.node_j)], el)
+                          .rotation;
+      ph.info = {m.id.id + (end == 0 ? ".start" : ".end"), HingeOrigin::kRelease,
+                 static_cast<int>(d.members.size()), end};
+      ph.dirs = &m.release[end]->dirs;
+      ph.at = m.release[end]->at;
+      releases.push_back(ph);
+      (end == 0 ? info.start_release_node : info.end_release_node) = rnode;
+    }
+    d.members.push_back(info);
+  }
+}
+
+}  // namespace ntn::modelc::compile

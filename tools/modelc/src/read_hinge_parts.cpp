@@ -1,0 +1,161 @@
+#include "read_hinge_parts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "messages.hpp"
+
+namespace ntn::modelc::compile {
+namespace {
+
+constexpr double kOrthonormal = 1e-9;  // hinge axes: |R R^T - I| and |det R - 1| at most this
+
+}  // namespace
+
+// One hinge direction: "rigid", "free", { linear = k, dashpot = c } or { curve = "id" }.
+std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const std::string& key) {
+  BehaviourIn b;
+  b.at = place(n.source(), key);
+  const std::string what =
+      "must be \"rigid\", \"free\", { linear = k, dashpot = c } or { curve = \"id\" }";
+  if (const auto* s = n.as_string()) {
+    if (s->get() == "rigid" || s->get() == "free") {
+      b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
+      return b;
+    }
+    L.error(n.source(), key, what + " (got \"" + s->get() + "\")");
+    return std::nullopt;
+  }
+  const auto* t = n.as_table();
+  if (t == nullptr) {
+    L.error(n.source(), key, what + ", got " + type_name(n));
+    return std::nullopt;
+  }
+  Table tb(L, *t, key, {"linear", "dashpot", "curve"});
+  tb.check_unknown();
+  if (tb.conflict("linear", "curve")) return std::nullopt;
+  if (tb.has("curve")) {
+    if (tb.has("dashpot")) {
+      L.error(tb.where("dashpot"), "only applies with 'linear'");
+      return std::nullopt;
+    }
+    auto c = read_id(L, tb, "curve");
+    if (!c) return std::nullopt;
+    b.kind = HingeBehaviour::kCurve;
+    b.curve = *c;
+    return b;
+  }
+  const toml::node* k = tb.get("linear", Need::kRequired, " (or give curve = \"id\")");
+  if (k == nullptr) return std::nullopt;
+  const auto kv = L.non_negative(*k, tb.key("linear"));
+  const auto cv = tb.non_negative("dashpot", Need::kOptional);
+  if (!kv || (!cv && tb.has("dashpot"))) return std::nullopt;
+  b.kind = HingeBehaviour::kLinear;
+  b.k = *kv;
+  b.c = cv.value_or(0.0);
+  return b;
+}
+
+// release_start / release_end: an array of DOF names (those free, the rest rigid), or a table
+// of behaviours per direction (those not named rigid).
+std::optional<Release> read_release(Reader& L, const toml::node& n, const std::string& key) {
+  Release r;
+  r.at = place(n.source(), key);
+  for (BehaviourIn& d : r.dirs)
+    d.at = r.at;
+  if (const auto* a = n.as_array()) {
+    if (a->empty()) {
+      L.error(n.source(), key,
+              "expected at least one DOF name to release (" + quoted_list(kDofNames) + ")");
+      return std::nullopt;
+    }
+    bool ok = true;
+    unsigned seen = 0;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string ik = key + "[" + std::to_string(i) + "]";
+      const auto d = L.choice((*a)[i], ik, kDofNames);
+      if (!d) {
+        ok = false;
+      } else if ((seen >> *d) & 1U) {
+        L.error(
+            (*a)[i].source(), ik,
+            "\"" + std::string(kDofNames[static_cast<std::size_t>(*d)]) + "\" is released twice");
+        ok = false;
+      } else {
+        seen |= 1U << *d;
+        r.dirs[static_cast<std::size_t>(*d)].kind = HingeBehaviour::kFree;
+        r.dirs[static_cast<std::size_t>(*d)].at = place((*a)[i].source(), ik);
+      }
+    }
+    if (!ok) return std::nullopt;
+    return r;
+  }
+  if (const auto* t = n.as_table()) {
+    Table tb(L, *t, key, kDofNames);
+    tb.check_unknown();
+    if (t->empty()) {
+      L.error(n.source(), key, "expected at least one direction (" + plain_list(kDofNames) + ")");
+      return std::nullopt;
+    }
+    bool ok = true;
+    for (std::size_t d = 0; d < kDofNames.size(); ++d) {
+      const toml::node* v = tb.get(kDofNames[d], Need::kOptional);
+      if (v == nullptr) continue;
+      auto b = read_behaviour(L, *v, tb.key(kDofNames[d]));
+      if (b) {
+        r.dirs[d] = *b;
+      } else {
+        ok = false;
+      }
+    }
+    if (!ok) return std::nullopt;
+    return r;
+  }
+  L.error(n.source(), key,
+          "must be an array of DOF names (released: free) or a table of behaviours per "
+          "direction, got " +
+              type_name(n));
+  return std::nullopt;
+}
+
+// Hinge axes: rows x, y, z in global axes, orthonormal and right-handed to 1e-9.
+std::optional<std::array<double, 9>> read_axes(Reader& L, const toml::node& n,
+                                               const std::string& key) {
+  auto rows =
+      L.array_of<std::vector<double>>(n, key, 3, [&L](const toml::node& e, const std::string& ek) {
+        return L.array_of<double>(
+            e, ek, 3, [&L](const toml::node& x, const std::string& xk) { return L.number(x, xk); });
+      });
+  if (!rows) return std::nullopt;
+  std::array<double, 9> R{};
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t c = 0; c < 3; ++c)
+      R[3 * r + c] = (*rows)[r][c];
+  double worst = 0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    for (std::size_t b = 0; b < 3; ++b) {
+      const double dot =
+          R[3 * a] * R[3 * b] + R[3 * a + 1] * R[3 * b + 1] + R[3 * a + 2] * R[3 * b + 2];
+      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
+    }
+  }
+  if (!(worst < kOrthonormal)) {
+    L.error(n.source(), key,
+            "axes must be orthonormal to 1e-9 (rows x, y, z of unit length, at right angles): "
+            "the largest entry of |R R^T - I| is " +
+                num(worst));
+    return std::nullopt;
+  }
+  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+                     R[2] * (R[3] * R[7] - R[4] * R[6]);
+  if (!(det > 0)) {
+    L.error(n.source(), key,
+            "axes must be right-handed (z = x cross y); these have det = " + num(det) +
+                ": turn the z row round");
+    return std::nullopt;
+  }
+  return R;
+}
+
+}  // namespace ntn::modelc::compile
