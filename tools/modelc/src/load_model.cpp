@@ -47,7 +47,6 @@ const std::vector<std::string_view> kComponents = {"N", "Vy", "Vz", "T", "My", "
 const std::vector<std::string_view> kHingeMethods = {"ntn_exact", "ntn_paper", "penalty"};
 const std::vector<std::string_view> kClampRules = {"momentum", "paper"};
 constexpr double kCoincident = 1e-9;    // m: hinge nodes closer than this coincide
-constexpr double kOrthonormal = 1e-9;   // hinge axes: |R R^T - I| and |det R - 1| at most this
 constexpr double kPenaltyFactor = 1e4;  // default penalty stiffness / largest element stiffness
 
 std::string num(double v) {
@@ -857,26 +856,17 @@ std::optional<std::array<double, 9>> read_axes(Loader& L, const toml::node& n,
   for (std::size_t r = 0; r < 3; ++r)
     for (std::size_t c = 0; c < 3; ++c)
       R[3 * r + c] = (*rows)[r][c];
-  double worst = 0;
-  for (std::size_t a = 0; a < 3; ++a) {
-    for (std::size_t b = 0; b < 3; ++b) {
-      const double dot =
-          R[3 * a] * R[3 * b] + R[3 * a + 1] * R[3 * b + 1] + R[3 * a + 2] * R[3 * b + 2];
-      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
-    }
-  }
-  if (!(worst < kOrthonormal)) {
+  const AxesCheck c = check_axes(R);  // the kernel's rule (make_hinge_data refuses the same)
+  if (!c.orthonormal) {
     L.error(n.source(), key,
             "axes must be orthonormal to 1e-9 (rows x, y, z of unit length, at right angles): "
             "the largest entry of |R R^T - I| is " +
-                num(worst));
+                num(c.worst));
     return std::nullopt;
   }
-  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
-                     R[2] * (R[3] * R[7] - R[4] * R[6]);
-  if (!(det > 0)) {
+  if (!c.right_handed) {
     L.error(n.source(), key,
-            "axes must be right-handed (z = x cross y); these have det = " + num(det) +
+            "axes must be right-handed (z = x cross y); these have det = " + num(c.det) +
                 ": turn the z row round");
     return std::nullopt;
   }
@@ -2189,20 +2179,14 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
       if (h.behaviour[k] != HingeBehaviour::kCurve) continue;
       const int ci = h.curve[k];
       const CurveSpec& cs = d.curves[static_cast<std::size_t>(ci)];
-      const CurvePoint* pt = d.curve_points.data() + cs.first;
       const double k_lim = k < 3 ? s.limit_stiffness : s.limit_rotational_stiffness;
       const std::string units = k < 3 ? " N/m" : " N m/rad";
       const std::string name = "curve '" + d.curve_ids[static_cast<std::size_t>(ci)] + "'";
       const Where& at = dir_at[hi][k];
-      int first = -1, last = -1, inner = -1;
-      for (int g = 0; g + 1 < cs.count; ++g) {
-        const double slope = (pt[g + 1].force - pt[g].force) / (pt[g + 1].d - pt[g].d);
-        if (slope >= k_lim) continue;
-        if (last >= 0 && last != g - 1 && inner < 0) inner = last + 1;
-        if (first < 0) first = g;
-        last = g;
-      }
-      if (first < 0) {
+      // The kernel's split (ntn::curve_branches), with the reason by segment.
+      const CurveBranches br = curve_branches(d.curve_points, cs, k_lim);
+      const int inner = br.inner;
+      if (br.first < 0) {
         L.error(at, name + " has no segment softer than the limit stiffness " + num(k_lim) + units +
                         ": all of it is a rigid branch. A direction without play is \"rigid\"; "
                         "for a spring or a gap, add softer segments or raise the limit stiffness");
@@ -2215,8 +2199,7 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
                         ") between softer ones: rigid branches may only end a curve");
         continue;
       }
-      const double lower = first > 0 ? pt[first].d : -1e300;
-      const double upper = last < cs.count - 2 ? pt[last + 1].d : 1e300;
+      const double lower = br.lower, upper = br.upper;
       if (lower > 0 || upper < 0) {
         auto end = [](double v) { return v <= -1e300 ? "-inf" : v >= 1e300 ? "+inf" : num(v); };
         L.error(at, name + " has its spring part from d = " + end(lower) + " to " + end(upper) +
@@ -2380,10 +2363,9 @@ std::optional<ModelDescription> build(Loader& L, const Parsed& p, const std::str
     case SubstepError::kTooMany:
       if (d.dt_auto) {
         L.error(p.model.dt_at,
-                "dt = \"auto\" needs " +
-                    num(std::ceil(s.frame_period / (0.9 * d.stable.dt_stable))) + " substeps in" +
-                    frame + ", more than the limit " + std::to_string(kMaxSubsteps) +
-                    " (ntn::kMaxSubsteps): " + stable_by +
+                "dt = \"auto\" needs " + num(auto_substeps(d.stable.dt_stable, s.frame_period)) +
+                    " substeps in" + frame + ", more than the limit " +
+                    std::to_string(kMaxSubsteps) + " (ntn::kMaxSubsteps): " + stable_by +
                     ". No machine runs such a model; check the units and the geometry there "
                     "(nodes almost coincident?), or lower frame_rate");
       } else {
