@@ -425,8 +425,9 @@ int hil_main(int argc, char** argv) {
   const double period = mdl::kSpec.settings.frame_period;
   ntn::hil::LoopConfig config;
   config.period = period;
-  // The kernel's frame rule, the one the model compiler checked (ntn::frame_substeps).
-  const ntn::Substeps substeps = ntn::frame_substeps(g_model.dt, period);
+  // N by the kernel's frame rule (ntn::frame_substeps), stored once by init; the model compiler
+  // checked it.
+  const ntn::Substeps& substeps = g_model.substeps;
   if (!substeps.ok()) {
     std::fprintf(stderr, "error: model '%s': dt = %g s, frame period %g s: %s\n",
                  std::string(mdl::kName).c_str(), g_model.dt, period,

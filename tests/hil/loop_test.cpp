@@ -71,7 +71,7 @@ std::uint64_t run(std::int64_t frames, long nan_every, Clock& clock, ntn::hil::F
   ntn::hil::LoopConfig config;
   config.frames = frames;
   config.period = 1e-3;
-  config.substeps = static_cast<int>(std::llround(config.period / model.dt));
+  config.substeps = static_cast<int>(model.substeps.count);
   std::vector<ntn::hil::Alarm> alarms(kS.outputs);
   alarms[0] = {.enabled = true, .limit = 1e-4, .hysteresis = 1e-5};
   times.reserve(frames);
@@ -88,8 +88,10 @@ class Loop : public ::testing::Test {
   void SetUp() override {
     // dt divides the 1 ms frame: the largest period / N below 0.9 dt_stable.
     ASSERT_TRUE(ntn_test::feature_frame(spec));
+    spec.settings.frame_period = 1e-3;
     spec.settings.dt = ntn::auto_time_step(ntn::stable_time_step(ntn::view(spec)).dt_stable, 1e-3);
     ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(model.substeps.ok());  // N, stored once by init (ntn::frame_substeps)
   }
 };
 
@@ -132,7 +134,7 @@ TEST_F(Loop, SourceFixesTheDeadlines) {
   HashSink sink;
   ntn::hil::LoopConfig config;
   config.frames = 20;
-  config.substeps = static_cast<int>(std::llround(config.period / model.dt));
+  config.substeps = static_cast<int>(model.substeps.count);
   ntn::hil::RealClock clock;
   ntn::hil::FrameTimes times;
   times.reserve(config.frames);
@@ -340,7 +342,7 @@ TEST_F(Loop, NoFalseAlarmAtFullRangeResonance) {
   TraceSink sink;
   ntn::hil::LoopConfig config;
   config.frames = 20'000;
-  config.substeps = static_cast<int>(std::llround(1e-3 / model.dt));
+  config.substeps = static_cast<int>(model.substeps.count);
   ntn::hil::VirtualClock clock;
   ntn::hil::FrameTimes times;
   std::vector<ntn::hil::Alarm> alarms(kS.outputs);
@@ -441,7 +443,7 @@ ScheduleRun run_schedule(std::int64_t frames, std::vector<Arrival> arrivals,
   TraceSink sink;
   ntn::hil::LoopConfig config;
   config.frames = frames;
-  config.substeps = static_cast<int>(std::llround(config.period / model.dt));
+  config.substeps = static_cast<int>(model.substeps.count);
   ntn::hil::FrameTimes times;
   times.reserve(frames);
   std::vector<ntn::hil::Alarm> alarms(kS.outputs);

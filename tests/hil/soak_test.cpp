@@ -178,7 +178,7 @@ struct Soak : ::testing::Test {
   }
 
   static int substeps() {
-    return static_cast<int>(std::llround(mdl::kSpec.settings.frame_period / model.dt));
+    return static_cast<int>(model.substeps.count);  // N, stored once by init
   }
 
   static SoakRun run(std::int64_t frames, SoakSink& sink) {

@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "ntn/footprint.hpp"  // its static_asserts: the footprint equals sizeof
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/frames.hpp"

@@ -76,8 +76,8 @@ bool simulate(const std::string& csv_path) {
     return in;
   };
   const double dt = g_model.dt;
-  const auto per_frame =
-      std::max<long long>(1, std::llround(mdl::kSpec.settings.frame_period / dt));
+  const long long per_frame = g_model.substeps.count;  // N, stored once by init
+  if (per_frame < 1) return false;
   const auto frames = std::llround(kDuration / mdl::kSpec.settings.frame_period);
   std::FILE* out = std::fopen(csv_path.c_str(), "wb");
   if (out == nullptr) return false;

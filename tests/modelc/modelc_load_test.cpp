@@ -15,6 +15,7 @@
 #include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
+#include "ntn/time_step.hpp"
 
 namespace {
 
@@ -218,11 +219,15 @@ TEST(ModelLoad, AutoTimeStepFillsFrameBelowStable) {
     const auto r = load_model(config(file));
     ASSERT_TRUE(r.ok());
     const auto& d = *r.model;
-    const double n = d.settings.frame_period / d.settings.dt;
-    EXPECT_NEAR(n, std::round(n), 1e-9 * n) << file;
+    // N by the kernel's frame rule; dt is derived from it, period / N, to the bit.
+    const ntn::Substeps n = ntn::frame_substeps(d.settings.dt, d.settings.frame_period);
+    ASSERT_TRUE(n.ok()) << file;
+    EXPECT_EQ(d.settings.dt, d.settings.frame_period / static_cast<double>(n.count)) << file;
     EXPECT_LE(d.settings.dt, 0.9 * d.stable.dt_stable) << file;
-    if (std::round(n) > 1) {
-      EXPECT_GT(d.settings.frame_period / (std::round(n) - 1), 0.9 * d.stable.dt_stable) << file;
+    if (n.count > 1) {
+      EXPECT_GT(d.settings.frame_period / static_cast<double>(n.count - 1),
+                0.9 * d.stable.dt_stable)
+          << file;
     }
     EXPECT_EQ(d.settings.frame_period, 1.0 / d.frame_rate);
   }
@@ -231,8 +236,9 @@ TEST(ModelLoad, AutoTimeStepFillsFrameBelowStable) {
     std::string text = kHead + kMember;
     text.replace(text.find("name = \"m\""), 10, std::string("name = \"m\"\nframe_rate = ") + rate);
     const auto d = load_ok(text);
-    const double n = d.settings.frame_period / d.settings.dt;
-    EXPECT_NEAR(n, std::round(n), 1e-9 * n) << rate;
+    const ntn::Substeps n = ntn::frame_substeps(d.settings.dt, d.settings.frame_period);
+    ASSERT_TRUE(n.ok()) << rate;
+    EXPECT_EQ(d.settings.dt, d.settings.frame_period / static_cast<double>(n.count)) << rate;
     EXPECT_LE(d.settings.dt, 0.9 * d.stable.dt_stable) << rate;
   }
 }

@@ -204,8 +204,9 @@ int main(int argc, char** argv) {
   }
   const auto steps = static_cast<std::int64_t>(wanted_steps);
   const double period = mdl::kSpec.settings.frame_period;
-  // The kernel's frame rule (ntn::frame_substeps), the one the model compiler checked.
-  const ntn::Substeps substeps = ntn::frame_substeps(dt, period);
+  // N by the kernel's frame rule (ntn::frame_substeps), stored once by init; the model compiler
+  // checked it.
+  const ntn::Substeps& substeps = g_model.substeps;
   if (!substeps.ok()) {
     std::fprintf(stderr, "error: model '%s': dt = %g s, frame period %g s: %s\n",
                  std::string(mdl::kName).c_str(), dt, period, ntn::to_string(substeps.error));

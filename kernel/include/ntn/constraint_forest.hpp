@@ -192,6 +192,119 @@ inline M6 own_mass(std::span<const double> mass, int node) {
 
 }  // namespace detail
 
+// ---- The rigid graph and its cycles (DESIGN §7.1): the one rule ----------------------------
+//
+// The graph has a vertex per node and one for the ground, an edge per hinge with a rigid
+// direction, and an edge to the ground for every supported node (NodeSpec::fixed != 0) that such
+// a hinge touches. Supports go in first, then the hinges in order; the first hinge that joins two
+// vertices already joined closes a cycle (two hinges between one pair, a loop, a tree that reaches
+// the ground twice). The kernel (build_forest), the model compiler (its file:line:column message
+// names the hinge and the cycle's nodes) and modal analysis all ask this function.
+
+// Caller-owned workspace, no heap. `set` (one entry per node) is required; `up` and `mark` (one
+// per node plus one for the ground) and `path` (the same) only when the cycle's nodes are wanted:
+// leave all three empty for the closing hinges alone.
+struct RigidCycleWork {
+  std::span<std::int32_t> set;  // union-find: parent, or -1 (a root) / -2 (a root joined to ground)
+  std::span<std::int32_t> up;   // the accepted edges as a forest of parent links (ground: last)
+  std::span<std::int32_t> mark;  // ancestors of the hinge's node 1, by hinge index
+  std::span<std::int32_t> path;  // receives the cycle's nodes (kGround for the ground)
+};
+
+// Calls on_cycle(hinge, nodes) for each hinge that closes a cycle, `nodes` the cycle from the
+// hinge's node 1 to its node 2 (empty without path workspace); stops early when on_cycle returns
+// false. `rigid(h)` says whether hinge h has a rigid direction (the caller's rule: HingeData::rigid
+// for the kernel, the declared behaviour for the model compiler). Returns the number of cycles
+// reported. Hinge nodes must be valid (0..nodes-1, node2 also kGround).
+template <class Hinge, class IsRigid, class OnCycle>
+int for_each_rigid_cycle(std::span<const Hinge> hinges, std::span<const NodeSpec> nodes,
+                         IsRigid rigid, const RigidCycleWork& w, OnCycle on_cycle) {
+  const int n = static_cast<int>(nodes.size());
+  const int ground = n;  // the ground's vertex in `up`, `mark`
+  const bool paths = !w.path.empty();
+  auto at = [](std::span<std::int32_t> s, int i) -> std::int32_t& {
+    return s[static_cast<std::size_t>(i)];
+  };
+  const int nh = static_cast<int>(hinges.size());
+  for (int i = 0; i < n; ++i)
+    at(w.set, i) = -1;
+  for (int h = 0; h < nh; ++h) {  // touched by a rigid hinge: -3 until the supports are in
+    if (!rigid(h)) continue;
+    const Hinge& hd = hinges[static_cast<std::size_t>(h)];
+    at(w.set, hd.node1) = -3;
+    if (hd.node2 != kGround) at(w.set, hd.node2) = -3;
+  }
+  for (int i = 0; i < n; ++i) {
+    const bool grounded = at(w.set, i) == -3 && nodes[static_cast<std::size_t>(i)].fixed != 0;
+    at(w.set, i) = grounded ? -2 : -1;
+    if (paths) at(w.up, i) = grounded ? ground : -1, at(w.mark, i) = -1;
+  }
+  if (paths) at(w.up, ground) = -1, at(w.mark, ground) = -1;
+  auto find = [&](int x) {
+    while (at(w.set, x) >= 0) {
+      const int p = at(w.set, x);
+      if (at(w.set, p) >= 0) at(w.set, x) = at(w.set, p);  // path halving
+      x = at(w.set, x);
+    }
+    return x;
+  };
+  auto evert = [&](int x) {  // makes x the root of its tree in `up`
+    for (int prev = -1; x != -1;) {
+      const int next = at(w.up, x);
+      at(w.up, x) = prev;
+      prev = x, x = next;
+    }
+  };
+  auto node_of = [ground](int v) { return v == ground ? kGround : v; };
+  int cycles = 0;
+  for (int h = 0; h < nh; ++h) {
+    if (!rigid(h)) continue;
+    const Hinge& hd = hinges[static_cast<std::size_t>(h)];
+    const int a = hd.node1, b = hd.node2 == kGround ? ground : hd.node2;
+    const int ra = find(a), rb = b == ground ? ground : find(b);
+    const bool ga = at(w.set, ra) == -2, gb = b == ground || at(w.set, rb) == -2;
+    if ((b != ground && ra == rb) || (ga && gb)) {
+      ++cycles;
+      int len = 0;
+      if (paths) {  // a up to the lowest common ancestor, then down to b
+        for (int x = a; x != -1; x = at(w.up, x))
+          at(w.mark, x) = h;
+        int lca = b;
+        while (at(w.mark, lca) != h)
+          lca = at(w.up, lca);
+        for (int x = a;; x = at(w.up, x)) {
+          at(w.path, len++) = node_of(x);
+          if (x == lca) break;
+        }
+        int tail = 0;
+        for (int y = b; y != lca; y = at(w.up, y))
+          ++tail;
+        len += tail;
+        int j = len - 1;
+        for (int y = b; y != lca; y = at(w.up, y))
+          at(w.path, j--) = node_of(y);
+      }
+      if (!on_cycle(h, std::span<const std::int32_t>(w.path.data(), static_cast<std::size_t>(len))))
+        return cycles;
+      continue;
+    }
+    if (b == ground) {
+      at(w.set, ra) = -2;
+    } else {
+      at(w.set, ra) = rb;
+      if (ga) at(w.set, rb) = -2;
+    }
+    if (paths) {  // hang the side not joined to the ground from the other (the ground stays a root)
+      if (ga) {
+        evert(b), at(w.up, b) = a;
+      } else {
+        evert(a), at(w.up, a) = b;
+      }
+    }
+  }
+  return cycles;
+}
+
 struct ForestBuild {
   InitStatus status;
   int edges = 0;
@@ -199,24 +312,34 @@ struct ForestBuild {
   int held_dofs = 0;  // mechanism DOFs held at zero (DESIGN §7.1)
 };
 
-// Builds the forest of the hinges' rigid directions. `node_tree` (per node) receives the tree
-// index or -1; `held` (per node) the DOFs held at zero as mechanisms; `mass_up` is workspace of
-// one matrix per edge. Cycles of rigid connections, and trees that reach the ground twice (two
-// supports, or a support and a hinge to the ground), are refused (kRigidCycle, `where` = the
-// hinge that closes the cycle).
-inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<const NodeSpec> nodes,
-                                std::span<const double> mass, std::span<std::int32_t> node_tree,
-                                std::span<ForestEdge> edges, std::span<ForestEdgeMatrices> mats,
-                                std::span<ForestRoot> roots, std::span<Mat6> mass_up,
-                                std::span<std::uint8_t> held) {
-  using detail::M6;
+// The forest's topology (DESIGN §7.1): which nodes form each rigid tree, its root, and its edges
+// breadth-first, parents before children, trees one after the other. `node_tree` (per node)
+// receives the tree index or -1; `edges` (per hinge) the edges' child, parent, hinge and sign,
+// `roots` (per hinge) the root node of each tree not rooted at the ground; `stash_space` (per
+// hinge) is workspace. A cycle of rigid connections (for_each_rigid_cycle) is refused (kRigidCycle,
+// `where` = the hinge that closes it). Modal analysis builds its constraint transformation on this
+// same topology.
+inline ForestBuild forest_topology(std::span<const HingeData> hinges,
+                                   std::span<const NodeSpec> nodes, std::span<const double> mass,
+                                   std::span<std::int32_t> node_tree, std::span<ForestEdge> edges,
+                                   std::span<ForestRoot> roots, std::span<Mat6> stash_space) {
   ForestBuild out;
-  for (auto& t : node_tree)
-    t = -1;
-  for (auto& h : held)
-    h = 0;
   const int nh = static_cast<int>(hinges.size());
   auto rigid = [&](int h) { return hinges[static_cast<std::size_t>(h)].rigid != 0; };
+  {  // 0. The cycle rule, with node_tree as its union-find workspace.
+    int closing = -1;
+    (void)for_each_rigid_cycle(hinges, nodes, rigid, RigidCycleWork{node_tree, {}, {}, {}},
+                               [&closing](int h, std::span<const std::int32_t>) {
+                                 closing = h;
+                                 return false;
+                               });
+    if (closing >= 0) {
+      out.status = {InitError::kRigidCycle, closing};
+      return out;
+    }
+  }
+  for (auto& t : node_tree)
+    t = -1;
   auto tree_of = [&](int n) { return n == kGround ? -2 : node_tree[static_cast<std::size_t>(n)]; };
 
   // 1. Trees: grow each from an unassigned rigid hinge until no hinge touches it. Until the
@@ -242,28 +365,20 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     }
   }
 
-  // 2. Per tree: a tree has one edge fewer than vertices (the ground counts as one vertex, and
-  // a supported node is joined to it); pick the root and place the tree's edges breadth-first,
-  // parents before children. Placements are stashed in `mass_up` (workspace until step 3) and
-  // a placed hinge is marked with tree id -(t + 2).
+  // 2. Per tree (acyclic by step 0): pick the root and place the tree's edges breadth-first,
+  // parents before children. Placements are stashed in `stash_space` and a placed hinge is
+  // marked with tree id -(t + 2).
   int written = 0;
-  auto stash = [&](int k) -> Mat6& { return mass_up[static_cast<std::size_t>(k)]; };
+  auto stash = [&](int k) -> Mat6& { return stash_space[static_cast<std::size_t>(k)]; };
   for (int t = 0; t < trees; ++t) {
-    int vertices = 0, tree_edges = 0, grounds = 0, supported = 0, last_edge = -1;
+    int grounds = 0, supported = 0;
     for (std::size_t n = 0; n < node_tree.size(); ++n) {
-      if (node_tree[n] != t) continue;
-      ++vertices;
-      if (nodes[n].fixed != 0) ++supported;
+      if (node_tree[n] == t && nodes[n].fixed != 0) ++supported;
     }
     for (int h = 0; h < nh; ++h) {
-      if (edges[static_cast<std::size_t>(h)].hinge != t) continue;
-      ++tree_edges, last_edge = h;
-      if (hinges[static_cast<std::size_t>(h)].node2 == kGround) ++grounds;
-    }
-    if (grounds + supported > 0) ++vertices;   // the ground
-    if (tree_edges + supported >= vertices) {  // each support is an edge to the ground
-      out.status = {InitError::kRigidCycle, last_edge};
-      return out;
+      if (edges[static_cast<std::size_t>(h)].hinge == t &&
+          hinges[static_cast<std::size_t>(h)].node2 == kGround)
+        ++grounds;
     }
     // Root: the ground, else the supported node, else the node with the most rigid hinges
     // (a joint), then the heaviest, then the lowest index.
@@ -319,7 +434,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
   }
   // Unstash the placements into the edges (hinge indices were tree marks until now).
   for (int k = 0; k < written; ++k) {
-    const Mat6& slot = mass_up[static_cast<std::size_t>(k)];
+    const Mat6& slot = stash_space[static_cast<std::size_t>(k)];
     ForestEdge& e = edges[static_cast<std::size_t>(k)];
     e = ForestEdge{};
     e.hinge = static_cast<std::int32_t>(slot.a[0]);
@@ -328,6 +443,23 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     e.sign = static_cast<std::int32_t>(slot.a[3]);
   }
   out.edges = written;
+  return out;
+}
+
+// Builds the forest of the hinges' rigid directions: its topology (forest_topology), then each
+// edge's constant matrices and each root's inverse effective mass. `held` (per node) receives the
+// DOFs held at zero as mechanisms; `mass_up` is workspace of one matrix per edge.
+inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<const NodeSpec> nodes,
+                                std::span<const double> mass, std::span<std::int32_t> node_tree,
+                                std::span<ForestEdge> edges, std::span<ForestEdgeMatrices> mats,
+                                std::span<ForestRoot> roots, std::span<Mat6> mass_up,
+                                std::span<std::uint8_t> held) {
+  using detail::M6;
+  ForestBuild out = forest_topology(hinges, nodes, mass, node_tree, edges, roots, mass_up);
+  for (auto& h : held)
+    h = 0;
+  if (!out.status.ok()) return out;
+  const int written = out.edges;
 
   // 3. Matrices, leaves first: each child's effective mass is its own plus what its children
   // hand up (DESIGN §7.1).

@@ -16,6 +16,11 @@ struct CurveBranches {
   double upper = 1e300;   // m or rad; +1e300: no rigid branch above
   double max_slope = 0;   // N/m or N m/rad, steepest non-rigid segment (for the stable step)
   bool valid = false;     // at least one non-rigid segment, rigid branches only at the ends
+  // Why, by segment (segment s joins points s and s + 1): the first and last non-rigid segment
+  // (-1: none), and the first rigid segment found between non-rigid ones (-1: none).
+  int first = -1;
+  int last = -1;
+  int inner = -1;
 };
 
 // Splits a curve into its spring part and its rigid end branches: segments whose slope is at
@@ -25,14 +30,18 @@ inline CurveBranches curve_branches(std::span<const CurvePoint> points, const Cu
   CurveBranches b;
   if (c.count < 2) return b;
   const CurvePoint* p = points.data() + c.first;
-  int first = -1, last = -1;  // first and last non-rigid segment
+  int& first = b.first;
+  int& last = b.last;
   for (int s = 0; s + 1 < c.count; ++s) {
     const double dd = p[s + 1].d - p[s].d;
     if (!(dd > 0)) return b;
     const double slope = (p[s + 1].force - p[s].force) / dd;
     if (slope < k_lim) {
       if (first < 0) first = s;
-      if (last >= 0 && last != s - 1) return b;  // a rigid segment between spring segments
+      if (last >= 0 && last != s - 1) {  // a rigid segment between spring segments
+        b.inner = last + 1;
+        return b;
+      }
       last = s;
       if (slope > b.max_slope) b.max_slope = slope;
     }
@@ -51,6 +60,39 @@ inline double curve_force(const CurvePoint* p, int count, double d) {
     ++s;
   const double t = (d - p[s].d) / (p[s + 1].d - p[s].d);
   return p[s].force + t * (p[s + 1].force - p[s].force);
+}
+
+// The hinge-axes rule: rows x, y, z of R (global axes) orthonormal to kAxesTolerance (every entry
+// of |R R^T - I| below it) and right-handed (det R > 0). The kernel refuses a hinge that breaks it;
+// the model compiler names the largest entry or the determinant in its message.
+inline constexpr double kAxesTolerance = 1e-9;
+
+struct AxesCheck {
+  double worst = 0;  // the largest entry of |R R^T - I| (a NaN entry is passed over, but fails
+                     // `orthonormal`)
+  double det = 0;    // det R
+  bool orthonormal = false;
+  bool right_handed = false;
+  constexpr bool ok() const { return orthonormal && right_handed; }
+};
+
+inline AxesCheck check_axes(const std::array<double, 9>& R) {
+  AxesCheck c;
+  c.orthonormal = true;
+  for (std::size_t a = 0; a < 3; ++a) {
+    for (std::size_t b = 0; b < 3; ++b) {
+      const double dot =
+          R[3 * a] * R[3 * b] + R[3 * a + 1] * R[3 * b + 1] + R[3 * a + 2] * R[3 * b + 2];
+      const double want = a == b ? 1.0 : 0.0;
+      const double dev = dot > want ? dot - want : want - dot;
+      if (!(dev < kAxesTolerance)) c.orthonormal = false;
+      if (dev > c.worst) c.worst = dev;
+    }
+  }
+  c.det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+          R[2] * (R[3] * R[7] - R[4] * R[6]);
+  c.right_handed = c.det > 0;
+  return c;
 }
 
 // What step() needs of a hinge: its nodes, frame, eccentricity and per-direction behaviour.
@@ -160,19 +202,7 @@ inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int
   if (spec.node2 == kGround &&
       (spec.eccentricity[0] != 0 || spec.eccentricity[1] != 0 || spec.eccentricity[2] != 0))
     return false;
-  const auto& R = spec.frame;
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) {
-      double dot = 0;
-      for (int c = 0; c < 3; ++c)
-        dot += R[static_cast<std::size_t>(3 * a + c)] * R[static_cast<std::size_t>(3 * b + c)];
-      const double want = a == b ? 1.0 : 0.0;
-      if (!(dot - want < 1e-9 && want - dot < 1e-9)) return false;
-    }
-  }
-  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
-                     R[2] * (R[3] * R[7] - R[4] * R[6]);
-  if (!(det > 0)) return false;
+  if (!check_axes(spec.frame).ok()) return false;
 
   const bool penalty = settings.hinge_method == HingeMethod::kPenalty;
   for (std::size_t k = 0; k < kDofsPerNode; ++k) {
@@ -221,13 +251,15 @@ inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int
 // The generalized direction b of hinge direction k (d_k = b1 . x1 + b2 . x2): for a
 // translation b1 = -[t ; e x t], b2 = [t ; 0]; for a rotation b1 = -[0 ; t], b2 = [0 ; t],
 // t = row k of the frame.
-inline void hinge_direction(const HingeData& h, std::size_t k, double* b1, double* b2) {
+// The model compiler's and modal analysis' rows of B are this function too (the overload on a
+// frame and eccentricity, for a HingeSpec).
+inline void hinge_direction(const std::array<double, 9>& frame, const std::array<double, 3>& e,
+                            std::size_t k, double* b1, double* b2) {
   const std::size_t row = k % 3;
-  const double t[3] = {h.frame[3 * row], h.frame[3 * row + 1], h.frame[3 * row + 2]};
+  const double t[3] = {frame[3 * row], frame[3 * row + 1], frame[3 * row + 2]};
   for (int c = 0; c < 6; ++c)
     b1[c] = 0, b2[c] = 0;
   if (k < 3) {
-    const auto& e = h.eccentricity;
     const double ext[3] = {e[1] * t[2] - e[2] * t[1], e[2] * t[0] - e[0] * t[2],
                            e[0] * t[1] - e[1] * t[0]};
     for (int c = 0; c < 3; ++c)
@@ -236,6 +268,10 @@ inline void hinge_direction(const HingeData& h, std::size_t k, double* b1, doubl
     for (int c = 0; c < 3; ++c)
       b1[c + 3] = -t[c], b2[c + 3] = t[c];
   }
+}
+
+inline void hinge_direction(const HingeData& h, std::size_t k, double* b1, double* b2) {
+  hinge_direction(h.frame, h.eccentricity, k, b1, b2);
 }
 
 // b^T M^-1 b over both nodes for direction k with diagonal masses (0 where a mass is zero and b

@@ -78,6 +78,10 @@ struct Model {
   HingeMethod hinge_method = HingeMethod::kNtnExact;
   ClampRule clamp = ClampRule::kMomentum;
   double inv_dt = 0;  // 1/s
+  // Kernel steps per I/O frame, N = frame_period / dt by the frame rule (frame_substeps), stored
+  // once at init: every driver and test reads N here (count 0 and the reason when dt does not
+  // divide the frame; the model compiler refuses such a model).
+  Substeps substeps;
 };
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
@@ -333,6 +337,7 @@ template <Sizes S>
   model.dt = spec.settings.dt;
   if (!(model.dt > 0)) return {InitError::kBadTimeStep, -1};
   model.inv_dt = 1.0 / model.dt;
+  model.substeps = frame_substeps(model.dt, spec.settings.frame_period);
   if (model.dt > model.stable.dt_stable && !spec.settings.allow_unstable) {
     const bool hinge = model.stable.governing_hinge >= 0;
     return {InitError::kTimeStepAboveStable,

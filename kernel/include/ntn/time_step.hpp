@@ -495,14 +495,20 @@ inline StableStepReport stable_time_step(const SpecView& spec, std::span<const d
   return r;
 }
 
-// dt = "auto" (DESIGN §6): the largest period / N with N integer and period / N <= 0.9 dt_stable.
-// 0 when there is no such step (dt_stable or frame_period not positive and finite); N is not
-// bounded here: frame_substeps() below judges the result.
-inline double auto_time_step(double dt_stable, double frame_period) {
+// dt = "auto" (DESIGN §6): the fewest substeps N (a whole number, as a double: it may be beyond
+// any integer type for an absurd model) with period / N <= 0.9 dt_stable, and the step derived
+// from it, dt = period / N. 0 when there is no such step (dt_stable or frame_period not positive
+// and finite); N is not bounded here: frame_substeps() below judges the result.
+inline double auto_substeps(double dt_stable, double frame_period) {
   if (!(dt_stable > 0) || !(frame_period > 0) || !std::isfinite(frame_period)) return 0;
   double n = std::ceil(frame_period / (0.9 * dt_stable));
   if (n < 1) n = 1;
-  return frame_period / n;
+  return n;
+}
+
+inline double auto_time_step(double dt_stable, double frame_period) {
+  const double n = auto_substeps(dt_stable, frame_period);
+  return n > 0 ? frame_period / n : 0;
 }
 
 // ---- The frame and its substeps (DESIGN §6, §8) ---------------------------------------------

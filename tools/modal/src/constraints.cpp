@@ -3,11 +3,12 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstdio>
-#include <numeric>
 #include <string>
 #include <utility>
 
+#include "ntn/constraint_forest.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/model.hpp"
 
 namespace ntn::modal {
 namespace {
@@ -40,12 +41,8 @@ void linearize_curve(const SpecView& spec, std::size_t h, std::size_t k, double 
     return;
   }
   const CurvePoint* p = spec.curve_points.data() + cs.first;
-  // Spring segments: [s0, s1] (rigid end segments excluded).
-  int s0 = 0, s1 = cs.count - 2;
-  while (s0 < s1 && p[s0 + 1].d <= b.lower)
-    ++s0;
-  while (s1 > s0 && p[s1].d >= b.upper)
-    --s1;
+  // Spring segments: [s0, s1], the kernel's split (rigid end segments excluded).
+  const int s0 = b.first, s1 = b.last;
   auto slope = [p](int s) { return (p[s + 1].force - p[s].force) / (p[s + 1].d - p[s].d); };
   int s = s0;
   while (s < s1 && p[s + 1].d < 0.0)
@@ -64,39 +61,6 @@ void linearize_curve(const SpecView& spec, std::size_t h, std::size_t k, double 
   out.stiffness[k] = k0 > 0 ? k0 : 0.0;
   if (k0 < 0) notes.push_back(where + ": negative slope at the origin, taken as free");
 }
-
-// The 6x6 frame T = diag(T_R, T_R) and link X(e) = [I E; 0 I] with E phi = phi x e.
-Mat6 frame6(const HingeSpec& h) {
-  Mat6 t = Mat6::Zero();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c)
-      t(r, c) = t(r + 3, c + 3) = h.frame[static_cast<std::size_t>(3 * r + c)];
-  }
-  return t;
-}
-
-Mat6 link(const std::array<double, 3>& e, double sign) {
-  Mat6 x = Mat6::Identity();
-  const double ex = sign * e[0], ey = sign * e[1], ez = sign * e[2];
-  x(0, 4) = ez, x(0, 5) = -ey;
-  x(1, 3) = -ez, x(1, 5) = ex;
-  x(2, 3) = ey, x(2, 4) = -ex;
-  return x;
-}
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void join(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
-};
 
 // A node's motion as a combination of coordinates: x = sum over (column, v) of v q_column.
 using Rows = std::vector<std::pair<int, Vec6>>;
@@ -152,36 +116,32 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
 ConstraintMap build_constraints(const SpecView& spec, const std::vector<LinearHinge>& hinges) {
   ConstraintMap out;
   const int n = static_cast<int>(spec.nodes.size());
-  const int ground = n;
-  auto vertex = [ground](int node) { return node == kGround ? ground : node; };
 
-  // Rigid hinges per node; supported nodes joined to the ground first (model compiler's rule).
-  std::vector<std::vector<int>> rigid_of(static_cast<std::size_t>(n));
+  // The kernel's forest (ntn::forest_topology, DESIGN §7.1) on the linearized hinges: the same
+  // cycle rule, the same trees, roots and edge order as ntn_exact's step.
+  std::vector<HingeData> data(spec.hinges.size());
   for (std::size_t h = 0; h < spec.hinges.size(); ++h) {
-    if (hinges[h].rigid == 0) continue;
-    rigid_of[static_cast<std::size_t>(spec.hinges[h].node1)].push_back(static_cast<int>(h));
-    if (spec.hinges[h].node2 != kGround)
-      rigid_of[static_cast<std::size_t>(spec.hinges[h].node2)].push_back(static_cast<int>(h));
+    const HingeSpec& hs = spec.hinges[h];
+    HingeData& hd = data[h];
+    hd.node1 = hs.node1, hd.node2 = hs.node2;
+    hd.frame = hs.frame, hd.eccentricity = hs.eccentricity;
+    hd.rigid = hinges[h].rigid;
   }
-  UnionFind uf(static_cast<std::size_t>(n) + 1);
-  for (int i = 0; i < n; ++i) {
-    if (spec.nodes[static_cast<std::size_t>(i)].fixed != 0 &&
-        !rigid_of[static_cast<std::size_t>(i)].empty())
-      uf.join(i, ground);
-  }
-  for (std::size_t h = 0; h < spec.hinges.size(); ++h) {
-    if (hinges[h].rigid == 0) continue;
-    const int a = vertex(spec.hinges[h].node1), b = vertex(spec.hinges[h].node2);
-    if (uf.find(a) == uf.find(b)) {
-      out.error =
-          hinge_name(h) + " (node " + std::to_string(spec.hinges[h].node1) + " to " +
-          (spec.hinges[h].node2 == kGround ? std::string("the ground")
-                                           : "node " + std::to_string(spec.hinges[h].node2)) +
-          ") closes a cycle of rigid connections (through the ground when supports or "
-          "ground hinges are involved)";
-      return out;
-    }
-    uf.join(a, b);
+  std::vector<double> mass(static_cast<std::size_t>(6 * n));
+  assemble_lumped_mass(spec, mass);
+  std::vector<std::int32_t> node_tree(static_cast<std::size_t>(n));
+  std::vector<ForestEdge> edges(data.size());
+  std::vector<ForestRoot> roots(data.size());
+  std::vector<ntn::Mat6> stash(data.size());
+  const ForestBuild fb = forest_topology(data, spec.nodes, mass, node_tree, edges, roots, stash);
+  if (fb.status.error == InitError::kRigidCycle) {
+    const auto h = static_cast<std::size_t>(fb.status.where);
+    out.error = hinge_name(h) + " (node " + std::to_string(spec.hinges[h].node1) + " to " +
+                (spec.hinges[h].node2 == kGround ? std::string("the ground")
+                                                 : "node " + std::to_string(spec.hinges[h].node2)) +
+                ") closes a cycle of rigid connections (through the ground when supports or "
+                "ground hinges are involved)";
+    return out;
   }
 
   std::vector<Rows> rows(static_cast<std::size_t>(n));
@@ -199,95 +159,57 @@ ConstraintMap build_constraints(const SpecView& spec, const std::vector<LinearHi
     placed[static_cast<std::size_t>(node)] = 1;
   };
 
-  // Child c of parent p (or the ground) through hinge h: x_c = Y^-1 (G G^T Y_p x_p + H s).
-  auto place_child = [&](int h, int child, int parent) {
-    const HingeSpec& hs = spec.hinges[static_cast<std::size_t>(h)];
-    const LinearHinge& lh = hinges[static_cast<std::size_t>(h)];
-    const Mat6 t6 = frame6(hs);
-    Mat6 yinv, yp;  // Y^-1 and Y_p
-    if (child == hs.node1) {
-      yinv = link(hs.eccentricity, -1.0) * t6.transpose();
+  // The child of edge e (its parent a node or the ground): x_c = Y^-1 (G G^T Y_p x_p + H s), with
+  // the kernel's frame T and link X(e) (the lever arm turns with node 1).
+  auto place_child = [&](const ForestEdge& e) {
+    const HingeData& hd = data[static_cast<std::size_t>(e.hinge)];
+    const Mat6 t6 = ntn::detail::frame6(hd);
+    Mat6 yinv, yp;     // Y^-1 and Y_p
+    if (e.sign > 0) {  // the child is node 1
+      yinv = ntn::detail::link(hd.eccentricity, -1.0) * t6.transpose();
       yp = t6;
     } else {
       yinv = t6.transpose();
-      yp = t6 * link(hs.eccentricity, 1.0);
+      yp = t6 * ntn::detail::link(hd.eccentricity, 1.0);
     }
     Mat6 g = Mat6::Zero();
     for (int k = 0; k < 6; ++k)
-      g(k, k) = ((lh.rigid >> k) & 1U) ? 1.0 : 0.0;
+      g(k, k) = ((hd.rigid >> k) & 1U) ? 1.0 : 0.0;
     const Mat6 a = yinv * g * yp;
-    Rows& rc = rows[static_cast<std::size_t>(child)];
-    if (parent != kGround) {
-      for (const auto& [col, v] : rows[static_cast<std::size_t>(parent)])
+    Rows& rc = rows[static_cast<std::size_t>(e.child)];
+    if (e.parent != kGround) {
+      for (const auto& [col, v] : rows[static_cast<std::size_t>(e.parent)])
         rc.emplace_back(col, a * v);
     }
     for (int k = 0; k < 6; ++k) {
-      if ((lh.rigid >> k) & 1U) continue;
+      if ((hd.rigid >> k) & 1U) continue;
       rc.emplace_back(new_column(), yinv.col(k));
     }
-    placed[static_cast<std::size_t>(child)] = 1;
+    placed[static_cast<std::size_t>(e.child)] = 1;
   };
 
   for (int start = 0; start < n; ++start) {
     if (placed[static_cast<std::size_t>(start)]) continue;
     ConstraintGroup g;
     g.first_column = columns;
-    if (rigid_of[static_cast<std::size_t>(start)].empty()) {
+    const std::int32_t t = node_tree[static_cast<std::size_t>(start)];
+    if (t < 0) {
       g.nodes = {start};
       place_root(start);
     } else {
-      // The tree of `start`: its nodes and hinges, by breadth-first search over rigid hinges.
-      std::vector<int> tree{start};
-      std::vector<char> seen(static_cast<std::size_t>(n), 0);
-      seen[static_cast<std::size_t>(start)] = 1;
-      int ground_hinge = -1;
-      for (std::size_t i = 0; i < tree.size(); ++i) {
-        for (int h : rigid_of[static_cast<std::size_t>(tree[i])]) {
-          const HingeSpec& hs = spec.hinges[static_cast<std::size_t>(h)];
-          if (hs.node2 == kGround) ground_hinge = h;
-          for (int m : {hs.node1, hs.node2}) {
-            if (m == kGround || seen[static_cast<std::size_t>(m)]) continue;
-            seen[static_cast<std::size_t>(m)] = 1;
-            tree.push_back(m);
-          }
-        }
+      // The tree's edges are contiguous, parents first; its root is its first edge's parent.
+      std::size_t first = 0;
+      while (node_tree[static_cast<std::size_t>(edges[first].child)] != t)
+        ++first;
+      g.root = edges[first].parent;
+      if (g.root != kGround) place_root(g.root);
+      for (std::size_t k = first; k < static_cast<std::size_t>(fb.edges) &&
+                                  node_tree[static_cast<std::size_t>(edges[k].child)] == t;
+           ++k)
+        place_child(edges[k]);
+      for (int m = 0; m < n; ++m) {
+        if (node_tree[static_cast<std::size_t>(m)] == t) g.nodes.push_back(m);
       }
-      // Root: the ground, else the supported node, else the most rigid hinges (lowest index).
-      int root = kGround;
-      if (ground_hinge < 0) {
-        std::size_t best = 0;
-        root = -2;
-        for (int m : tree) {
-          const std::size_t deg = rigid_of[static_cast<std::size_t>(m)].size();
-          if (spec.nodes[static_cast<std::size_t>(m)].fixed != 0) {
-            root = m;
-            break;
-          }
-          if (root == -2 || deg > best || (deg == best && m < root)) root = m, best = deg;
-        }
-      }
-      g.root = root;
-      std::vector<int> order;  // parents before children
-      if (root == kGround) {
-        const HingeSpec& hs = spec.hinges[static_cast<std::size_t>(ground_hinge)];
-        place_child(ground_hinge, hs.node1, kGround);
-        order.push_back(hs.node1);
-      } else {
-        place_root(root);
-        order.push_back(root);
-      }
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        const int p = order[i];
-        for (int h : rigid_of[static_cast<std::size_t>(p)]) {
-          const HingeSpec& hs = spec.hinges[static_cast<std::size_t>(h)];
-          const int c = hs.node1 == p ? hs.node2 : hs.node1;
-          if (c == kGround || placed[static_cast<std::size_t>(c)]) continue;
-          place_child(h, c, p);
-          order.push_back(c);
-        }
-      }
-      std::sort(tree.begin(), tree.end());
-      g.nodes = std::move(tree);
       ++out.trees;
     }
     g.columns = columns - g.first_column;

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <map>
 #include <numeric>
-#include <queue>
+
+#include "ntn/constraint_forest.hpp"
+#include "ntn/hinge.hpp"
 
 namespace ntn::modelc {
 namespace {
@@ -51,73 +53,20 @@ Eigen::MatrixXd null_space(const Eigen::MatrixXd& A, Eigen::MatrixXd* range_rows
 
 }  // namespace
 
-HingeRows hinge_rows(const HingeSpec& h) {
-  HingeRows r;
-  const auto& e = h.eccentricity;
-  for (std::size_t k = 0; k < 3; ++k) {
-    const double t[3] = {h.frame[3 * k], h.frame[3 * k + 1], h.frame[3 * k + 2]};
-    const double ext[3] = {e[1] * t[2] - e[2] * t[1], e[2] * t[0] - e[0] * t[2],
-                           e[0] * t[1] - e[1] * t[0]};
-    for (std::size_t c = 0; c < 3; ++c) {
-      r.b1[k][c] = -t[c], r.b1[k][c + 3] = -ext[c], r.b2[k][c] = t[c];
-      r.b1[k + 3][c + 3] = -t[c], r.b2[k + 3][c + 3] = t[c];
-    }
-  }
-  return r;
-}
-
 std::vector<RigidCycle> rigid_cycles(const SpecView& spec) {
-  const int n = static_cast<int>(spec.nodes.size());
-  const int ground = n;  // the ground's vertex
-  auto vertex = [&](int node) { return node == kGround ? ground : node; };
-  std::vector<bool> touched(static_cast<std::size_t>(n), false);
-  for (const HingeSpec& h : spec.hinges) {
-    if (!any_rigid(h)) continue;
-    touched[static_cast<std::size_t>(h.node1)] = true;
-    if (h.node2 != kGround) touched[static_cast<std::size_t>(h.node2)] = true;
-  }
-  UnionFind uf(static_cast<std::size_t>(n) + 1);
-  std::vector<std::vector<int>> adj(static_cast<std::size_t>(n) + 1);
-  auto add_edge = [&](int a, int b) {
-    uf.join(a, b);
-    adj[static_cast<std::size_t>(a)].push_back(b);
-    adj[static_cast<std::size_t>(b)].push_back(a);
-  };
-  for (int i = 0; i < n; ++i) {
-    if (spec.nodes[static_cast<std::size_t>(i)].fixed != 0 && touched[static_cast<std::size_t>(i)])
-      add_edge(i, ground);
-  }
+  // The kernel's rule (ntn::for_each_rigid_cycle), with the declared behaviour as "rigid": a
+  // cycle is refused whatever the hinge method.
+  const std::size_t n = spec.nodes.size();
+  std::vector<std::int32_t> set(n), up(n + 1), mark(n + 1), path(n + 1);
   std::vector<RigidCycle> out;
-  for (std::size_t hi = 0; hi < spec.hinges.size(); ++hi) {
-    const HingeSpec& h = spec.hinges[hi];
-    if (!any_rigid(h)) continue;
-    const int a = vertex(h.node1), b = vertex(h.node2);
-    if (uf.find(a) != uf.find(b)) {
-      add_edge(a, b);
-      continue;
-    }
-    // The path a -> b in the forest built so far, by breadth-first search.
-    std::vector<int> from(static_cast<std::size_t>(n) + 1, -2);
-    std::queue<int> q;
-    q.push(a), from[static_cast<std::size_t>(a)] = a;
-    while (!q.empty() && from[static_cast<std::size_t>(b)] == -2) {
-      const int x = q.front();
-      q.pop();
-      for (int y : adj[static_cast<std::size_t>(x)]) {
-        if (from[static_cast<std::size_t>(y)] != -2) continue;
-        from[static_cast<std::size_t>(y)] = x;
-        q.push(y);
-      }
-    }
-    RigidCycle c;
-    c.hinge = static_cast<int>(hi);
-    for (int x = b;; x = from[static_cast<std::size_t>(x)]) {
-      c.nodes.push_back(x == ground ? kGround : x);
-      if (x == a) break;
-    }
-    std::reverse(c.nodes.begin(), c.nodes.end());
-    out.push_back(std::move(c));
-  }
+  (void)for_each_rigid_cycle(
+      spec.hinges, spec.nodes,
+      [&](int h) { return any_rigid(spec.hinges[static_cast<std::size_t>(h)]); },
+      RigidCycleWork{set, up, mark, path},
+      [&out](int h, std::span<const std::int32_t> nodes) {
+        out.push_back({h, std::vector<int>(nodes.begin(), nodes.end())});
+        return true;
+      });
   return out;
 }
 
@@ -176,8 +125,9 @@ MassCheck hinge_mass_check(const SpecView& spec, std::span<const double> mass) {
         if (std::find(seen.begin(), seen.end(), hi) != seen.end()) continue;
         seen.push_back(hi);
         const HingeSpec& h = spec.hinges[static_cast<std::size_t>(hi)];
-        const HingeRows rows = hinge_rows(h);
         for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+          double b1[kDofsPerNode], b2[kDofsPerNode];  // the kernel's row k of B
+          hinge_direction(h.frame, h.eccentricity, k, b1, b2);
           Eigen::VectorXd r = Eigen::VectorXd::Zero(cols);
           bool any = false;
           for (int c = 0; c < kDofsPerNode; ++c) {
@@ -185,8 +135,8 @@ MassCheck hinge_mass_check(const SpecView& spec, std::span<const double> mass) {
               const auto it = col.find(kDofsPerNode * nd + c);
               if (it != col.end() && v != 0.0) r(it->second) += v, any = true;
             };
-            add(h.node1, rows.b1[k][static_cast<std::size_t>(c)]);
-            if (h.node2 != kGround) add(h.node2, rows.b2[k][static_cast<std::size_t>(c)]);
+            add(h.node1, b1[c]);
+            if (h.node2 != kGround) add(h.node2, b2[c]);
           }
           if (!any) continue;
           switch (h.behaviour[k]) {

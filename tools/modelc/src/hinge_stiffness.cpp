@@ -78,20 +78,14 @@ void check_curve_branches(Compilation& comp) {
       if (h.behaviour[k] != HingeBehaviour::kCurve) continue;
       const int ci = h.curve[k];
       const CurveSpec& cs = d.curves[static_cast<std::size_t>(ci)];
-      const CurvePoint* pt = d.curve_points.data() + cs.first;
       const double k_lim = k < 3 ? s.limit_stiffness : s.limit_rotational_stiffness;
       const std::string units = k < 3 ? " N/m" : " N m/rad";
       const std::string name = "curve '" + d.curve_ids[static_cast<std::size_t>(ci)] + "'";
       const Where& at = comp.dir_at[hi][k];
-      int first = -1, last = -1, inner = -1;
-      for (int g = 0; g + 1 < cs.count; ++g) {
-        const double slope = (pt[g + 1].force - pt[g].force) / (pt[g + 1].d - pt[g].d);
-        if (slope >= k_lim) continue;
-        if (last >= 0 && last != g - 1 && inner < 0) inner = last + 1;
-        if (first < 0) first = g;
-        last = g;
-      }
-      if (first < 0) {
+      // The kernel's split (ntn::curve_branches), with the reason by segment.
+      const CurveBranches br = curve_branches(d.curve_points, cs, k_lim);
+      const int inner = br.inner;
+      if (br.first < 0) {
         L.error(at, name + " has no segment softer than the limit stiffness " + num(k_lim) + units +
                         ": all of it is a rigid branch. A direction without play is \"rigid\"; "
                         "for a spring or a gap, add softer segments or raise the limit stiffness");
@@ -104,8 +98,7 @@ void check_curve_branches(Compilation& comp) {
                         ") between softer ones: rigid branches may only end a curve");
         continue;
       }
-      const double lower = first > 0 ? pt[first].d : -1e300;
-      const double upper = last < cs.count - 2 ? pt[last + 1].d : 1e300;
+      const double lower = br.lower, upper = br.upper;
       if (lower > 0 || upper < 0) {
         auto end = [](double v) { return v <= -1e300 ? "-inf" : v >= 1e300 ? "+inf" : num(v); };
         L.error(at, name + " has its spring part from d = " + end(lower) + " to " + end(upper) +

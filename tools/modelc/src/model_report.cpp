@@ -45,6 +45,7 @@ const char* method_name(HingeMethod h) {
 }  // namespace
 
 StableStepReport stable_step_with(const ModelDescription& m, HingeMethod method) {
+  if (method == m.settings.hinge_method) return m.stable;  // the compiler's, computed once
   SpecView v = m.view();
   v.settings.hinge_method = method;
   std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * m.nodes.size());

@@ -5,13 +5,9 @@
 #include <vector>
 
 #include "messages.hpp"
+#include "ntn/hinge.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
-
-constexpr double kOrthonormal = 1e-9;  // hinge axes: |R R^T - I| and |det R - 1| at most this
-
-}  // namespace
 
 // One hinge direction: "rigid", "free", { linear = k, dashpot = c } or { curve = "id" }.
 std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const std::string& key) {
@@ -132,26 +128,17 @@ std::optional<std::array<double, 9>> read_axes(Reader& L, const toml::node& n,
   for (std::size_t r = 0; r < 3; ++r)
     for (std::size_t c = 0; c < 3; ++c)
       R[3 * r + c] = (*rows)[r][c];
-  double worst = 0;
-  for (std::size_t a = 0; a < 3; ++a) {
-    for (std::size_t b = 0; b < 3; ++b) {
-      const double dot =
-          R[3 * a] * R[3 * b] + R[3 * a + 1] * R[3 * b + 1] + R[3 * a + 2] * R[3 * b + 2];
-      worst = std::max(worst, std::abs(dot - (a == b ? 1.0 : 0.0)));
-    }
-  }
-  if (!(worst < kOrthonormal)) {
+  const AxesCheck c = check_axes(R);  // the kernel's rule (make_hinge_data refuses the same)
+  if (!c.orthonormal) {
     L.error(n.source(), key,
             "axes must be orthonormal to 1e-9 (rows x, y, z of unit length, at right angles): "
             "the largest entry of |R R^T - I| is " +
-                num(worst));
+                num(c.worst));
     return std::nullopt;
   }
-  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
-                     R[2] * (R[3] * R[7] - R[4] * R[6]);
-  if (!(det > 0)) {
+  if (!c.right_handed) {
     L.error(n.source(), key,
-            "axes must be right-handed (z = x cross y); these have det = " + num(det) +
+            "axes must be right-handed (z = x cross y); these have det = " + num(c.det) +
                 ": turn the z row round");
     return std::nullopt;
   }

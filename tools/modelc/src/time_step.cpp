@@ -88,10 +88,9 @@ void choose_time_step(Compilation& comp) {
     case SubstepError::kTooMany:
       if (d.dt_auto) {
         L.error(p.model.dt_at,
-                "dt = \"auto\" needs " +
-                    num(std::ceil(s.frame_period / (0.9 * d.stable.dt_stable))) + " substeps in" +
-                    frame + ", more than the limit " + std::to_string(kMaxSubsteps) +
-                    " (ntn::kMaxSubsteps): " + stable_by +
+                "dt = \"auto\" needs " + num(auto_substeps(d.stable.dt_stable, s.frame_period)) +
+                    " substeps in" + frame + ", more than the limit " +
+                    std::to_string(kMaxSubsteps) + " (ntn::kMaxSubsteps): " + stable_by +
                     ". No machine runs such a model; check the units and the geometry there "
                     "(nodes almost coincident?), or lower frame_rate");
       } else {

@@ -2,9 +2,10 @@
 // admissible displacement is u = T q, with q the independent coordinates left after the supports
 // and the rigid hinge directions are tied exactly.
 //
-// T is built over the constraint forest, as ntn_exact's step is: rigid hinge directions join
-// nodes into trees, rooted at the ground (a hinge to the ground: an inclined support), at the
-// supported node, or at the node with the most rigid hinges. A root's unsupported DOFs are
+// T is built over the kernel's own constraint forest (ntn::forest_topology, the one ntn_exact's
+// step uses): rigid hinge directions join nodes into trees, rooted at the ground (a hinge to the
+// ground: an inclined support), at the supported node, or at the node with the most rigid hinges
+// (then the heaviest, then the lowest index). A root's unsupported DOFs are
 // coordinates. A child c joined to its parent p by hinge h (frame T_R, T = diag(T_R, T_R),
 // eccentricity e, X(e) = [I E; 0 I] with E phi = phi x e, G / H selecting the rigid / other rows)
 // takes the hinge-frame motion q_h = Y x_c, Y = T X(e) when c is node 1 and Y = T when c is
@@ -73,9 +74,9 @@ struct ConstraintMap {
 };
 
 // Builds T for the supports (NodeSpec::fixed, global axes, held at zero) and the rigid directions
-// of `hinges` (linearize_hinges). Refused like the kernel and the model compiler refuse them: a
-// rigid hinge that closes a cycle, or a tree that reaches the ground twice (two supported nodes,
-// or a supported node and a hinge to the ground).
+// of `hinges` (linearize_hinges). Refused by the kernel's rule (ntn::for_each_rigid_cycle), as the
+// model compiler refuses them: a rigid hinge that closes a cycle, or a tree that reaches the
+// ground twice (two supported nodes, or a supported node and a hinge to the ground).
 ConstraintMap build_constraints(const SpecView& spec, const std::vector<LinearHinge>& hinges);
 
 }  // namespace ntn::modal

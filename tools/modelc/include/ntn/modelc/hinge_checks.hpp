@@ -12,19 +12,9 @@
 
 namespace ntn::modelc {
 
-// Rows of B (DESIGN §7) of one hinge: d_L[k] = b1[k] . x1 + b2[k] . x2 with x = [u; phi] of
-// node 1 and node 2 in global axes; translation rows b1 = -[t; e x t], b2 = [t; 0], rotation
-// rows b1 = -[0; t], b2 = [0; t], t = row k % 3 of the frame (b2 is meaningless for the ground).
-struct HingeRows {
-  std::array<std::array<double, kDofsPerNode>, kDofsPerNode> b1{};
-  std::array<std::array<double, kDofsPerNode>, kDofsPerNode> b2{};
-};
-HingeRows hinge_rows(const HingeSpec& h);
-
-// A hinge whose rigid directions close a cycle: the graph has a vertex per node and one for the
-// ground, an edge per hinge with at least one rigid direction, and an edge to the ground for
-// every supported node (NodeSpec::fixed != 0) that a rigid hinge touches. Supports go in first,
-// then hinges in order; the first hinge that joins two vertices already joined closes a cycle.
+// A hinge whose rigid directions close a cycle, by the kernel's rule (ntn::for_each_rigid_cycle,
+// constraint_forest.hpp) with every hinge that declares a rigid direction: one entry per closing
+// hinge, in hinge order.
 struct RigidCycle {
   int hinge = 0;
   std::vector<int> nodes;  // the cycle from the hinge's node 1 to its node 2 (kGround: ground)
