@@ -192,6 +192,16 @@ inline M6 own_mass(std::span<const double> mass, int node) {
 
 }  // namespace detail
 
+// build_forest's workspace, one entry per hinge (init only: init() keeps it out of the Model).
+struct ForestWork {
+  // Step 2: the k-th placed edge (breadth-first, parents first) before it is written to `edges`.
+  std::int32_t hinge = 0;
+  std::int32_t child = 0;
+  std::int32_t parent = kGround;
+  std::int32_t sign = 1;
+  Mat6 mass_up;  // step 3: the mass edge k hands its parent, T^T G S G^T T (DESIGN §7.1)
+};
+
 struct ForestBuild {
   InitStatus status;
   int edges = 0;
@@ -200,14 +210,14 @@ struct ForestBuild {
 };
 
 // Builds the forest of the hinges' rigid directions. `node_tree` (per node) receives the tree
-// index or -1; `held` (per node) the DOFs held at zero as mechanisms; `mass_up` is workspace of
-// one matrix per edge. Cycles of rigid connections, and trees that reach the ground twice (two
+// index or -1; `held` (per node) the DOFs held at zero as mechanisms; `work` has one entry per
+// hinge. Cycles of rigid connections, and trees that reach the ground twice (two
 // supports, or a support and a hinge to the ground), are refused (kRigidCycle, `where` = the
 // hinge that closes the cycle).
 inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<const NodeSpec> nodes,
                                 std::span<const double> mass, std::span<std::int32_t> node_tree,
                                 std::span<ForestEdge> edges, std::span<ForestEdgeMatrices> mats,
-                                std::span<ForestRoot> roots, std::span<Mat6> mass_up,
+                                std::span<ForestRoot> roots, std::span<ForestWork> work,
                                 std::span<std::uint8_t> held) {
   using detail::M6;
   ForestBuild out;
@@ -244,10 +254,10 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
 
   // 2. Per tree: a tree has one edge fewer than vertices (the ground counts as one vertex, and
   // a supported node is joined to it); pick the root and place the tree's edges breadth-first,
-  // parents before children. Placements are stashed in `mass_up` (workspace until step 3) and
-  // a placed hinge is marked with tree id -(t + 2).
+  // parents before children. Placements go to `work` (until step 3) and a placed hinge is
+  // marked with tree id -(t + 2).
   int written = 0;
-  auto stash = [&](int k) -> Mat6& { return mass_up[static_cast<std::size_t>(k)]; };
+  auto stash = [&](int k) -> ForestWork& { return work[static_cast<std::size_t>(k)]; };
   for (int t = 0; t < trees; ++t) {
     int vertices = 0, tree_edges = 0, grounds = 0, supported = 0, last_edge = -1;
     for (std::size_t n = 0; n < node_tree.size(); ++n) {
@@ -303,8 +313,8 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
         }
         if (child < 0) continue;
         edges[static_cast<std::size_t>(h)].hinge = -(t + 2);
-        Mat6& slot = stash(written++);
-        slot.a[0] = h, slot.a[1] = child, slot.a[2] = parent, slot.a[3] = sign;
+        ForestWork& slot = stash(written++);
+        slot.hinge = h, slot.child = child, slot.parent = parent, slot.sign = sign;
       }
     };
     int level_begin = written;
@@ -312,20 +322,20 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     while (level_begin < written) {
       const int level_end = written;
       for (int k = level_begin; k < level_end; ++k) {
-        place_children_of(static_cast<int>(stash(k).a[1]));
+        place_children_of(stash(k).child);
       }
       level_begin = level_end;
     }
   }
   // Unstash the placements into the edges (hinge indices were tree marks until now).
   for (int k = 0; k < written; ++k) {
-    const Mat6& slot = mass_up[static_cast<std::size_t>(k)];
+    const ForestWork& slot = work[static_cast<std::size_t>(k)];
     ForestEdge& e = edges[static_cast<std::size_t>(k)];
     e = ForestEdge{};
-    e.hinge = static_cast<std::int32_t>(slot.a[0]);
-    e.child = static_cast<std::int32_t>(slot.a[1]);
-    e.parent = static_cast<std::int32_t>(slot.a[2]);
-    e.sign = static_cast<std::int32_t>(slot.a[3]);
+    e.hinge = slot.hinge;
+    e.child = slot.child;
+    e.parent = slot.parent;
+    e.sign = slot.sign;
   }
   out.edges = written;
 
@@ -338,7 +348,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     M6 mc = detail::own_mass(mass, e.child);
     for (int j = k + 1; j < written; ++j) {
       if (edges[static_cast<std::size_t>(j)].parent == e.child)
-        mc += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
+        mc += detail::to_m6(work[static_cast<std::size_t>(j)].mass_up);
     }
     // d_L = T [u2 - u1 - phi1 x e; phi2 - phi1] (DESIGN §7): the lever arm e turns with node 1.
     // So the link X(e) sits on node 1's side: on the child when it is node 1 (q = T X(e) a_c,
@@ -371,7 +381,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     }
     const M6 id = M6::Identity();
     const M6 s = g * (mq - mq * ainv * mq) * g;
-    mass_up[static_cast<std::size_t>(k)] = detail::to_mat6(tp.transpose() * s * tp);
+    work[static_cast<std::size_t>(k)].mass_up = detail::to_mat6(tp.transpose() * s * tp);
     mx.up = detail::to_mat6(tp.transpose() * g * (id - mq * ainv) * yinv.transpose());
     mx.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * tp);
     mx.down_r = detail::to_mat6(yinv * ainv * yinv.transpose());
@@ -397,7 +407,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     M6 m = detail::own_mass(mass, root.node);
     for (int j = 0; j < written; ++j) {
       if (edges[static_cast<std::size_t>(j)].parent == root.node)
-        m += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
+        m += detail::to_m6(work[static_cast<std::size_t>(j)].mass_up);
     }
     std::uint8_t keep = 0;
     const std::uint8_t fixed = nodes[static_cast<std::size_t>(root.node)].fixed;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 
 namespace ntn::modal {
 namespace {

@@ -40,6 +40,7 @@ class Layout {
     }
   }
   std::size_t size() const { return (offset_ + align_ - 1) / align_ * align_; }
+  std::size_t align() const { return align_; }
 
  private:
   std::size_t offset_ = 0;
@@ -76,7 +77,6 @@ std::size_t model_size(const Sizes& s) {
   l.array<ForestEdge>(s.hinges);                                         // edges
   l.array<ForestEdgeMatrices>(s.hinges);                                 // edge_matrices
   l.array<ForestRoot>(s.hinges);                                         // roots
-  l.array<Mat6>(s.hinges);                                               // mass_up
   l.array<std::int32_t>(s.hinges);                                       // hinge_edge
   l.array<std::int32_t>(hinge_nodes);                                    // node_tree
   l.array<std::uint8_t>(hinge_nodes);                                    // held
@@ -112,20 +112,38 @@ std::size_t state_size(const Sizes& s) {
   return l.size();
 }
 
+Layout clamp_work_layout(const Sizes& s) {
+  const int dofs = s.hinges > 0 ? kDofsPerNode * s.nodes : 0;
+  Layout l;
+  l.array<double>(dofs);                              // impulse
+  l.array<double>(dofs);                              // response
+  l.array<std::int64_t>(s.hinges > 0 ? s.nodes : 0);  // moved
+  l.array<std::int64_t>(s.hinges);                    // checked
+  l.scalar<std::int64_t>();                           // events
+  return l;
+}
+
+std::size_t clamp_work_size(const Sizes& s) {
+  return clamp_work_layout(s).size();
+}
+
+std::size_t clamp_work_align(const Sizes& s) {
+  return clamp_work_layout(s).align();
+}
+
 std::size_t scratch_size(const Sizes& s) {
   const int dofs = kDofsPerNode * s.nodes;
   Layout l;
-  l.array<double>(kDofsPerNode);                      // load_g
-  l.array<double>(s.loads + s.inputs);                // p_slot
-  l.array<double>(dofs);                              // f
-  l.array<double>(dofs);                              // a
-  l.array<double>(s.hinges > 0 ? dofs : 0);           // r (models with hinges)
-  l.array<double>(s.outputs);                         // outputs
-  l.array<std::int64_t>(s.hinges > 0 ? s.nodes : 0);  // clamp_moved
-  l.array<std::int64_t>(s.hinges);                    // clamp_checked
-  l.scalar<std::int64_t>();                           // clamp_events
-  l.array<double>(3);                                 // ground
-  l.scalar<double>();                                 // time
+  l.array<double>(kDofsPerNode);                 // load_g
+  l.array<double>(s.loads + s.inputs);           // p_slot
+  l.array<double>(dofs);                         // f
+  l.array<double>(dofs);                         // a
+  l.array<double>(s.hinges > 0 ? dofs : 0);      // r (models with hinges)
+  l.array<double>(s.outputs);                    // outputs
+  const std::size_t clamp = clamp_work_size(s);  // clamp (ClampWork)
+  l.add(clamp, clamp_work_align(s));
+  l.array<double>(3);  // ground
+  l.scalar<double>();  // time
   return l.size();
 }
 
@@ -141,18 +159,18 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per node: 6 DOFs x 7 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
   // Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 7 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
-  // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
+  // Per hinge: its data, its forest slots (edge, root, hinge -> edge) and its
   // places in the lists of hinges with springs, with branches, of projected edges and of the
   // trees' stops, a
   // tree slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
-                sizeof(ForestRoot) + sizeof(Mat6) + 5 * sizeof(std::int32_t) + sizeof(ForestTree) +
+                sizeof(ForestRoot) + 5 * sizeof(std::int32_t) + sizeof(ForestTree) +
                 sizeof(std::int64_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force
-  // (Scratch::r) and its clamp move mark (Scratch).
+  // (Scratch::r), the clamp's impulse and response (Scratch::clamp) and its clamp move mark.
   f.per_node_with_hinges = sizeof(std::int32_t) + sizeof(std::uint8_t) +
-                           2 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
+                           4 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
   f.per_curve_point = sizeof(CurvePoint);
   return f;
 }
