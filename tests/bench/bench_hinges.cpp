@@ -511,7 +511,7 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
     ntn::detail::residual(m, s, w, m.inv_mass.data(), w.a.data());
     lap(kDivide);
   } else {
-    ntn::detail::hinge_forces(m, s, w);
+    ntn::detail::hinge_springs(m, s, w);
     lap(kHingeSprings);
     if (m.hinge_method == HingeMethod::kNtnPaper) {
       ntn::detail::residual<S, false>(m, s, w, nullptr, w.r.data());

@@ -134,7 +134,7 @@ StepStatus step_stored(const Model<S>& m, const StoredBeams<S>& sb, State<S>& s,
   const double t = static_cast<double>(s.tick) * m.dt;
   ntn::detail::apply_loads(m, s, w, t);
   stored_element_forces(sb, s, w);
-  ntn::detail::accelerations(m, s, w);
+  ntn::detail::residual_stage(m, s, w);
   ntn::detail::sample_outputs(m, s, w, t);
   const bool finite = ntn::detail::update(m, s, w);
   ++s.tick;

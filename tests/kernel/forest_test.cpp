@@ -27,6 +27,7 @@
 
 #include "ntn/constraint_forest.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 #include "support/hinges.hpp"
 
 namespace {
@@ -120,10 +121,10 @@ Built build(const Forest& f) {
   const std::size_t nh = f.hinges.size();
   b.node_tree.resize(f.nodes.size());
   b.edges.resize(nh), b.mats.resize(nh), b.roots.resize(nh), b.trees.resize(nh);
-  std::vector<ntn::Mat6> mass_up(nh);
+  std::vector<ntn::ForestWork> work(nh);
   std::vector<std::uint8_t> held(f.nodes.size());
-  b.fb = ntn::build_forest(f.hinges, f.nodes, f.mass, b.node_tree, b.edges, b.mats, b.roots,
-                           mass_up, held);
+  b.fb = ntn::build_forest(f.hinges, f.nodes, f.mass, b.node_tree, b.edges, b.mats, b.roots, work,
+                           held);
   b.num_trees = ntn::forest_trees(
       std::span<const ntn::ForestEdge>(b.edges.data(), static_cast<std::size_t>(b.fb.edges)),
       b.node_tree, b.trees);

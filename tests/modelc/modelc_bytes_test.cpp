@@ -56,8 +56,8 @@ TEST(ModelBytes, PerElementNodeAndHinge) {
   EXPECT_EQ(ntn::modelc::model_bytes(h4) - ntn::modelc::model_bytes(h2), 2 * f.per_hinge);
   EXPECT_EQ(f.per_hinge, sizeof(ntn::HingeData) + sizeof(ntn::ForestEdge) +
                              sizeof(ntn::ForestEdgeMatrices) + sizeof(ntn::ForestRoot) +
-                             sizeof(ntn::Mat6) + 5 * sizeof(std::int32_t) +
-                             sizeof(ntn::ForestTree) + sizeof(std::int64_t));
+                             5 * sizeof(std::int32_t) + sizeof(ntn::ForestTree) +
+                             sizeof(std::int64_t));
   // Eight more nodes in a model with hinges: the per-node arrays plus the hinge ones.
   constexpr ntn::Sizes hn{16, 8, 0, 0, 0, 0, 0, 2, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(hn) - ntn::modelc::model_bytes(h2),

@@ -305,6 +305,16 @@ int for_each_rigid_cycle(std::span<const Hinge> hinges, std::span<const NodeSpec
   return cycles;
 }
 
+// build_forest's workspace, one entry per hinge (init only: init() keeps it out of the Model).
+struct ForestWork {
+  // Step 2: the k-th placed edge (breadth-first, parents first) before it is written to `edges`.
+  std::int32_t hinge = 0;
+  std::int32_t child = 0;
+  std::int32_t parent = kGround;
+  std::int32_t sign = 1;
+  Mat6 mass_up;  // step 3: the mass edge k hands its parent, T^T G S G^T T (DESIGN §7.1)
+};
+
 struct ForestBuild {
   InitStatus status;
   int edges = 0;
@@ -315,14 +325,14 @@ struct ForestBuild {
 // The forest's topology (DESIGN §7.1): which nodes form each rigid tree, its root, and its edges
 // breadth-first, parents before children, trees one after the other. `node_tree` (per node)
 // receives the tree index or -1; `edges` (per hinge) the edges' child, parent, hinge and sign,
-// `roots` (per hinge) the root node of each tree not rooted at the ground; `stash_space` (per
+// `roots` (per hinge) the root node of each tree not rooted at the ground; `work` (per
 // hinge) is workspace. A cycle of rigid connections (for_each_rigid_cycle) is refused (kRigidCycle,
 // `where` = the hinge that closes it). Modal analysis builds its constraint transformation on this
 // same topology.
 inline ForestBuild forest_topology(std::span<const HingeData> hinges,
                                    std::span<const NodeSpec> nodes, std::span<const double> mass,
                                    std::span<std::int32_t> node_tree, std::span<ForestEdge> edges,
-                                   std::span<ForestRoot> roots, std::span<Mat6> stash_space) {
+                                   std::span<ForestRoot> roots, std::span<ForestWork> work) {
   ForestBuild out;
   const int nh = static_cast<int>(hinges.size());
   auto rigid = [&](int h) { return hinges[static_cast<std::size_t>(h)].rigid != 0; };
@@ -366,10 +376,10 @@ inline ForestBuild forest_topology(std::span<const HingeData> hinges,
   }
 
   // 2. Per tree (acyclic by step 0): pick the root and place the tree's edges breadth-first,
-  // parents before children. Placements are stashed in `stash_space` and a placed hinge is
-  // marked with tree id -(t + 2).
+  // parents before children. Placements go to `work` (until build_forest's step 3) and a placed
+  // hinge is marked with tree id -(t + 2).
   int written = 0;
-  auto stash = [&](int k) -> Mat6& { return stash_space[static_cast<std::size_t>(k)]; };
+  auto stash = [&](int k) -> ForestWork& { return work[static_cast<std::size_t>(k)]; };
   for (int t = 0; t < trees; ++t) {
     int grounds = 0, supported = 0;
     for (std::size_t n = 0; n < node_tree.size(); ++n) {
@@ -418,8 +428,8 @@ inline ForestBuild forest_topology(std::span<const HingeData> hinges,
         }
         if (child < 0) continue;
         edges[static_cast<std::size_t>(h)].hinge = -(t + 2);
-        Mat6& slot = stash(written++);
-        slot.a[0] = h, slot.a[1] = child, slot.a[2] = parent, slot.a[3] = sign;
+        ForestWork& slot = stash(written++);
+        slot.hinge = h, slot.child = child, slot.parent = parent, slot.sign = sign;
       }
     };
     int level_begin = written;
@@ -427,20 +437,20 @@ inline ForestBuild forest_topology(std::span<const HingeData> hinges,
     while (level_begin < written) {
       const int level_end = written;
       for (int k = level_begin; k < level_end; ++k) {
-        place_children_of(static_cast<int>(stash(k).a[1]));
+        place_children_of(stash(k).child);
       }
       level_begin = level_end;
     }
   }
   // Unstash the placements into the edges (hinge indices were tree marks until now).
   for (int k = 0; k < written; ++k) {
-    const Mat6& slot = stash_space[static_cast<std::size_t>(k)];
+    const ForestWork& slot = work[static_cast<std::size_t>(k)];
     ForestEdge& e = edges[static_cast<std::size_t>(k)];
     e = ForestEdge{};
-    e.hinge = static_cast<std::int32_t>(slot.a[0]);
-    e.child = static_cast<std::int32_t>(slot.a[1]);
-    e.parent = static_cast<std::int32_t>(slot.a[2]);
-    e.sign = static_cast<std::int32_t>(slot.a[3]);
+    e.hinge = slot.hinge;
+    e.child = slot.child;
+    e.parent = slot.parent;
+    e.sign = slot.sign;
   }
   out.edges = written;
   return out;
@@ -448,14 +458,15 @@ inline ForestBuild forest_topology(std::span<const HingeData> hinges,
 
 // Builds the forest of the hinges' rigid directions: its topology (forest_topology), then each
 // edge's constant matrices and each root's inverse effective mass. `held` (per node) receives the
-// DOFs held at zero as mechanisms; `mass_up` is workspace of one matrix per edge.
+// DOFs held at zero as mechanisms; `work` has one entry per hinge (init only: init() keeps it out
+// of the Model).
 inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<const NodeSpec> nodes,
                                 std::span<const double> mass, std::span<std::int32_t> node_tree,
                                 std::span<ForestEdge> edges, std::span<ForestEdgeMatrices> mats,
-                                std::span<ForestRoot> roots, std::span<Mat6> mass_up,
+                                std::span<ForestRoot> roots, std::span<ForestWork> work,
                                 std::span<std::uint8_t> held) {
   using detail::M6;
-  ForestBuild out = forest_topology(hinges, nodes, mass, node_tree, edges, roots, mass_up);
+  ForestBuild out = forest_topology(hinges, nodes, mass, node_tree, edges, roots, work);
   for (auto& h : held)
     h = 0;
   if (!out.status.ok()) return out;
@@ -470,7 +481,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     M6 mc = detail::own_mass(mass, e.child);
     for (int j = k + 1; j < written; ++j) {
       if (edges[static_cast<std::size_t>(j)].parent == e.child)
-        mc += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
+        mc += detail::to_m6(work[static_cast<std::size_t>(j)].mass_up);
     }
     // d_L = T [u2 - u1 - phi1 x e; phi2 - phi1] (DESIGN §7): the lever arm e turns with node 1.
     // So the link X(e) sits on node 1's side: on the child when it is node 1 (q = T X(e) a_c,
@@ -503,7 +514,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     }
     const M6 id = M6::Identity();
     const M6 s = g * (mq - mq * ainv * mq) * g;
-    mass_up[static_cast<std::size_t>(k)] = detail::to_mat6(tp.transpose() * s * tp);
+    work[static_cast<std::size_t>(k)].mass_up = detail::to_mat6(tp.transpose() * s * tp);
     mx.up = detail::to_mat6(tp.transpose() * g * (id - mq * ainv) * yinv.transpose());
     mx.down_a = detail::to_mat6(yinv * (id - ainv * mq) * g * tp);
     mx.down_r = detail::to_mat6(yinv * ainv * yinv.transpose());
@@ -529,7 +540,7 @@ inline ForestBuild build_forest(std::span<const HingeData> hinges, std::span<con
     M6 m = detail::own_mass(mass, root.node);
     for (int j = 0; j < written; ++j) {
       if (edges[static_cast<std::size_t>(j)].parent == root.node)
-        m += detail::to_m6(mass_up[static_cast<std::size_t>(j)]);
+        m += detail::to_m6(work[static_cast<std::size_t>(j)].mass_up);
     }
     std::uint8_t keep = 0;
     const std::uint8_t fixed = nodes[static_cast<std::size_t>(root.node)].fixed;

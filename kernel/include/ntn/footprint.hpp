@@ -38,6 +38,7 @@ class Layout {
     }
   }
   constexpr std::size_t size() const { return (offset_ + align_ - 1) / align_ * align_; }
+  constexpr std::size_t align() const { return align_; }
 
  private:
   std::size_t offset_ = 0;
@@ -77,7 +78,6 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<ForestEdge>(s.hinges);                // edges
   l.array<ForestEdgeMatrices>(s.hinges);        // edge_matrices
   l.array<ForestRoot>(s.hinges);                // roots
-  l.array<Mat6>(s.hinges);                      // mass_up
   l.array<std::int32_t>(s.hinges);              // hinge_edge
   l.array<std::int32_t>(hinge_nodes);           // node_tree
   l.array<std::uint8_t>(hinge_nodes);           // held
@@ -115,21 +115,37 @@ constexpr std::size_t state_footprint(const Sizes& s) {
   return l.size();
 }
 
+// sizeof(ClampWork<S>) and its alignment (state.hpp): the momentum clamp's workspace.
+constexpr detail::Layout clamp_work_layout(const Sizes& s) {
+  const int dofs = s.hinges > 0 ? kDofsPerNode * s.nodes : 0;
+  detail::Layout l;
+  l.array<double>(dofs);                              // impulse
+  l.array<double>(dofs);                              // response
+  l.array<std::int64_t>(s.hinges > 0 ? s.nodes : 0);  // moved
+  l.array<std::int64_t>(s.hinges);                    // checked
+  l.scalar<std::int64_t>();                           // events
+  return l;
+}
+constexpr std::size_t clamp_work_footprint(const Sizes& s) {
+  return clamp_work_layout(s).size();
+}
+constexpr std::size_t clamp_work_align(const Sizes& s) {
+  return clamp_work_layout(s).align();
+}
+
 // sizeof(Scratch<S>) (state.hpp).
 constexpr std::size_t scratch_footprint(const Sizes& s) {
   const int dofs = kDofsPerNode * s.nodes;
   detail::Layout l;
-  l.array<double>(kDofsPerNode);                      // load_g
-  l.array<double>(s.loads + s.inputs);                // p_slot
-  l.array<double>(dofs);                              // f
-  l.array<double>(dofs);                              // a
-  l.array<double>(s.hinges > 0 ? dofs : 0);           // r
-  l.array<double>(s.outputs);                         // outputs
-  l.array<std::int64_t>(s.hinges > 0 ? s.nodes : 0);  // clamp_moved
-  l.array<std::int64_t>(s.hinges);                    // clamp_checked
-  l.scalar<std::int64_t>();                           // clamp_events
-  l.scalar<std::array<double, 3>>();                  // ground
-  l.scalar<double>();                                 // time
+  l.array<double>(kDofsPerNode);                        // load_g
+  l.array<double>(s.loads + s.inputs);                  // p_slot
+  l.array<double>(dofs);                                // f
+  l.array<double>(dofs);                                // a
+  l.array<double>(s.hinges > 0 ? dofs : 0);             // r
+  l.array<double>(s.outputs);                           // outputs
+  l.add(clamp_work_footprint(s), clamp_work_align(s));  // clamp (ClampWork)
+  l.scalar<std::array<double, 3>>();                    // ground
+  l.scalar<double>();                                   // time
   return l.size();
 }
 
@@ -143,7 +159,8 @@ namespace detail {
 template <Sizes S>
 constexpr bool footprint_exact() {
   return model_footprint(S) == sizeof(Model<S>) && state_footprint(S) == sizeof(State<S>) &&
-         scratch_footprint(S) == sizeof(Scratch<S>);
+         clamp_work_footprint(S) == sizeof(ClampWork<S>) &&
+         clamp_work_align(S) == alignof(ClampWork<S>) && scratch_footprint(S) == sizeof(Scratch<S>);
 }
 
 // Every optional array empty; odd counts (padding); hinges, curves, curve points, one by one.

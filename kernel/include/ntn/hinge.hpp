@@ -109,8 +109,8 @@ struct HingeData {
   std::array<double, kDofsPerNode> branch_lower{};  // rigid branch starts (curve directions)
   std::array<double, kDofsPerNode> branch_upper{};
   std::uint8_t springs = 0;   // bit d: direction d carries a spring force (linear, curve, penalty)
-  std::uint8_t rigid = 0;     // bit d: direction d is held by NTN coupling (ntn_exact, ntn_paper)
-  std::uint8_t branches = 0;  // bit d: direction d is a curve with a rigid branch
+  std::uint8_t rigid = 0;     // bit d: a coupled direction, held by the NTN coupling (not penalty)
+  std::uint8_t branches = 0;  // bit d: direction d is a curve with a rigid branch (a stop)
 };
 
 // Relative displacement in the hinge frame (DESIGN §7):
@@ -184,13 +184,16 @@ inline void hinge_spring_force(const HingeData& h, std::span<const CurvePoint> p
   }
 }
 
-// Resolves a hinge spec for a method: which directions are NTN-coupled (`rigid`), which carry
-// a spring force (`springs`), and where curves have rigid branches. False for a bad spec:
-// node out of range, a frame that is not orthonormal and right-handed (to 1e-9), a bad curve,
-// a negative stiffness or dashpot, an eccentric ground hinge.
-inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int node_count,
-                            std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
-                            HingeData& h) {
+// Resolves a hinge spec: which directions carry a spring force (`springs`), where curves have
+// rigid branches, and, through `rigid_direction(k)`, what the hinge method makes of a rigid
+// direction k (make_hinge_data in hinge_methods.hpp: NTN-coupled, `rigid`, or a penalty
+// spring). False for a bad spec: node out of range, a frame that is not orthonormal and
+// right-handed (to 1e-9), a bad curve, a negative stiffness or dashpot, an eccentric ground
+// hinge, a rigid direction the method refuses.
+template <class RigidDirection>
+bool resolve_hinge(const HingeSpec& spec, const Settings& settings, int node_count,
+                   std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
+                   HingeData& h, RigidDirection&& rigid_direction) {
   h = HingeData{};
   h.node1 = spec.node1, h.node2 = spec.node2;
   h.frame = spec.frame;
@@ -204,20 +207,12 @@ inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int
     return false;
   if (!check_axes(spec.frame).ok()) return false;
 
-  const bool penalty = settings.hinge_method == HingeMethod::kPenalty;
   for (std::size_t k = 0; k < kDofsPerNode; ++k) {
     const auto bit = static_cast<std::uint8_t>(1U << k);
     h.branch_lower[k] = -1e300, h.branch_upper[k] = 1e300;
     switch (spec.behaviour[k]) {
       case HingeBehaviour::kRigid:
-        if (penalty) {
-          h.stiffness[k] =
-              k < 3 ? settings.penalty_stiffness : settings.penalty_rotational_stiffness;
-          if (!(h.stiffness[k] > 0)) return false;
-          h.springs |= bit;
-        } else {
-          h.rigid |= bit;
-        }
+        if (!rigid_direction(k)) return false;
         break;
       case HingeBehaviour::kFree:
         break;

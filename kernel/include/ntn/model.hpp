@@ -9,8 +9,8 @@
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 #include "ntn/model_spec.hpp"
-#include "ntn/ntn_paper.hpp"
 #include "ntn/status.hpp"
 #include "ntn/time_step.hpp"
 
@@ -22,9 +22,12 @@ struct Model {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
 
   std::array<BeamData, S.elements> beams{};
-  std::array<double, kDofs> mass{};      // kg or kg m^2, lumped (HRZ) plus point masses
-  std::array<double, kDofs> inv_mass{};  // 1/mass; 0 at supported DOFs, which stay at zero
-  std::array<double, kDofs> damping{};   // N s/m, diagonal C = alpha M (S 1)
+  std::array<double, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
+  // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
+  // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
+  // (ntn_exact: the forest gives them) and mechanism DOFs (held at zero).
+  std::array<double, kDofs> inv_mass{};
+  std::array<double, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
   std::array<std::uint8_t, S.nodes> fixed{};            // support bits per node (bit d: DOF d)
   std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
@@ -54,12 +57,11 @@ struct Model {
   std::array<ForestEdge, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
   std::array<ForestEdgeMatrices, S.hinges> edge_matrices{};  // ntn_exact: each edge's matrices
   std::array<ForestRoot, S.hinges> roots{};           // ntn_exact: trees not rooted at the ground
-  std::array<Mat6, S.hinges> mass_up{};               // ntn_exact: mass each edge hands its parent
   std::array<std::int32_t, S.hinges> hinge_edge{};    // hinge -> its forest edge, or -1
   std::array<std::int32_t, kHingeNodes> node_tree{};  // node -> its rigid tree, or -1
   std::array<std::uint8_t, kHingeNodes> held{};       // mechanism DOFs held at zero (bits)
   // ntn_exact: what the residual pass multiplies R_n by, per DOF: inv_mass outside the trees, 1
-  // in a tree (the forest turns those R into accelerations in place; integrator.hpp).
+  // in a tree (the forest turns those R into accelerations in place; ntn_exact.hpp).
   std::array<double, kDofsPerNode * kHingeNodes> residual_scale{};
   std::array<std::int32_t, S.hinges> spring_hinges{};  // hinges with a spring or dashpot
   std::array<std::int32_t, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
@@ -74,14 +76,23 @@ struct Model {
   int num_branch_hinges = 0;
   int num_project_edges = 0;
   int num_trees = 0;
-  int held_dofs = 0;  // DOFs held at zero as mechanisms (no mass, no stiffness)
-  HingeMethod hinge_method = HingeMethod::kNtnExact;
+  int held_dofs = 0;           // DOFs held at zero as mechanisms (no mass, no stiffness)
+  HingeMethod hinge_method{};  // Settings::hinge_method (hinge_methods.hpp picks the method)
   ClampRule clamp = ClampRule::kMomentum;
   double inv_dt = 0;  // 1/s
   // Kernel steps per I/O frame, N = frame_period / dt by the frame rule (frame_substeps), stored
   // once at init: every driver and test reads N here (count 0 and the reason when dt does not
   // divide the frame; the model compiler refuses such a model).
   Substeps substeps;
+};
+
+// What init() works in and then drops: kept out of the constant Model.
+template <Sizes S>
+struct InitWorkspace {
+  // The mass the accelerations divide by, before init() inverts it into Model::inv_mass: the
+  // lumped mass, or the hinge-summed one (ntn_paper, S 22-26).
+  std::array<double, Model<S>::kDofs> divided_mass{};
+  std::array<ForestWork, S.hinges> forest{};  // ntn_exact: build_forest's, one per hinge
 };
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
@@ -171,20 +182,10 @@ template <Sizes S>
   return {};
 }
 
-// The rigid tree that holds both nodes of stop hinge `i` (index into Model::branch_hinges), or
-// -1: its stops are then solved with that tree's (integrator.hpp, clamp_tree).
+// Builds the constant model from its spec. No heap: `model` and `work` are caller-owned (usually
+// static); `work` is scratch for the call only.
 template <Sizes S>
-int stop_tree(const Model<S>& m, int i) {
-  const HingeData& h =
-      m.hinges[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])];
-  if (h.node2 == kGround) return -1;
-  const std::int32_t t = m.node_tree[static_cast<std::size_t>(h.node1)];
-  return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)] ? t : -1;
-}
-
-// Builds the constant model from its spec. No heap: `model` is caller-owned (usually static).
-template <Sizes S>
-[[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model) {
+[[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<S>& work) {
   static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
   if (const InitStatus st = check_references(spec); !st.ok()) return st;
   for (int i = 0; i < S.elements; ++i) {
@@ -204,12 +205,12 @@ template <Sizes S>
   model.num_supported = 0;
   assemble_lumped_mass(v, model.mass);
 
-  // Hinges: NTN coupling per method (DESIGN §7). `eff` is the mass the accelerations divide
-  // by: the lumped mass, or for ntn_paper the hinge-summed one (S 22-26); built in inv_mass.
+  // Hinges (DESIGN §7): each hinge resolved for the method, the lists the step visits, then
+  // what the method precomputes (the forest, or the S 22-26 masses in work.divided_mass).
   model.hinge_method = spec.settings.hinge_method;
   model.clamp = spec.settings.clamp;
-  std::array<double, Model<S>::kDofs>& eff = model.inv_mass;
-  eff = model.mass;
+  const std::array<double, Model<S>::kDofs>& divided = work.divided_mass;
+  work.divided_mass = model.mass;
   if constexpr (S.hinges > 0) {
     for (int i = 0; i < S.hinges; ++i) {
       (void)make_hinge_data(spec.hinges[static_cast<std::size_t>(i)], spec.settings, S.nodes,
@@ -233,47 +234,7 @@ template <Sizes S>
       t = -1;
     for (auto& h : model.held)
       h = 0;
-    if (model.hinge_method == HingeMethod::kNtnExact) {
-      const ForestBuild fb =
-          build_forest(model.hinges, spec.nodes, model.mass, model.node_tree, model.edges,
-                       model.edge_matrices, model.roots, model.mass_up, model.held);
-      if (!fb.status.ok()) return fb.status;
-      model.num_edges = fb.edges, model.num_roots = fb.roots, model.held_dofs = fb.held_dofs;
-      for (int k = 0; k < fb.edges; ++k) {
-        const int h = model.edges[static_cast<std::size_t>(k)].hinge;
-        model.hinge_edge[static_cast<std::size_t>(h)] = k;
-      }
-      const bool any_branch = std::any_of(model.hinges.begin(), model.hinges.end(),
-                                          [](const HingeData& h) { return h.branches != 0; });
-      const auto edges =
-          std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges));
-      model.num_trees = forest_trees(edges, model.node_tree, model.trees);
-      // The stop hinges of each tree, tree by tree (a counting sort: count, ranges, place).
-      for (int i = 0; i < model.num_branch_hinges; ++i) {
-        const int t = stop_tree(model, i);
-        if (t >= 0) ++model.trees[static_cast<std::size_t>(t)].end_stop;
-      }
-      int placed = 0;
-      for (int t = 0; t < model.num_trees; ++t) {
-        ForestTree& tree = model.trees[static_cast<std::size_t>(t)];
-        tree.first_stop = placed;
-        placed += tree.end_stop;
-        tree.end_stop = tree.first_stop;
-      }
-      for (int i = 0; i < model.num_branch_hinges; ++i) {
-        const int t = stop_tree(model, i);
-        if (t >= 0)
-          model.tree_stops[static_cast<std::size_t>(
-              model.trees[static_cast<std::size_t>(t)].end_stop++)] = i;
-      }
-      model.num_project_edges = select_projected_edges(
-          edges,
-          std::span<const ForestTree>(model.trees.data(),
-                                      static_cast<std::size_t>(model.num_trees)),
-          model.clamp == ClampRule::kPaper && any_branch, model.project_edges);
-    } else if (model.hinge_method == HingeMethod::kNtnPaper) {
-      paper_masses(model.hinges, eff);
-    }
+    if (const InitStatus st = detail::hinge_method_init(spec, model, work); !st.ok()) return st;
   }
 
   for (int n = 0; n < S.nodes; ++n) {
@@ -285,9 +246,9 @@ template <Sizes S>
     for (int d = 0; d < kDofsPerNode; ++d) {
       const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
       model.damping[j] = spec.settings.alpha * model.mass[j];  // residual() recomputes it so
+      double inv = 0.0;
       if (((fixed >> d) & 1U) || in_tree) {  // a tree's accelerations come from the forest
-        eff[j] = 0.0;
-      } else if (!(eff[j] > 0)) {
+      } else if (!(divided[j] > 0)) {
         // No mass: without hinges the node has no element either, which the model compiler
         // refuses; with hinges it is a mechanism (DESIGN §7.1), held at zero. A spring on it
         // makes the stable step zero, which is refused below.
@@ -296,12 +257,12 @@ template <Sizes S>
         } else {
           model.held[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1U << d);
           ++model.held_dofs;
-          eff[j] = 0.0;
         }
       } else {
-        eff[j] = 1.0 / eff[j];
+        inv = 1.0 / divided[j];
       }
-      if constexpr (S.hinges > 0) model.residual_scale[j] = in_tree ? 1.0 : eff[j];
+      model.inv_mass[j] = inv;
+      if constexpr (S.hinges > 0) model.residual_scale[j] = in_tree ? 1.0 : inv;
     }
   }
 
@@ -344,6 +305,14 @@ template <Sizes S>
             hinge ? model.stable.governing_hinge : model.stable.governing_element};
   }
   return {};
+}
+
+// init() with a workspace of static storage, one per model size S: not for two threads that
+// build models of the same S at once (give each its own InitWorkspace).
+template <Sizes S>
+[[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model) {
+  static InitWorkspace<S> work;
+  return init(spec, model, work);
 }
 
 }  // namespace ntn

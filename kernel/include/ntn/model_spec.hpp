@@ -103,6 +103,8 @@ enum class HingeBehaviour : std::uint8_t {
             // limit stiffness are rigid branches (a gap or a stop)
 };
 
+// Each method is a struct in its own header (ntn_exact.hpp, ntn_paper.hpp, penalty.hpp); only
+// hinge_methods.hpp turns a value into its method.
 enum class HingeMethod : std::uint8_t {
   kNtnExact,  // the constraint forest of DESIGN §7.1 (default)
   kNtnPaper,  // the seed's algorithm literally (S 17-37); aligned, zero eccentricity

@@ -3,13 +3,22 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
 #include "ntn/hinge.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/residual.hpp"
+#include "ntn/state.hpp"
+#include "ntn/status.hpp"
 
 namespace ntn {
+
+template <Sizes S>
+struct Model;  // model.hpp
+template <Sizes S>
+struct InitWorkspace;  // model.hpp
 
 namespace detail {
 
@@ -186,5 +195,61 @@ inline void paper_after_update(std::span<const HingeData> hinges,
     }
   }
 }
+
+// The method's functions, called only through hinge_methods.hpp.
+struct NtnPaperMethod {
+  // Rigid direction k of a hinge: held by the NTN coupling.
+  static bool rigid_direction(const Settings&, std::size_t k, HingeData& h) {
+    h.rigid |= static_cast<std::uint8_t>(1U << k);
+    return true;
+  }
+
+  // S 22-26: the mass the accelerations divide by is the hinge-summed one (init() inverts it).
+  template <Sizes S>
+  static InitStatus init(const ModelSpec<S>&, Model<S>& model, InitWorkspace<S>& work) {
+    paper_masses(model.hinges, work.divided_mass);
+    return {};
+  }
+
+  // R_n - C v (S 2-3) at every DOF into w.r, unscaled: the coupling sums it first.
+  template <Sizes S>
+  static void residual(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+    detail::residual<S, false>(m, s, w, nullptr, w.r.data());
+  }
+  // S 17-21, then a_n = R_n / m with the hinge-summed masses (S 22-26, Model::inv_mass).
+  template <Sizes S>
+  static void couple(const Model<S>& m, const State<S>&, Scratch<S>& w) {
+    paper_forces(m.hinges, w.r.data());
+    for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+      w.a[j] = w.r[j] * m.inv_mass[j];
+    }
+  }
+
+  // The stops are S 33, inside the S 27-37 pass (project), in the seed's order.
+  template <Sizes S>
+  static void stops(const Model<S>&, State<S>&, Scratch<S>&) {}
+  // S 27-37 (S 33 included), hinge by hinge.
+  template <Sizes S>
+  static void project(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, true);
+  }
+  template <Sizes S>
+  static void project_initial(const Model<S>&, State<S>&) {}
+
+  // The force of rigid direction k on node 1, hinge frame: T (m_1 a_1 - R_1) from node 1's own
+  // mass and force, which holds every hinge on node 1 together.
+  template <Sizes S>
+  static double constraint_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hinge,
+                                 int k, int&) {
+    const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
+    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+    double own[kDofsPerNode], g[6], l[6];
+    detail::node_residual(m, s, w, h.node1, own);
+    for (std::size_t c = 0; c < 6; ++c)
+      g[c] = m.mass[i1 + c] * w.a[i1 + c] - own[c];
+    detail::to_hinge(h, g + (k < 3 ? 0 : 3), l);
+    return l[k % 3];
+  }
+};
 
 }  // namespace ntn

@@ -2,11 +2,26 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
+
+// The six DOFs of one node in a per-DOF array (u, v, a, F, R ...), in DOF order (DESIGN §3).
+using NodeBlock = std::span<double, kDofsPerNode>;
+using ConstNodeBlock = std::span<const double, kDofsPerNode>;
+
+template <std::size_t N>
+NodeBlock node_block(std::array<double, N>& x, int node) {
+  return NodeBlock(x.data() + kDofsPerNode * node, kDofsPerNode);
+}
+template <std::size_t N>
+ConstNodeBlock node_block(const std::array<double, N>& x, int node) {
+  return ConstNodeBlock(x.data() + kDofsPerNode * node, kDofsPerNode);
+}
 
 template <Sizes S>
 struct State {
@@ -20,24 +35,58 @@ struct State {
   std::uint32_t faults = 0;                    // Fault bits, sticky
 };
 
+// The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b
+// along a stop direction and the constrained system's response M_c^-1 b to it, over the nodes of
+// the parts that respond, and the bookkeeping that lets a sweep skip the stops nothing moved.
+template <Sizes S>
+struct ClampWork {
+  static constexpr int kDofs = S.hinges > 0 ? kDofsPerNode* S.nodes : 0;
+  // written by clamp_response (b, then the forest's upward pass in place), read by it
+  std::array<double, kDofs> impulse{};
+  // written by clamp_response (M_c^-1 b), read by clamp_projection and clamp_move
+  std::array<double, kDofs> response{};
+  // Event counts, not state (only their order within a step counts): when each node was last
+  // moved by a clamp (written by clamp_move), when each stop hinge was last looked at (written
+  // by the sweeps; index into Model::branch_hinges); both read by clamp_due.
+  std::array<std::int64_t, (S.hinges > 0 ? S.nodes : 0)> moved{};
+  std::array<std::int64_t, S.hinges> checked{};
+  std::int64_t events = 0;
+};
+
+// Each field: what it holds, the stage that writes it and the stages that read it (the stages
+// of step(), integrator.hpp).
 template <Sizes S>
 struct Scratch {
   static constexpr int kDofs = kDofsPerNode * S.nodes;
   // External load P_n (DESIGN §5): M g at every DOF (load_g per DOF direction, computed in the
   // residual pass), except at the model's load slots, whose P_n is here (external_load()).
-  std::array<double, kDofsPerNode> load_g{};           // m/s^2: gravity - a_g on x, y, z; 0, 0, 0
-  std::array<double, S.loads + S.inputs> p_slot{};     // N or N m, P_n at Model::slot_dof
-  std::array<double, kDofs> f{};                       // internal force F_n
-  std::array<double, kDofs> a{};                       // acceleration a_n
-  std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};  // R_n - C v, coupled (models with hinges)
-  std::array<double, S.outputs> outputs{};             // output channels at t_n
-  // Momentum clamp bookkeeping (integrator.hpp): the event count when each node was last moved
-  // by a clamp and when each stop hinge was last checked; only their order within a step counts.
-  std::array<std::int64_t, (S.hinges > 0 ? S.nodes : 0)> clamp_moved{};
-  std::array<std::int64_t, S.hinges> clamp_checked{};
-  std::int64_t clamp_events = 0;
-  std::array<double, 3> ground{};  // m/s^2, ground acceleration a_g at t_n (x, y, z)
-  double time = 0;                 // s, t_n of `outputs`
+  // load_g, p_slot: written by loads, read by the residual stage, hinge-force and reaction
+  // outputs (external_load).
+  std::array<double, kDofsPerNode> load_g{};        // m/s^2: gravity - a_g on x, y, z; 0, 0, 0
+  std::array<double, S.loads + S.inputs> p_slot{};  // N or N m, P_n at Model::slot_dof
+  // Internal force F_n: written by element forces and hinge springs, read by the residual stage
+  // and the reaction and hinge-force outputs.
+  std::array<double, kDofs> f{};
+  // Acceleration a_n: written by the residual stage (a_n at DOFs no hinge couples) and the NTN
+  // coupling stage (the coupled DOFs), read by outputs and the update; the stops and the
+  // constraint projection add their S 35-37 increments. Between the residual and the coupling
+  // stage its storage is the coupling's input, coupling_input() (ntn_exact: R_n - C v at tree
+  // DOFs), never read as `a`.
+  std::array<double, kDofs> a{};
+  // The coupled R_n - C v (models with hinges): ntn_paper's at every DOF, written by its
+  // residual and coupling stages (S 17-21) and read by them; ntn_exact's of one rigid tree,
+  // written and read by the hinge-force output of that tree (forest_hinge_force).
+  std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};
+  std::array<double, S.outputs>
+      outputs{};                   // channels at t_n: written by outputs, read by the caller
+  ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
+  std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
+  double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller
+
+  // The residual stage's output where the NTN coupling finishes it in place (ntn_exact): the
+  // storage of `a`, holding R_n - C v_{n-1/2} at the DOFs of rigid trees (a_n elsewhere) until
+  // the coupling stage has turned them into a_n. A name of its own, so that `a` always means a_n.
+  std::span<double, static_cast<std::size_t>(kDofs)> coupling_input() { return a; }
 };
 
 }  // namespace ntn

@@ -12,6 +12,7 @@
 
 #include "ntn/beam.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {

@@ -8,6 +8,7 @@
 
 #include "ntn/constraint_forest.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 #include "ntn/model.hpp"
 
 namespace ntn::modal {
@@ -132,8 +133,8 @@ ConstraintMap build_constraints(const SpecView& spec, const std::vector<LinearHi
   std::vector<std::int32_t> node_tree(static_cast<std::size_t>(n));
   std::vector<ForestEdge> edges(data.size());
   std::vector<ForestRoot> roots(data.size());
-  std::vector<ntn::Mat6> stash(data.size());
-  const ForestBuild fb = forest_topology(data, spec.nodes, mass, node_tree, edges, roots, stash);
+  std::vector<ntn::ForestWork> work(data.size());
+  const ForestBuild fb = forest_topology(data, spec.nodes, mass, node_tree, edges, roots, work);
   if (fb.status.error == InitError::kRigidCycle) {
     const auto h = static_cast<std::size_t>(fb.status.where);
     out.error = hinge_name(h) + " (node " + std::to_string(spec.hinges[h].node1) + " to " +

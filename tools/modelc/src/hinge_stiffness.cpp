@@ -9,6 +9,7 @@
 #include "messages.hpp"
 #include "ntn/beam.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 
 namespace ntn::modelc::compile {
 namespace {

@@ -22,18 +22,17 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per node: 6 DOFs x 7 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
   // Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 7 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
-  // Per hinge: its data, its forest slots (edge, root, mass handed up, hinge -> edge) and its
-  // places in the lists of hinges with springs, with branches, of projected edges and of the
-  // trees' stops, a
-  // tree slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
+  // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
+  // of hinges with springs, with branches, of projected edges and of the trees' stops, a tree
+  // slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
-                sizeof(ForestRoot) + sizeof(Mat6) + 5 * sizeof(std::int32_t) + sizeof(ForestTree) +
+                sizeof(ForestRoot) + 5 * sizeof(std::int32_t) + sizeof(ForestTree) +
                 sizeof(std::int64_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force
-  // (Scratch::r) and its clamp move mark (Scratch).
+  // (Scratch::r), the clamp's impulse and response (Scratch::clamp) and its clamp move mark.
   f.per_node_with_hinges = sizeof(std::int32_t) + sizeof(std::uint8_t) +
-                           2 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
+                           4 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
   f.per_curve_point = sizeof(CurvePoint);
   return f;
 }

@@ -8,6 +8,7 @@
 
 #include "messages.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/hinge_methods.hpp"
 #include "ntn/time_step.hpp"
 
 namespace ntn::modelc::compile {

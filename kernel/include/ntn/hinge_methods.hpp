@@ -1,0 +1,121 @@
+// The hinge methods (DESIGN §7) behind one interface, and the one place that picks a method from
+// HingeMethod. Each method is a struct of static functions in its own header:
+//
+//   rigid_direction(settings, k, h)   init: what a rigid direction becomes (coupled, or a spring)
+//   init(spec, model, work)           init: what the method precomputes
+//   residual(m, s, w)                 step: the residual pass R_n - C v (S 2-3), a_n where
+//   uncoupled couple(m, s, w)                   step: the NTN coupling, R -> a at coupled DOFs
+//   stops(m, s, w)                    step: rigid branches after the update (clamp.hpp)
+//   project(m, s, w)                  step: the constraint projection after the update
+//   project_initial(m, s)             start: u_0, v_0 onto the constraints
+//   constraint_force(m, s, w, hinge, k, coupled_tree)   output: the force of a coupled direction
+//
+// A new method is one header with such a struct, one HingeMethod value (model_spec.hpp) and one
+// case in with_hinge_method() below (and its name in the model compiler).
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+#include "ntn/hinge.hpp"
+#include "ntn/model_spec.hpp"
+#include "ntn/ntn_exact.hpp"
+#include "ntn/ntn_paper.hpp"
+#include "ntn/penalty.hpp"
+#include "ntn/state.hpp"
+#include "ntn/status.hpp"
+
+namespace ntn {
+
+template <Sizes S>
+struct Model;  // model.hpp
+template <Sizes S>
+struct InitWorkspace;  // model.hpp
+
+// Calls fn with the method's struct (a value of an empty type) and returns what it returns.
+template <class Fn>
+decltype(auto) with_hinge_method(HingeMethod method, Fn&& fn) {
+  switch (method) {
+    case HingeMethod::kPenalty:
+      return fn(PenaltyMethod{});
+    case HingeMethod::kNtnPaper:
+      return fn(NtnPaperMethod{});
+    case HingeMethod::kNtnExact:
+      break;
+  }
+  return fn(NtnExactMethod{});
+}
+
+// Resolves a hinge spec for the model's method (resolve_hinge, hinge.hpp): which directions are
+// coupled (`rigid`), which carry a spring force (`springs`, penalty's rigid directions among
+// them), and where curves have rigid branches. False for a bad spec (resolve_hinge).
+inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int node_count,
+                            std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
+                            HingeData& h) {
+  return with_hinge_method(settings.hinge_method, [&](auto method) {
+    return resolve_hinge(spec, settings, node_count, curves, points, h,
+                         [&](std::size_t k) { return method.rigid_direction(settings, k, h); });
+  });
+}
+
+namespace detail {
+
+// The stages of init() and step() that depend on the method: each picks the method once.
+
+template <Sizes S>
+InitStatus hinge_method_init(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<S>& work) {
+  return with_hinge_method(model.hinge_method,
+                           [&](auto method) { return method.init(spec, model, work); });
+}
+
+// R_n - C v_{n-1/2} (S 2-3): a_n = (R_n - C v) / m at every DOF that no hinge couples.
+template <Sizes S>
+void residual_stage(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  if constexpr (S.hinges > 0) {
+    with_hinge_method(m.hinge_method, [&](auto method) { method.residual(m, s, w); });
+  } else {
+    residual(m, s, w, m.inv_mass.data(), w.a.data());
+  }
+}
+
+// The NTN coupling: a_n at the coupled DOFs (S 17-26; DESIGN §7.1).
+template <Sizes S>
+void ntn_coupling(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  if constexpr (S.hinges > 0) {
+    with_hinge_method(m.hinge_method, [&](auto method) { method.couple(m, s, w); });
+  }
+}
+
+// Rigid branches, after the update: the momentum clamp or S 33 (DESIGN §7.1).
+template <Sizes S>
+void hinge_stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if constexpr (S.hinges > 0) {
+    with_hinge_method(m.hinge_method, [&](auto method) { method.stops(m, s, w); });
+  }
+}
+
+// The constraint projection, after the stops: S 27-37 or the forest's (DESIGN §7.1).
+template <Sizes S>
+void constraint_projection(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if constexpr (S.hinges > 0) {
+    with_hinge_method(m.hinge_method, [&](auto method) { method.project(m, s, w); });
+  }
+}
+
+template <Sizes S>
+void project_initial(const Model<S>& m, State<S>& s) {
+  if constexpr (S.hinges > 0) {
+    with_hinge_method(m.hinge_method, [&](auto method) { method.project_initial(m, s); });
+  }
+}
+
+template <Sizes S>
+double constraint_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hinge, int k,
+                        int& coupled_tree) {
+  return with_hinge_method(m.hinge_method, [&](auto method) {
+    return method.constraint_force(m, s, w, hinge, k, coupled_tree);
+  });
+}
+
+}  // namespace detail
+}  // namespace ntn

@@ -1,0 +1,74 @@
+// The residual R_n - C v_{n-1/2} = P_n - F_n - alpha M v_{n-1/2} (seed S 2-3, DESIGN §5): the one
+// pass over every DOF that the hinge methods finish differently (hinge_methods.hpp), and P_n at
+// one DOF for the outputs.
+#pragma once
+
+#include <cstddef>
+
+#include "ntn/model_spec.hpp"
+#include "ntn/state.hpp"
+
+namespace ntn {
+
+template <Sizes S>
+struct Model;  // model.hpp
+
+// P_n at DOF j as the last forces_and_accelerations (start or step) made it: the load slot's
+// value, else m g_d. The step never stores P_n as a whole (see residual()).
+template <Sizes S>
+double external_load(const Model<S>& m, const Scratch<S>& w, std::size_t j) {
+  for (int k = 0; k < m.num_slots; ++k) {
+    if (static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) == j)
+      return w.p_slot[static_cast<std::size_t>(k)];
+  }
+  return m.mass[j] * w.load_g[j % kDofsPerNode];
+}
+
+namespace detail {
+
+// R_n - C v_{n-1/2} = P_n - F_n - alpha M v_{n-1/2} (S 2-3) into out[j] for every DOF, times
+// scale[j] (or not: kScaled false), in one pass: P_n = m g_d on the fly (C = alpha M likewise:
+// the same products as Model::damping), then the load slots again with their whole P_n.
+template <Sizes S, bool kScaled = true>
+void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
+              double* out) {
+  const double alpha = m.alpha;
+  double g[kDofsPerNode];  // locals: the stores to `out` may alias the model and the scratch
+  for (std::size_t d = 0; d < kDofsPerNode; ++d)
+    g[d] = w.load_g[d];
+  for (std::size_t n = 0; n < static_cast<std::size_t>(Model<S>::kDofs); n += kDofsPerNode) {
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      const std::size_t j = n + d;
+      const double r = (m.mass[j] * g[d] - w.f[j]) - (alpha * m.mass[j]) * s.v[j];
+      if constexpr (kScaled) {
+        out[j] = r * scale[j];
+      } else {
+        out[j] = r;
+      }
+    }
+  }
+  for (int k = 0; k < m.num_slots; ++k) {
+    const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
+    const double r =
+        (w.p_slot[static_cast<std::size_t>(k)] - w.f[j]) - (alpha * m.mass[j]) * s.v[j];
+    if constexpr (kScaled) {
+      out[j] = r * scale[j];
+    } else {
+      out[j] = r;
+    }
+  }
+}
+
+// R_n - C v_{n-1/2} at the six DOFs of one node, as the outputs recompute it (with
+// Model::damping, the same products as the residual pass).
+template <Sizes S>
+void node_residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, int node,
+                   NodeBlock r) {
+  for (std::size_t c = 0; c < kDofsPerNode; ++c) {
+    const auto j = static_cast<std::size_t>(kDofsPerNode * node) + c;
+    r[c] = (external_load(m, w, j) - w.f[j]) - m.damping[j] * s.v[j];
+  }
+}
+
+}  // namespace detail
+}  // namespace ntn
