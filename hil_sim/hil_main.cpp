@@ -41,6 +41,7 @@ constexpr ntn::Sizes kS = mdl::kSizes;
 using Inputs = std::array<double, kS.inputs>;
 
 ntn::Model<kS> g_model;
+ntn::InitWorkspace<kS> g_init_work;  // what init() works in (static: no heap, little stack)
 ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
 ntn::State<kS> g_checkpoint;  // the end of the last good frame (the loop's safe state)
@@ -417,7 +418,7 @@ int hil_main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
-  if (const ntn::InitStatus st = ntn::init(mdl::kSpec, g_model); !st.ok()) {
+  if (const ntn::InitStatus st = ntn::init(mdl::kSpec, g_model, g_init_work); !st.ok()) {
     std::fprintf(stderr, "error: model '%s': %s (at %d)\n", std::string(mdl::kName).c_str(),
                  ntn::to_string(st.error), st.where);
     return 1;

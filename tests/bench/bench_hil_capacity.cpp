@@ -92,7 +92,7 @@ Row run_size(const Options& o) {
   row.dt = o.period / row.substeps;
   spec.settings.dt = row.dt;
   auto& model = static_instance<Model<S>>();
-  const InitStatus st = init(spec, model);
+  const InitStatus st = init(spec, model, static_instance<InitWorkspace<S>>());
   if (!st.ok()) {
     std::fprintf(stderr, "init failed (%d elements): %s at %d\n", S.elements, to_string(st.error),
                  st.where);

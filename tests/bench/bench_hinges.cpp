@@ -102,7 +102,7 @@ const ModelSpec<kSizes<J>>& spec_of(Variant v, double kt = kPenaltyStiffness,
 
 template <Joints J>
 void init_or_die(const ModelSpec<kSizes<J>>& spec, Model<kSizes<J>>& m) {
-  const InitStatus st = init(spec, m);
+  const InitStatus st = init(spec, m, static_instance<InitWorkspace<kSizes<J>>>());
   if (!st.ok()) {
     std::fprintf(stderr, "init failed: %s at %d\n", to_string(st.error), st.where);
     std::abort();

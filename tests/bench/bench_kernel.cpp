@@ -155,7 +155,8 @@ const Model<sizes_of(G)>& model_of() {
   static const bool ready = [] {
     auto& spec = static_instance<ModelSpec<S>>();
     build_frame<G>(spec);
-    const InitStatus st = init(spec, static_instance<Model<S>>());
+    const InitStatus st =
+        init(spec, static_instance<Model<S>>(), static_instance<InitWorkspace<S>>());
     if (!st.ok()) {
       std::fprintf(stderr, "init failed: %s at %d\n", to_string(st.error), st.where);
       std::abort();

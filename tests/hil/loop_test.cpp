@@ -19,6 +19,7 @@
 #include "support/alloc_counter.hpp"
 #include "support/assemble.hpp"
 #include "support/frames.hpp"
+#include "support/init_model.hpp"
 
 namespace {
 
@@ -90,7 +91,7 @@ class Loop : public ::testing::Test {
     ASSERT_TRUE(ntn_test::feature_frame(spec));
     spec.settings.frame_period = 1e-3;
     spec.settings.dt = ntn::auto_time_step(ntn::stable_time_step(ntn::view(spec)).dt_stable, 1e-3);
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     ASSERT_TRUE(model.substeps.ok());  // N, stored once by init (ntn::frame_substeps)
   }
 };
@@ -191,7 +192,7 @@ int make_unstable(double factor) {
   const int n = std::max(1, static_cast<int>(1e-3 / (factor * stable)));
   spec.settings.dt = 1e-3 / n;
   spec.settings.allow_unstable = true;
-  EXPECT_TRUE(ntn::init(spec, model).ok());
+  EXPECT_TRUE(ntn_test::init_model(spec, model).ok());
   EXPECT_GT(model.dt, stable);
   return n;
 }

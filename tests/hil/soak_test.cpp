@@ -29,6 +29,7 @@
 #include "ntn/kernel.hpp"
 #include "record.hpp"
 #include "support/alloc_counter.hpp"
+#include "support/init_model.hpp"
 #include NTN_MODEL_HEADER
 
 namespace {
@@ -167,7 +168,7 @@ struct SoakRun {
 struct Soak : ::testing::Test {
   static std::vector<double> samples;  // El Centro per frame
   static void SetUpTestSuite() {
-    ASSERT_TRUE(ntn::init(mdl::kSpec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(mdl::kSpec, model).ok());
     const ntn::io::ReadResult r = ntn::io::read_record(NTN_EL_CENTRO);
     ASSERT_FALSE(r.error) << r.error->format();
     const double period = mdl::kSpec.settings.frame_period;

@@ -12,6 +12,7 @@
 #include "ntn/kernel.hpp"
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
 
@@ -314,7 +315,7 @@ void check_timoshenko_cantilever(int load_dof) {
   ntn_test::RelaxationResult r;
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     r = ntn_test::relax(model, state, scratch, 1e-10, 5'000'000);
   }
   ASSERT_TRUE(r.converged);

@@ -13,6 +13,7 @@
 #include "ntn/kernel.hpp"
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
 #include "support/zero_crossings.hpp"
@@ -46,7 +47,7 @@ ntn::InitStatus build(int load_dof, double P, double alpha) {
   const ntn::StableStepReport r = ntn::stable_time_step(ntn::view(spec));
   spec.settings.dt = 0.9 * r.dt_stable;
   const ntn_test::EigenNoMalloc guard;
-  return ntn::init(spec, model);
+  return ntn_test::init_model(spec, model);
 }
 
 // Roots of cos(x) cosh(x) = -1 (cantilever), by Newton from the values
@@ -266,7 +267,7 @@ TEST(Cantilever, SuddenlyAppliedLoadPeaksAtTwiceTheStaticDeflection) {
   double peak = 0;
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(sp, mo).ok());
+    ASSERT_TRUE(ntn_test::init_model(sp, mo).ok());
     st = {};
     ASSERT_EQ(ntn::start(mo, st, sc, {}), ntn::StepStatus::kOk);
     const double t_end = 1.5 * 2 * kPi / m.omega(first);  // past the first peak at T1 / 2

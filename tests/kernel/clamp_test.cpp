@@ -22,6 +22,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 
 namespace {
 
@@ -137,7 +138,7 @@ double total_ry_momentum(const std::array<double, ntn::State<kSizes>::kDofs>& v)
 
 TEST(Clamp, OneStopBetweenLoneNodesLandsOnItsLimitAndKeepsMomentum) {
   build(ntn::HingeMethod::kPenalty);
-  ASSERT_TRUE(ntn::init(sim.spec, sim.model).ok());
+  ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok());
   ASSERT_EQ(sim.model.num_trees, 0);  // penalty: every node is a part of its own
   sim.state = {};
   fill_scratch();
@@ -167,7 +168,7 @@ TEST(Clamp, OneStopBetweenLoneNodesLandsOnItsLimitAndKeepsMomentum) {
 
 TEST(Clamp, TwoStopsSqueezingOneJointInOneTreeLandTogether) {
   build(ntn::HingeMethod::kNtnExact);
-  ASSERT_TRUE(ntn::init(sim.spec, sim.model).ok());
+  ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok());
   ASSERT_EQ(sim.model.num_trees, 1);  // the joint and both beam ends
   ASSERT_EQ(sim.model.trees[0].end_stop - sim.model.trees[0].first_stop, 2);
   sim.state = {};
@@ -204,7 +205,7 @@ TEST(Clamp, TwoStopsSqueezingOneJointInOneTreeLandTogether) {
 TEST(Clamp, StopsInsideTheirPlayMoveNothing) {
   for (ntn::HingeMethod method : {ntn::HingeMethod::kNtnExact, ntn::HingeMethod::kPenalty}) {
     build(method);
-    ASSERT_TRUE(ntn::init(sim.spec, sim.model).ok());
+    ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok());
     sim.state = {};
     fill_scratch();
     sim.state.u[dof(kLeftEnd, ntn::kRy)] = -0.999 * kPlay;
@@ -260,7 +261,7 @@ TEST(Clamp, StopRangesOfTwoTreesAreTheSameWhenAModelIsBuiltAgain) {
   spec.settings.dt = 1e-5;
   spec.settings.allow_unstable = true;
   for (int build = 0; build < 2; ++build) {
-    ASSERT_TRUE(ntn::init(spec, model).ok()) << "build " << build;
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok()) << "build " << build;
     ASSERT_EQ(model.num_trees, 2);
     for (int t = 0; t < 2; ++t) {
       EXPECT_EQ(model.trees[static_cast<std::size_t>(t)].first_stop, t) << "build " << build;

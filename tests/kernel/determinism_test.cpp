@@ -9,6 +9,7 @@
 
 #include "ntn/kernel.hpp"
 #include "support/frames.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -55,8 +56,8 @@ class Determinism : public ::testing::Test {
   void SetUp() override {
     ASSERT_TRUE(ntn_test::feature_frame(spec));
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model_a).ok());
-    ASSERT_TRUE(ntn::init(spec, model_b).ok());  // a second, independently built model
+    ASSERT_TRUE(ntn_test::init_model(spec, model_a).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model_b).ok());  // a second, independently built model
   }
 };
 

@@ -17,6 +17,7 @@
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -105,7 +106,7 @@ double max_opening() {
   const Eigen::Matrix<double, 6, 1> b2 = Bm.block<1, 6>(ntn::kUz, 6 * h.node2).transpose();
   double opening = 0;
   const ntn_test::EigenNoMalloc guard;
-  EXPECT_TRUE(ntn::init(beam.spec, beam.model).ok());
+  EXPECT_TRUE(ntn_test::init_model(beam.spec, beam.model).ok());
   beam.state = {};
   EXPECT_EQ(ntn::start(beam.model, beam.state, beam.scratch, {}), ntn::StepStatus::kOk);
   const auto steps = static_cast<long>(0.2 / beam.model.dt);
@@ -208,7 +209,7 @@ Momentum fly() {
   };
   Momentum out;
   const ntn_test::EigenNoMalloc guard;
-  EXPECT_TRUE(ntn::init(pair.spec, pair.model).ok());
+  EXPECT_TRUE(ntn_test::init_model(pair.spec, pair.model).ok());
   const double p0 = momentum(ntn::kUx);
   EXPECT_EQ(ntn::start(pair.model, st, pair.scratch, {}), ntn::StepStatus::kOk);
   for (long n = 0; n < 20'000; ++n) {
@@ -325,7 +326,7 @@ TEST(HingeGap, FreeFlyingTreeKeepsItsMomentum) {
     int contacts = 0;
     {
       const ntn_test::EigenNoMalloc guard;
-      ASSERT_TRUE(ntn::init(s, tree.model).ok());
+      ASSERT_TRUE(ntn_test::init_model(s, tree.model).ok());
       const double p0[3] = {momentum(0), momentum(1), momentum(2)};
       ASSERT_EQ(ntn::start(tree.model, st, tree.scratch, {}), ntn::StepStatus::kOk);
       const auto steps = static_cast<long>(0.1 / tree.model.dt);
@@ -407,7 +408,7 @@ TEST(HingeGap, Equation33ByHand) {
     }
     {
       const ntn_test::EigenNoMalloc guard;
-      ASSERT_TRUE(ntn::init(two.spec, two.model).ok()) << name;
+      ASSERT_TRUE(ntn_test::init_model(two.spec, two.model).ok()) << name;
       ASSERT_EQ(ntn::start(two.model, st, two.scratch, {}), ntn::StepStatus::kOk);
       ASSERT_EQ(ntn::step(two.model, st, two.scratch, {}), ntn::StepStatus::kOk);
     }

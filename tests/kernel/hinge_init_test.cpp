@@ -11,6 +11,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -58,7 +59,7 @@ void base(ntn::HingeMethod method = ntn::HingeMethod::kNtnExact) {
 
 ntn::InitStatus init() {
   const ntn_test::EigenNoMalloc guard;
-  return ntn::init(spec, model);
+  return ntn_test::init_model(spec, model);
 }
 
 void expect_error(ntn::InitError error, std::initializer_list<int> where, const char* what) {

@@ -26,6 +26,7 @@
 #include "support/builders.hpp"
 #include "support/hinged_models.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -143,7 +144,7 @@ Comparison compare(Sim<S>& pen, Sim<S>& ex, void (*build)(ntn::ModelSpec<S>&), d
   out.steps = static_cast<long>(t_end / pen.spec.settings.dt);
   const ntn_test::EigenNoMalloc guard;
   for (Sim<S>* r : {&pen, &ex}) {
-    EXPECT_TRUE(ntn::init(r->spec, r->model).ok());
+    EXPECT_TRUE(ntn_test::init_model(r->spec, r->model).ok());
     r->state = {};
     EXPECT_EQ(ntn::start(r->model, r->state, r->scratch, {}), ntn::StepStatus::kOk);
   }
@@ -208,7 +209,7 @@ TEST(HingePenalty, ChainOfHinges) {
   r.spec.settings.dt = 0.9 * ntn_test::hinged_stable_step(r.spec).dt_stable;
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(r.spec, r.model).ok());
+    ASSERT_TRUE(ntn_test::init_model(r.spec, r.model).ok());
   }
   ASSERT_EQ(r.model.num_edges, 3);
   ASSERT_EQ(r.model.num_roots, 1);

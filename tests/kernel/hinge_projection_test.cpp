@@ -21,6 +21,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 
 namespace {
 
@@ -82,8 +83,8 @@ double rigid_gap(const ntn::State<kSizes>& s, const ntn::HingeData& h, int d, bo
 
 TEST(HingeProjection, AlignedTreesStayExactWithoutProjection) {
   build(ntn_test::kIdentity3);
-  ASSERT_TRUE(ntn::init(spec, model).ok());
-  ASSERT_TRUE(ntn::init(spec, twin).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, twin).ok());
   EXPECT_EQ(model.num_edges, 3);
   EXPECT_EQ(model.num_project_edges, 0) << "every tree is aligned: the step projects nothing";
   state = {}, twin_state = {};
@@ -121,7 +122,7 @@ TEST(HingeProjection, TreesThatRoundAreReprojected) {
   // tree is re-projected and the others not. (A turn about the member axis x would not do: the
   // rigid subspace, all translations and rx, would be the same, and so the matrices.)
   build(ntn_test::rotation({0, 0, 1}, 20 * ntn_test::kDegree));
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   ASSERT_EQ(model.num_project_edges, 1);
   const int e = model.project_edges[0];
   EXPECT_EQ(model.edges[static_cast<std::size_t>(e)].hinge, 0);
@@ -136,17 +137,17 @@ TEST(HingeProjection, TreesThatRoundAreReprojected) {
   spec.settings.limit_rotational_stiffness = 1e8;
   spec.settings.dt = 0.9 * ntn_test::hinged_stable_step(spec).dt_stable;
   spec.settings.clamp = ntn::ClampRule::kMomentum;
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   EXPECT_EQ(model.num_branch_hinges, 1);
   EXPECT_EQ(model.num_project_edges, 0) << "the momentum clamp moves the trees as trees";
   spec.settings.clamp = ntn::ClampRule::kPaper;
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   EXPECT_EQ(model.num_project_edges, model.num_edges);
 }
 
 TEST(HingeProjection, StartPutsInitialConditionsOnTheConstraints) {
   build(ntn_test::kIdentity3);
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   state = {};
   for (int d = 0; d < 6; ++d) {  // every direction of node 9 off its joint, and node 0 off ground
     state.u[dof(kExtraA, d)] = 1e-3 * (d + 1);

@@ -20,6 +20,7 @@
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/zero_crossings.hpp"
 
@@ -174,7 +175,7 @@ TEST(HingeRelease, BeamFrequenciesEqualTheExactlyReleasedStructure) {
     EXPECT_GT(effect, 100 * kIssueTolerance);
     {
       const ntn_test::EigenNoMalloc guard;
-      ASSERT_TRUE(ntn::init(beam.spec, beam.model).ok());
+      ASSERT_TRUE(ntn_test::init_model(beam.spec, beam.model).ok());
     }
     for (Eigen::Index i = 0; i < 4; ++i) {
       const double err = measured_frequency_error(beam, m, i);
@@ -195,7 +196,7 @@ TEST(HingeRelease, PortalFrequenciesEqualTheExactlyReleasedStructure) {
   EXPECT_GT(effect, 100 * kIssueTolerance);
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(portal.spec, portal.model).ok());
+    ASSERT_TRUE(ntn_test::init_model(portal.spec, portal.model).ok());
   }
   for (Eigen::Index i = 0; i < 4; ++i) {
     const double err = measured_frequency_error(portal, m, i);
@@ -259,7 +260,7 @@ HistoryDifference compare_with_penalty(double kp, double kpr) {
   const auto steps = static_cast<long>(t_end / dt_p);
   const ntn_test::EigenNoMalloc guard;
   auto begin = [](Sim<kBeam>& r) {
-    EXPECT_TRUE(ntn::init(r.spec, r.model).ok());
+    EXPECT_TRUE(ntn_test::init_model(r.spec, r.model).ok());
     r.state = {};
     EXPECT_EQ(ntn::start(r.model, r.state, r.scratch, {}), ntn::StepStatus::kOk);
   };

@@ -21,6 +21,7 @@
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -85,7 +86,7 @@ Drift run() {
   const auto t0 = std::chrono::steady_clock::now();
   {
     const ntn_test::EigenNoMalloc guard;
-    EXPECT_TRUE(ntn::init(spec, model).ok());
+    EXPECT_TRUE(ntn_test::init_model(spec, model).ok());
     state = {};
     EXPECT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
     Eigen::Matrix<double, 6, 1> d_prev = Eigen::Matrix<double, 6, 1>::Zero();

@@ -19,6 +19,7 @@
 #include "support/builders.hpp"
 #include "support/frames.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -45,6 +46,7 @@ using Inputs = std::array<double, kS.inputs>;
 
 ntn::ModelSpec<kS> spec;
 ntn::Model<kS> model_a, model_b;
+ntn::InitWorkspace<kS> init_work;  // static: init() is inside the allocation count
 ntn::State<kS> a, b, checkpoint;
 ntn::Scratch<kS> wa, wb;
 
@@ -162,7 +164,7 @@ TEST_P(HingeRules, NoHeapAllocationInInitStartAndSteps) {
   {
     const ntn_test::AllocationScope scope;
     const ntn_test::EigenNoMalloc guard;
-    st = ntn::init(spec, model_a);
+    st = ntn::init(spec, model_a, init_work);
     a = {};
     first = ntn::start(model_a, a, wa, inputs_at(-1));
     at_stop = run(model_a, a, wa, 0, kSteps);
@@ -184,8 +186,8 @@ TEST_P(HingeRules, RepeatRunsAndCheckpointsAreBitIdentical) {
   build(GetParam());
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model_a).ok());
-    ASSERT_TRUE(ntn::init(spec, model_b).ok());  // a second, independently built model
+    ASSERT_TRUE(ntn_test::init_model(spec, model_a).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model_b).ok());  // a second, independently built model
   }
   EXPECT_EQ(std::memcmp(model_a.inv_mass.data(), model_b.inv_mass.data(), sizeof(model_a.inv_mass)),
             0);

@@ -18,6 +18,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -89,8 +90,8 @@ Errors run_both(const Vec3& axis, const Vec3& ref, const ntn_test::Mat3& frame,
 
   Errors e;
   const ntn_test::EigenNoMalloc guard;
-  EXPECT_TRUE(ntn::init(plain_spec, plain).ok());
-  EXPECT_TRUE(ntn::init(split_spec, split).ok());
+  EXPECT_TRUE(ntn_test::init_model(plain_spec, plain).ok());
+  EXPECT_TRUE(ntn_test::init_model(split_spec, split).ok());
   plain_state = {};
   split_state = {};
   EXPECT_EQ(ntn::start(plain, plain_state, plain_scratch, {}), ntn::StepStatus::kOk);

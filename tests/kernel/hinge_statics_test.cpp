@@ -19,6 +19,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
 
@@ -74,7 +75,7 @@ std::array<double, 6> relaxed_hinge_force() {
   ntn_test::RelaxationResult r;
   {
     const ntn_test::EigenNoMalloc guard;
-    EXPECT_TRUE(ntn::init(spec, model).ok());
+    EXPECT_TRUE(ntn_test::init_model(spec, model).ok());
     state = {};
     r = ntn_test::relax_hinged(model, state, scratch, 1e-10, 3'000'000);
   }

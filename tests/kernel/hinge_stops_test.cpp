@@ -34,6 +34,7 @@
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 
 namespace {
 
@@ -120,7 +121,7 @@ TEST(HingeStops, TwoStopsSqueezingOneJointHoldAndTakeNoEnergy) {
     sim.spec.settings.dt = 0.5 * dt_stable;
     sim.spec.time_points = ntn_test::triangle_pulse(kPulseSteps * sim.spec.settings.dt);
     sim.spec.time_functions[0] = {0, 3};
-    ASSERT_TRUE(ntn::init(sim.spec, sim.model).ok());
+    ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok());
     ASSERT_EQ(sim.model.num_branch_hinges, 2);
 
     const ntn::SpecView v = ntn::view(sim.spec);

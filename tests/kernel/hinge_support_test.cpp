@@ -25,6 +25,7 @@
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -113,7 +114,7 @@ Result run(Kind kind) {
   const std::uint8_t rigid = rigid_mask(kind);
   Result r;
   const ntn_test::EigenNoMalloc guard;
-  EXPECT_TRUE(ntn::init(spec, model).ok());
+  EXPECT_TRUE(ntn_test::init_model(spec, model).ok());
   state = {};
   EXPECT_EQ(ntn::start(model, state, scratch, {0, 0}), ntn::StepStatus::kOk);
   for (long n = 0; n < kSteps; ++n) {
@@ -189,7 +190,7 @@ TEST(HingeSupport, MasslessRotationsOfThePinAreHeld) {
     build(Kind::kPinAsNode2, inclined(), m);
     {
       const ntn_test::EigenNoMalloc guard;
-      ASSERT_TRUE(ntn::init(spec, model).ok());
+      ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     }
     EXPECT_EQ(model.held_dofs, 3);
     for (int d = 3; d < 6; ++d)

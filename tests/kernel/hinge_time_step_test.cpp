@@ -21,6 +21,7 @@
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -72,7 +73,7 @@ double rigid_slip() {
   const Eigen::Matrix<double, 6, 6> b2 = B.block<6, 6>(0, 6 * kMid);
   double peak_t = 0, peak_r = 0, slip_t = 0, slip_r = 0;
   const ntn_test::EigenNoMalloc guard;
-  EXPECT_TRUE(ntn::init(spec, model).ok());
+  EXPECT_TRUE(ntn_test::init_model(spec, model).ok());
   state = {};
   EXPECT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
   const auto steps = static_cast<long>(0.05 / model.dt);
@@ -109,7 +110,7 @@ TEST(HingeTimeStep, PenaltyCollapsesTheStepNtnExactKeepsIt) {
   EXPECT_EQ(exact.dt_hinges, 1e300);
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   }
   EXPECT_EQ(model.stable.dt_stable, exact.dt_elements);  // what init stores is the same
 

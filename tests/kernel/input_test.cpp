@@ -8,6 +8,7 @@
 
 #include "ntn/kernel.hpp"
 #include "support/frames.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -33,7 +34,7 @@ class InputHolding : public ::testing::Test {
   void SetUp() override {
     ASSERT_TRUE(ntn_test::feature_frame(spec));
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     bad = {}, good = {};
   }
 };
@@ -153,9 +154,9 @@ TEST(ChannelReferences, InitRefusesBadInputsAndOutputs) {
   };
   for (const ChannelCase& c : cases) {
     ASSERT_TRUE(ntn_test::feature_frame(spec));
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     c.edit(spec);
-    const ntn::InitStatus st = ntn::init(spec, model);
+    const ntn::InitStatus st = ntn_test::init_model(spec, model);
     EXPECT_EQ(st.error, c.error) << c.name;
     EXPECT_EQ(st.where, c.where) << c.name;
   }

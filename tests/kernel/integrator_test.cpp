@@ -11,6 +11,7 @@
 #include "ntn/kernel.hpp"
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -85,7 +86,7 @@ TEST(Integrator, MatchesTheCentralDifferenceEquations) {
   v -= 0.5 * dt * accel(0.0);
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
   }
   for (int step = 0; step < 300; ++step) {
@@ -132,7 +133,7 @@ TEST(Integrator, HighestModeOscillatesAtTheDiscreteFrequency) {
   std::vector<double> q{modal()};
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
   }
   q.reserve(20'001);
@@ -175,7 +176,7 @@ TEST(Integrator, UndampedEnergyIsConservedOver1e5Steps) {
   random_displacement(42, 1e-4);
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
   }
   constexpr long kSteps = 100'000;

@@ -10,6 +10,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/frames.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -111,7 +112,7 @@ TEST(Loads, NodalLoadsAndGravityAtTheStepTime) {
   spec.settings.gravity = {0, 0, -9.81};
   spec.settings.gravity_function = 1;
   const ntn_test::EigenNoMalloc guard;
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   state = {};
   ASSERT_EQ(ntn::start(model, state, scratch, {0, 0}), ntn::StepStatus::kOk);
   for (int n = 0; n < 50; ++n) {
@@ -140,11 +141,11 @@ TEST(Loads, BaseExcitationAndForceInputsEqualTheEquivalentLoads) {
   const ntn_test::EigenNoMalloc guard;
   static ntn::Model<kS> model_in;
   static ntn::State<kS> state_in;
-  ASSERT_TRUE(ntn::init(spec, model_in).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model_in).ok());
   spec.inputs = {};
   spec.settings.gravity = {-(ag * scale), 0, 0};
   spec.loads[0] = {7, ntn::kUy, force, ntn::kConstant};
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   state_in = {}, state = {};
   ASSERT_EQ(ntn::start(model_in, state_in, scratch, {ag, force}), ntn::StepStatus::kOk);
   ASSERT_EQ(ntn::start(model, state, scratch, {0, 0}), ntn::StepStatus::kOk);

@@ -12,6 +12,7 @@
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/frames.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -33,7 +34,7 @@ ntn::InitStatus init_frame(void (*edit)(ntn::ModelSpec<kS>&)) {
   spec.settings.dt = 0.9 * ntn::stable_time_step(ntn::view(spec)).dt_stable;
   if (edit != nullptr) edit(spec);
   const ntn_test::EigenNoMalloc guard;
-  return ntn::init(spec, model);
+  return ntn_test::init_model(spec, model);
 }
 
 // The translational mass in each direction is the frame's total mass, sum rho A l over the

@@ -30,6 +30,7 @@ void check(bool ok, const char* what) {
 constexpr ntn::Sizes kBeam{.nodes = 5, .elements = 4, .loads = 1};
 ntn::ModelSpec<kBeam> beam_spec;
 ntn::Model<kBeam> beam_model;
+ntn::InitWorkspace<kBeam> beam_init;
 ntn::State<kBeam> beam_state;
 ntn::Scratch<kBeam> beam_scratch;
 
@@ -37,6 +38,7 @@ ntn::Scratch<kBeam> beam_scratch;
 constexpr ntn::Sizes kFrame = ntn_test::kFeatureSizes;
 ntn::ModelSpec<kFrame> frame_spec;
 ntn::Model<kFrame> frame_model;
+ntn::InitWorkspace<kFrame> frame_init;
 ntn::State<kFrame> frame_state;
 ntn::Scratch<kFrame> frame_scratch;
 
@@ -50,7 +52,7 @@ int main() {
   beam_spec.loads[0] = {4, ntn::kUz, P, ntn::kConstant};
   beam_spec.settings.alpha = 2 * 26.2;  // ~ critical for the first mode (omega_1 = 26.2 rad/s)
   beam_spec.settings.dt = 0.9 * ntn::stable_time_step(ntn::view(beam_spec)).dt_stable;
-  check(ntn::init(beam_spec, beam_model).ok(), "cantilever init");
+  check(ntn::init(beam_spec, beam_model, beam_init).ok(), "cantilever init");
   const ntn_test::RelaxationResult r =
       ntn_test::relax(beam_model, beam_state, beam_scratch, 1e-10, 1'000'000);
   check(r.converged, "cantilever relaxation converged");
@@ -60,7 +62,7 @@ int main() {
   check(std::abs(tip / expected - 1) < 1e-6, "tip deflection = P L^3 / 3EI");
 
   check(ntn_test::feature_frame(frame_spec), "frame built");
-  check(ntn::init(frame_spec, frame_model).ok(), "frame init");
+  check(ntn::init(frame_spec, frame_model, frame_init).ok(), "frame init");
   check(ntn::start(frame_model, frame_state, frame_scratch, {0, 0, 0}) == ntn::StepStatus::kOk,
         "frame start");
   bool all_ok = true;

@@ -6,6 +6,7 @@
 
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
 
@@ -49,7 +50,7 @@ void build() {
 TEST(Outputs, KinematicChannelsAreTheStateAtTn) {
   build();
   const ntn_test::EigenNoMalloc guard;
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   state = {};
   ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
   for (int n = 0; n < 500; ++n) {
@@ -76,7 +77,7 @@ TEST(Outputs, ReactionAndEndForcesSatisfyStatics) {
   ntn_test::RelaxationResult r;
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(spec, model).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
     state = {};
     r = ntn_test::relax(model, state, scratch, 1e-10, 1'000'000);
   }
@@ -115,7 +116,7 @@ TEST(Outputs, AbsoluteAccelerationAndReactionUnderGroundAcceleration) {
   ntn_test::RelaxationResult r;
   {
     const ntn_test::EigenNoMalloc guard;
-    ASSERT_TRUE(ntn::init(sp, mo).ok());
+    ASSERT_TRUE(ntn_test::init_model(sp, mo).ok());
     st = {};
     r = ntn_test::relax(mo, st, sc, 1e-10, 1'000'000, {ag});
   }

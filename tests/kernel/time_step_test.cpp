@@ -14,6 +14,7 @@
 
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -159,7 +160,7 @@ FreeRun run_free_element(double factor, long steps) {
   for (double& x : one_state.u)
     x = u(rng);
   const ntn_test::EigenNoMalloc guard;
-  if (!ntn::init(one_spec, one_model).ok()) return r;
+  if (!ntn_test::init_model(one_spec, one_model).ok()) return r;
   if (ntn::start(one_model, one_state, one_scratch, {}) != ntn::StepStatus::kOk) return r;
   std::array<double, 12> u_n{}, v_prev{};
   for (long n = 0; n < steps; ++n) {

@@ -7,6 +7,7 @@
 
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
+#include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
 namespace {
@@ -70,7 +71,7 @@ TEST(Wave, AxialPulseTravelsAtTheBarWaveSpeed) {
   spec.settings.dt = 0.9 * r.dt_stable;
 
   const ntn_test::EigenNoMalloc guard;
-  ASSERT_TRUE(ntn::init(spec, model).ok());
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
   state = {};
   ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
   const double dt = model.dt;

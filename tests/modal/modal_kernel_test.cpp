@@ -26,6 +26,7 @@
 #include "modal_models.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modal/modal.hpp"
+#include "support/init_model.hpp"
 #include "support/zero_crossings.hpp"
 
 namespace {
@@ -89,7 +90,7 @@ void check(const char* name, Sim<S>& sim, bool assert_agreement = true) {
   const ntn::modal::ModalResult r = ntn::modal::modal_analysis(ntn::view(sim.spec), o);
   ASSERT_TRUE(r.ok()) << r.error;
   sim.spec.settings.dt = 0.9 * ntn_test::hinged_stable_step(sim.spec).dt_stable;
-  ASSERT_TRUE(ntn::init(sim.spec, sim.model).ok()) << name;
+  ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok()) << name;
   for (int i = 0; i < kModes; ++i) {
     const Measured m = measure(sim, r, i);
     std::printf(

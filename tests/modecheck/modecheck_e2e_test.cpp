@@ -38,6 +38,7 @@
 #include "ntn/modal/modal.hpp"
 #include "ntn/modecheck/modecheck.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "support/init_model.hpp"
 #include "test_files.hpp"
 #include NTN_MODEL_HEADER
 
@@ -65,7 +66,7 @@ int input_index(const char* name) {
 // Runs the model from rest under the pulse and writes the response as ntn-run does (a row per
 // 1 ms frame, time[s] then name[unit], 9 and 17 significant digits).
 bool simulate(const std::string& csv_path) {
-  if (!ntn::init(mdl::kSpec, g_model).ok()) return false;
+  if (!ntn_test::init_model(mdl::kSpec, g_model).ok()) return false;
   const int fx = input_index("force_x"), fy = input_index("force_y");
   if (fx < 0 || fy < 0) return false;
   auto inputs_at = [&](double t) {

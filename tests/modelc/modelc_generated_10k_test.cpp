@@ -5,6 +5,7 @@
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "spec_compare.hpp"
+#include "support/init_model.hpp"
 
 namespace {
 
@@ -18,7 +19,7 @@ TEST(GeneratedHeader, TenThousandElements) {
   const auto r = ntn::modelc::load_model(std::string(chain::kSourceFile));
   ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
   ntn::test::expect_same_spec(chain::kSpec, *r.model);
-  const ntn::InitStatus st = ntn::init(chain::kSpec, g_chain);
+  const ntn::InitStatus st = ntn_test::init_model(chain::kSpec, g_chain);
   ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
 }
 

@@ -11,6 +11,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "pinned_joint_model.hpp"
 #include "spec_compare.hpp"
+#include "support/init_model.hpp"
 #include NTN_MODEL_HEADER
 
 namespace {
@@ -68,7 +69,7 @@ void check(const ntn::ModelSpec<S>& spec, std::string_view source,
     member_names.push_back(m.name);
   ntn::test::expect_same_names(members, member_names);
 
-  const ntn::InitStatus st = ntn::init(spec, model);
+  const ntn::InitStatus st = ntn_test::init_model(spec, model);
   ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
   EXPECT_EQ(model.dt, r.model->settings.dt);
   EXPECT_EQ(model.stable.governing_element, r.model->stable.governing_element);
@@ -99,7 +100,7 @@ TEST(GeneratedHeader, MechanismIsWhatTheKernelHolds) {
   const auto r = ntn::modelc::load_model(std::string(pj::kSourceFile));
   ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
   ntn::test::expect_same_spec(pj::kSpec, *r.model);
-  const ntn::InitStatus st = ntn::init(pj::kSpec, g_pinned);
+  const ntn::InitStatus st = ntn_test::init_model(pj::kSpec, g_pinned);
   ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
   int compiler_dofs = 0;
   std::vector<std::uint8_t> bits(static_cast<std::size_t>(pj::kSizes.nodes), 0);

@@ -40,6 +40,7 @@ constexpr ntn::Sizes kS = mdl::kSizes;
 
 // Static storage: the kernel never allocates, and large models do not fit on the stack.
 ntn::Model<kS> g_model;
+ntn::InitWorkspace<kS> g_init_work;  // what init() works in (static: no heap, little stack)
 ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
 
@@ -180,7 +181,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  if (const ntn::InitStatus st = ntn::init(mdl::kSpec, g_model); !st.ok()) {
+  if (const ntn::InitStatus st = ntn::init(mdl::kSpec, g_model, g_init_work); !st.ok()) {
     std::fprintf(stderr, "error: model '%s': %s (at %d)\n", std::string(mdl::kName).c_str(),
                  ntn::to_string(st.error), st.where);
     return 1;

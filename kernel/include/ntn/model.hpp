@@ -307,12 +307,4 @@ template <Sizes S>
   return {};
 }
 
-// init() with a workspace of static storage, one per model size S: not for two threads that
-// build models of the same S at once (give each its own InitWorkspace).
-template <Sizes S>
-[[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model) {
-  static InitWorkspace<S> work;
-  return init(spec, model, work);
-}
-
 }  // namespace ntn

@@ -23,13 +23,14 @@ mkdir -p "$work"
 common=(-std=c++20 -O2 -ffp-contract=off -fno-exceptions -fno-rtti -I"$src/kernel/include"
         -isystem /usr/include/eigen3 -I"$work" "-DNTN_MODEL_HEADER=\"${name}_model.hpp\""
         "-DNTN_MODEL_NS=ntn::models::$name")
+kernel_src=("$src/kernel/src/time_step.cpp" "$src/kernel/src/constraint_forest.cpp")
 m7=(-mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard -mthumb -ffunction-sections -fdata-sections
     -Wno-psabi -T "$here/cortex_m7.ld" -Wl,--gc-sections)
 
-g++ "${common[@]}" "$here/main.cpp" -o "$work/host"
-arm-none-eabi-g++ "${common[@]}" "${m7[@]}" -DNTN_NO_PRINT "$here/main.cpp" "$here/startup.cpp" \
+g++ "${common[@]}" "$here/main.cpp" "${kernel_src[@]}" -o "$work/host"
+arm-none-eabi-g++ "${common[@]}" "${m7[@]}" -DNTN_NO_PRINT "$here/main.cpp" "$here/startup.cpp" "${kernel_src[@]}" \
   --specs=nosys.specs -o "$work/m7-noprint.elf"
-arm-none-eabi-g++ "${common[@]}" "${m7[@]}" "$here/main.cpp" "$here/startup.cpp" \
+arm-none-eabi-g++ "${common[@]}" "${m7[@]}" "$here/main.cpp" "$here/startup.cpp" "${kernel_src[@]}" \
   --specs=rdimon.specs -o "$work/m7-semihosting.elf"
 echo "sizes (flash = text + data, RAM = data + bss; stack and heap not included):"
 arm-none-eabi-size "$work/m7-noprint.elf" "$work/m7-semihosting.elf"

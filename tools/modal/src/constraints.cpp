@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "ntn/constraint_forest.hpp"
+#include "ntn/forest_matrices.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
 #include "ntn/model.hpp"
