@@ -48,7 +48,7 @@ ModalOptions options(int modes = kModes) {
   return o;
 }
 
-// ---- Released hinge (the models of tests/kernel/hinge_release_test.cpp) ----
+// ---- Released hinge (the models of tests/validation/hinge_release_test.cpp) ----
 
 // Clamped-clamped beam, 4 m, 8 elements, cut at midspan (nodes 4 and 9), 100 x 150 mm.
 constexpr int kN = 8, kMid = 4, kExtra = 9;

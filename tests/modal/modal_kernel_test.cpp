@@ -3,7 +3,7 @@
 // analysis (an exact elimination u = T q built independently of the kernel's forest) to what
 // step() actually integrates, for every joint kind of modal_models.hpp.
 //
-// Measurement (as tests/kernel/hinge_release_test.cpp): the modal coordinate phi^T M u(t) over
+// Measurement (as tests/validation/hinge_release_test.cpp): the modal coordinate phi^T M u(t) over
 // ~30 periods; its zero crossings give the frequency, compared with central difference's
 // discrete one, omega_h = (2 / dt) asin(omega dt / 2) (STYLE). A single mode advanced by central
 // difference has exactly that phase, and the crossings resolve it to ~1e-7 (measured: at most

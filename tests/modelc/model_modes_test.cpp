@@ -13,7 +13,7 @@
 //
 // Tolerances, from the discretisation error of 20 cubic (Hermite) elements with the kernel's
 // lumped (HRZ) mass: the discrete model's frequencies lie below the closed form by 0.129 %,
-// 0.499 % and 0.892 % (tests/kernel/cantilever_test.cpp derives this; a second-order error:
+// 0.499 % and 0.892 % (tests/validation/cantilever_test.cpp derives this; a second-order error:
 // 0.032 %, 0.125 %, 0.225 % at 40 elements) and its effective-mass fractions by 0.127 %, 0.022 %
 // and 0.206 % (0.032 %, 0.006 %, 0.051 % at 40). The test allows 0.15 %, 0.55 %, 0.95 % on the
 // frequencies (the error rounded up to the next 0.05 %, and it must be negative: lumped mass

@@ -228,8 +228,7 @@ bool resolve_hinge(const HingeSpec& spec, const Settings& settings, int node_cou
         const CurveSpec& cs = curves[static_cast<std::size_t>(c)];
         if (cs.first < 0 || cs.count < 2 || cs.first + cs.count > static_cast<int>(points.size()))
           return false;
-        const double k_lim = k < 3 ? settings.limit_stiffness : settings.limit_rotational_stiffness;
-        const CurveBranches b = curve_branches(points, cs, k_lim > 0 ? k_lim : 1e300);
+        const CurveBranches b = curve_branches(points, cs, branch_slope_limit(settings, k));
         if (!b.valid) return false;
         h.curve_first[k] = cs.first, h.curve_count[k] = cs.count;
         h.stiffness[k] = b.max_slope;  // for the stable step

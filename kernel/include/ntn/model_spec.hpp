@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -164,6 +165,20 @@ struct Settings {
   double limit_stiffness = 0;               // N/m: curve slopes at least this are rigid branches
   double limit_rotational_stiffness = 0;    // N m/rad, the same for rotations
 };
+
+// The stiffness `penalty` gives rigid hinge direction k (0-2 translations, N/m; 3-5 rotations,
+// N m/rad): the kernel's penalty method and modal analysis' penalty springs read it here.
+constexpr double penalty_stiffness(const Settings& s, std::size_t k) {
+  return k < 3 ? s.penalty_stiffness : s.penalty_rotational_stiffness;
+}
+
+// The slope from which a segment of a curve in hinge direction k is a rigid branch (seed Fig. 2):
+// the limit stiffness of translations or rotations, 1e300 (no limit) when it is not positive.
+// The kernel, the model compiler and modal analysis split curves with it.
+constexpr double branch_slope_limit(const Settings& s, std::size_t k) {
+  const double lim = k < 3 ? s.limit_stiffness : s.limit_rotational_stiffness;
+  return lim > 0 ? lim : 1e300;
+}
 
 // Everything a model is, at compile-time sizes.
 template <Sizes S>

@@ -24,7 +24,7 @@ struct InitWorkspace;  // model.hpp
 struct PenaltyMethod {
   // Rigid direction k of a hinge: a spring with the penalty stiffness (translation or rotation).
   static bool rigid_direction(const Settings& settings, std::size_t k, HingeData& h) {
-    h.stiffness[k] = k < 3 ? settings.penalty_stiffness : settings.penalty_rotational_stiffness;
+    h.stiffness[k] = penalty_stiffness(settings, k);
     if (!(h.stiffness[k] > 0)) return false;
     h.springs |= static_cast<std::uint8_t>(1U << k);
     return true;

@@ -91,8 +91,7 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
       switch (hs.behaviour[k]) {
         case HingeBehaviour::kRigid:
           if (penalty_as_springs) {
-            lh.stiffness[k] =
-                k < 3 ? settings.penalty_stiffness : settings.penalty_rotational_stiffness;
+            lh.stiffness[k] = ntn::penalty_stiffness(settings, k);
           } else {
             lh.rigid |= static_cast<std::uint8_t>(1U << k);
           }
@@ -104,8 +103,7 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
           if (hs.dashpot[k] > 0) dashpots = true;
           break;
         case HingeBehaviour::kCurve: {
-          const double lim = k < 3 ? settings.limit_stiffness : settings.limit_rotational_stiffness;
-          linearize_curve(spec, h, k, lim > 0 ? lim : 1e300, lh, out.notes);
+          linearize_curve(spec, h, k, ntn::branch_slope_limit(settings, k), lh, out.notes);
           break;
         }
       }

@@ -79,7 +79,7 @@ void check_curve_branches(Compilation& comp) {
       if (h.behaviour[k] != HingeBehaviour::kCurve) continue;
       const int ci = h.curve[k];
       const CurveSpec& cs = d.curves[static_cast<std::size_t>(ci)];
-      const double k_lim = k < 3 ? s.limit_stiffness : s.limit_rotational_stiffness;
+      const double k_lim = branch_slope_limit(s, k);
       const std::string units = k < 3 ? " N/m" : " N m/rad";
       const std::string name = "curve '" + d.curve_ids[static_cast<std::size_t>(ci)] + "'";
       const Where& at = comp.dir_at[hi][k];
