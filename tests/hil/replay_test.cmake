@@ -1,14 +1,16 @@
 file(MAKE_DIRECTORY ${OUT})
 set(log ${OUT}/run.ntnlog)
-# 10^5 frames (100 s: the record, then the ground at rest) on the virtual clock, recorded.
-execute_process(COMMAND ${HIL} run --clock virtual --input ag_x=${RECORD} --frames 100000
+# 40 000 frames (40 s: El Centro's 31.2 s, then the free decay with the ground at rest) on the
+# virtual clock, recorded. (10^5 frames until issue 13: the 69 s at rest added nothing but 30 s of
+# the check's time under ASan.)
+execute_process(COMMAND ${HIL} run --clock virtual --input ag_x=${RECORD} --frames 40000
                         --record ${log} -q
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "run: exit ${rc}: ${out} ${err}")
 endif()
 execute_process(COMMAND ${HIL} replay ${log} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
-if(NOT rc EQUAL 0 OR NOT out MATCHES "bit-identical over 100000 frames")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "bit-identical over 40000 frames")
   message(FATAL_ERROR "replay: exit ${rc}: ${out}")
 endif()
 

@@ -1,6 +1,7 @@
 // clamp.hpp alone (DESIGN §7.1, clamp = "momentum"): the momentum clamp called on a State set by
 // hand, without a step. Two beam ends hinged to one joint, each with rotational play about y
-// and rigid stops beyond it (the geometry of hinge_stops_test). What must hold:
+// and rigid stops beyond it (support/stop_joint.hpp, shared with hinge_stops_test). What must
+// hold:
 // - one stop between two lone nodes (penalty: no rigid tree): d lands on its limit (to 1e-14
 //   relative: the excess is removed by one product and one division), only the two nodes move,
 //   and the moment pair is equal and opposite, so sum I dphi over the two nodes stays zero (to
@@ -23,19 +24,17 @@
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
 #include "support/init_model.hpp"
+#include "support/stop_joint.hpp"
 
 namespace {
 
 using ntn_test::dof;
 using B = ntn::HingeBehaviour;
-
-constexpr double kPlay = 1e-3;  // rad
-constexpr double kH = 3.0, kSpan = 4.0;
-
-// Column 0 (base, fixed) - 8 - 1 (the joint). Left beam 3 (fixed) - 6 - 2, right beam
-// 4 - 7 - 5 (fixed); nodes 2 and 4 sit at the joint and are hinged to it.
-constexpr ntn::Sizes kSizes{.nodes = 9, .elements = 6, .hinges = 2, .curves = 1, .curve_points = 4};
-constexpr int kJoint = 1, kLeftEnd = 2, kRightEnd = 4;
+using ntn_test::stop_joint::kJoint;
+using ntn_test::stop_joint::kLeftEnd;
+using ntn_test::stop_joint::kPlay;
+using ntn_test::stop_joint::kRightEnd;
+using ntn_test::stop_joint::kSizes;
 
 struct Sim {
   ntn::ModelSpec<kSizes> spec;
@@ -47,42 +46,7 @@ Sim sim;
 
 void build(ntn::HingeMethod method) {
   auto& s = sim.spec;
-  s = {};
-  auto node = [&](int n, double x, double z, std::uint8_t fixed) {
-    s.nodes[static_cast<std::size_t>(n)] = ntn::NodeSpec{};
-    s.nodes[static_cast<std::size_t>(n)].x = x;
-    s.nodes[static_cast<std::size_t>(n)].z = z;
-    s.nodes[static_cast<std::size_t>(n)].fixed = fixed;
-  };
-  node(0, 0, 0, ntn_test::kFixedAll);
-  node(8, 0, kH / 2, 0);
-  node(kJoint, 0, kH, 0);
-  node(3, -kSpan, kH, ntn_test::kFixedAll);
-  node(6, -kSpan / 2, kH, 0);
-  node(kLeftEnd, 0, kH, 0);
-  node(kRightEnd, 0, kH, 0);
-  node(7, kSpan / 2, kH, 0);
-  node(5, kSpan, kH, ntn_test::kFixedAll);
-  const int members[6][2] = {{0, 8}, {8, kJoint}, {3, 6}, {6, kLeftEnd}, {kRightEnd, 7}, {7, 5}};
-  for (int e = 0; e < 6; ++e) {
-    s.elements[static_cast<std::size_t>(e)] = ntn_test::element(
-        members[e][0], members[e][1], ntn_test::kSteel, ntn_test::rectangle(0.15, 0.3),
-        e < 2 ? ntn_test::Vec3{1, 0, 0} : ntn_test::Vec3{0, 0, 1});
-  }
-  s.curve_points = {{{-1.1 * kPlay, -1e9}, {-kPlay, 0.0}, {kPlay, 0.0}, {1.1 * kPlay, 1e9}}};
-  s.curves[0] = {0, 4};
-  s.settings.limit_stiffness = 1e12;
-  s.settings.limit_rotational_stiffness = 1e11;
-  for (int h = 0; h < 2; ++h) {
-    ntn::HingeSpec& hs = s.hinges[static_cast<std::size_t>(h)];
-    hs = ntn_test::hinge(h == 0 ? kLeftEnd : kRightEnd, kJoint, ntn_test::kIdentity3);
-    hs.behaviour[ntn::kRy] = B::kCurve;
-    hs.curve[ntn::kRy] = 0;
-    hs.behaviour[ntn::kRz] = B::kFree;
-  }
-  s.settings.hinge_method = method;
-  s.settings.penalty_stiffness = 1e12;
-  s.settings.penalty_rotational_stiffness = 1e11;
+  ntn_test::stop_joint::build(s, method);
   s.settings.dt = 1e-5;
   s.settings.allow_unstable = true;  // the step is never taken here
 }

@@ -28,6 +28,7 @@
 #include "ntn/modal/modal.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "support/assemble.hpp"
+#include "support/closed_forms.hpp"
 
 namespace {
 
@@ -41,18 +42,6 @@ std::string read(const std::string& path) {
     text.append(buf, n);
   std::fclose(f);
   return text;
-}
-
-// Roots of cos(x) cosh(x) = -1 by Newton from 1.8751, 4.6941, 7.8548.
-double beta_l(int i) {
-  const double start[3] = {1.8751, 4.6941, 7.8548};
-  double x = start[i];
-  for (int k = 0; k < 20; ++k) {
-    const double g = std::cos(x) * std::cosh(x) + 1.0;
-    const double dg = -std::sin(x) * std::cosh(x) + std::cos(x) * std::sinh(x);
-    x -= g / dg;
-  }
-  return x;
 }
 
 // Share of a mode's kinetic energy in the given node DOFs (lumped mass).
@@ -96,7 +85,7 @@ std::vector<std::vector<double>> bending_errors(const std::string& text, int div
     std::vector<double> err;
     for (int i = 0; i < r.modes() && err.size() < 3; ++i) {
       if (energy_share(r, m, i, {p.u, p.r}) < 0.99) continue;
-      const double b = beta_l(static_cast<int>(err.size()));
+      const double b = ntn_test::cantilever_beta_l(static_cast<int>(err.size()));
       const double omega = b * b / (L * L) * std::sqrt(e.E * p.I / (e.rho * e.A));
       err.push_back(r.omega(i) / omega - 1.0);
       std::printf(

@@ -33,6 +33,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
 #include "ntn/modelc/modes_report.hpp"
+#include "support/closed_forms.hpp"
 #include "support/json_value.hpp"
 #include "support/temp_files.hpp"
 
@@ -66,18 +67,6 @@ const std::string kCantilever = NTN_CONFIG_DIR "/cantilever.toml";
 const std::string kHingedBeam = NTN_CONFIG_DIR "/hinged_beam.toml";
 constexpr const char* kAxis[3] = {"x", "y", "z"};
 constexpr const char* kDirection[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
-
-// Roots of cos(x) cosh(x) = -1 by Newton from 1.8751, 4.6941, 7.8548.
-double beta_l(int i) {
-  const double start[3] = {1.8751, 4.6941, 7.8548};
-  double x = start[i];
-  for (int k = 0; k < 20; ++k) {
-    const double g = std::cos(x) * std::cosh(x) + 1.0;
-    const double dg = -std::sin(x) * std::cosh(x) + std::cos(x) * std::sinh(x);
-    x -= g / dg;
-  }
-  return x;
-}
 
 Json modes_json(const std::string& args) {
   const Output r = ntn_model("modes " + args + " --json");
@@ -113,7 +102,7 @@ TEST(ModelModes, CantileverMatchesTheClosedForm) {
       EXPECT_EQ(mode["mode"].number(), static_cast<double>(i + 1));
       const double pct = mode["effective_mass_percent"][kAxis[axis]].number();
       if (pct < 1.0) continue;
-      const double b = beta_l(found);
+      const double b = ntn_test::cantilever_beta_l(found);
       const double f = b * b / (2 * std::numbers::pi * L * L) * std::sqrt(e.E * I / (e.rho * e.A));
       const double s_n = (std::sinh(b) - std::sin(b)) / (std::cosh(b) + std::cos(b));
       const double fraction = 4 * s_n * s_n / (b * b);

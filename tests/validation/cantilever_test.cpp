@@ -13,6 +13,7 @@
 #include "ntn/kernel.hpp"
 #include "support/assemble.hpp"
 #include "support/builders.hpp"
+#include "support/closed_forms.hpp"
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
@@ -50,30 +51,17 @@ ntn::InitStatus build(int load_dof, double P, double alpha) {
   return ntn_test::init_model(spec, model);
 }
 
-// Roots of cos(x) cosh(x) = -1 (cantilever), by Newton from the issue's values
-// beta_i L = 1.8751, 4.6941, 7.8548.
-double beta_l(int i) {
-  const double start[3] = {1.8751, 4.6941, 7.8548};
-  double x = start[i];
-  for (int k = 0; k < 20; ++k) {
-    const double g = std::cos(x) * std::cosh(x) + 1.0;
-    const double dg = -std::sin(x) * std::cosh(x) + std::cos(x) * std::sinh(x);
-    x -= g / dg;
-  }
-  return x;
-}
-
 // Euler-Bernoulli cantilever: omega_i = (beta_i L)^2 sqrt(E I / (rho A)) / L^2.
 double omega_closed_form(int i, double I) {
-  const double b = beta_l(i);
+  const double b = ntn_test::cantilever_beta_l(i);
   return b * b / (kLength * kLength) * std::sqrt(kMat.E * I / (kMat.rho * kSection.A));
 }
 
 TEST(Cantilever, BetaRootsMatchTheIssue) {
   // The Newton refinement must stay on the issue's roots (to their 5 digits).
-  EXPECT_NEAR(beta_l(0), 1.8751, 5e-5);
-  EXPECT_NEAR(beta_l(1), 4.6941, 5e-5);
-  EXPECT_NEAR(beta_l(2), 7.8548, 5e-5);
+  EXPECT_NEAR(ntn_test::cantilever_beta_l(0), 1.8751, 5e-5);
+  EXPECT_NEAR(ntn_test::cantilever_beta_l(1), 4.6941, 5e-5);
+  EXPECT_NEAR(ntn_test::cantilever_beta_l(2), 7.8548, 5e-5);
 }
 
 // Static tip deflection PL^3 / (3 E I) by dynamic relaxation in both bending planes. Cubic

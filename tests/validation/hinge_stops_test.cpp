@@ -35,17 +35,17 @@
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
 #include "support/init_model.hpp"
+#include "support/stop_joint.hpp"
 
 namespace {
 
 using ntn_test::dof;
-using B = ntn::HingeBehaviour;
+using ntn_test::stop_joint::kJoint;
+using ntn_test::stop_joint::kLeftEnd;
+using ntn_test::stop_joint::kPlay;
+using ntn_test::stop_joint::kRightEnd;
 
-constexpr double kPlay = 1e-3;  // rad
-constexpr double kH = 3.0, kSpan = 4.0;
-
-// Column 0 (base, fixed) - 8 - 1 (top, the joint). Left beam 3 (fixed) - 6 - 2, right beam
-// 4 - 7 - 5 (fixed); nodes 2 and 4 sit at the joint and are hinged to it.
+// The stop joint (support/stop_joint.hpp) with a pulse: three loads on one time function.
 constexpr ntn::Sizes kSizes{.nodes = 9,
                             .elements = 6,
                             .time_functions = 1,
@@ -54,7 +54,6 @@ constexpr ntn::Sizes kSizes{.nodes = 9,
                             .hinges = 2,
                             .curves = 1,
                             .curve_points = 4};
-constexpr int kJoint = 1, kLeftEnd = 2, kRightEnd = 4;
 constexpr long kPulseSteps = 2000, kSteps = 40000;
 
 struct Sim {
@@ -67,50 +66,12 @@ Sim sim;
 
 void build(ntn::HingeMethod method) {
   auto& s = sim.spec;
-  s = {};
-  const ntn_test::Material steel = ntn_test::kSteel;
-  const ntn_test::Section section = ntn_test::rectangle(0.15, 0.3);
-  auto node = [&](int n, double x, double z, std::uint8_t fixed) {
-    s.nodes[static_cast<std::size_t>(n)] = ntn::NodeSpec{};
-    s.nodes[static_cast<std::size_t>(n)].x = x;
-    s.nodes[static_cast<std::size_t>(n)].z = z;
-    s.nodes[static_cast<std::size_t>(n)].fixed = fixed;
-  };
-  node(0, 0, 0, ntn_test::kFixedAll);
-  node(8, 0, kH / 2, 0);
-  node(kJoint, 0, kH, 0);
-  node(3, -kSpan, kH, ntn_test::kFixedAll);
-  node(6, -kSpan / 2, kH, 0);
-  node(kLeftEnd, 0, kH, 0);
-  node(kRightEnd, 0, kH, 0);
-  node(7, kSpan / 2, kH, 0);
-  node(5, kSpan, kH, ntn_test::kFixedAll);
-  const int members[6][2] = {{0, 8}, {8, kJoint}, {3, 6}, {6, kLeftEnd}, {kRightEnd, 7}, {7, 5}};
-  for (int e = 0; e < 6; ++e) {
-    s.elements[static_cast<std::size_t>(e)] =
-        ntn_test::element(members[e][0], members[e][1], steel, section,
-                          e < 2 ? ntn_test::Vec3{1, 0, 0} : ntn_test::Vec3{0, 0, 1});
-  }
-  // Beam frames: x along +x, z up, y = z x x = +y. Rigid but for ry (the curve) and rz (free).
-  s.curve_points = {{{-1.1 * kPlay, -1e9}, {-kPlay, 0.0}, {kPlay, 0.0}, {1.1 * kPlay, 1e9}}};
-  s.curves[0] = {0, 4};
-  s.settings.limit_stiffness = 1e12;
-  s.settings.limit_rotational_stiffness = 1e11;
-  for (int h = 0; h < 2; ++h) {
-    ntn::HingeSpec& hs = s.hinges[static_cast<std::size_t>(h)];
-    hs = ntn_test::hinge(h == 0 ? kLeftEnd : kRightEnd, kJoint, ntn_test::kIdentity3);
-    hs.behaviour[ntn::kRy] = B::kCurve;
-    hs.curve[ntn::kRy] = 0;
-    hs.behaviour[ntn::kRz] = B::kFree;
-  }
+  ntn_test::stop_joint::build(s, method);
   // A downward pulse on both beams and a sideways one on the joint.
   s.time_points = ntn_test::triangle_pulse(0.0);
   s.loads[0] = {6, ntn::kUz, -4e5, 0};
   s.loads[1] = {7, ntn::kUz, -4e5, 0};
   s.loads[2] = {kJoint, ntn::kUx, 1e5, 0};
-  s.settings.hinge_method = method;
-  s.settings.penalty_stiffness = 1e12;
-  s.settings.penalty_rotational_stiffness = 1e11;
 }
 
 TEST(HingeStops, TwoStopsSqueezingOneJointHoldAndTakeNoEnergy) {

@@ -319,21 +319,12 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     Table t(L, tt, path, {"id", "points"});
     t.check_unknown();
     auto id = read_id(L, t, "id");
-    const toml::node* pts = t.get("points", Need::kRequired);
-    if (pts == nullptr) return;
-    const std::string pkey = t.key("points");
-    const auto* a = pts->as_array();
-    if (a == nullptr || a->empty()) {
-      L.error(pts->source(), pkey,
-              "expected an array of [t, value] points (at least one), got " +
-                  (a ? std::string("an empty array") : type_name(*pts)));
-      return;
-    }
+    const auto points =
+        read_points(L, t, 1, "[t, value] points (at least one)", "t", " s", "times");
+    if (!id || !points) return;
     TimeFunction f;
-    bool ok = true;
-    for (const auto& [time, value] : increasing_pairs(L, *a, pkey, "t", " s", "times", ok))
+    for (const auto& [time, value] : *points)
       f.points.push_back({time, value});
-    if (!id || !ok) return;
     f.id = *id;
     p.time_functions.push_back(f);
   });
@@ -508,22 +499,12 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     Table t(L, tt, path, {"id", "points"});
     t.check_unknown();
     auto id = read_id(L, t, "id");
-    const toml::node* pts = t.get("points", Need::kRequired);
-    if (pts == nullptr) return;
-    const std::string pkey = t.key("points");
-    const auto* a = pts->as_array();
-    if (a == nullptr || a->size() < 2) {
-      L.error(pts->source(), pkey,
-              "expected an array of at least 2 [d, force] points, got " +
-                  (a ? std::to_string(a->size()) + (a->size() == 1 ? " point" : " points")
-                     : type_name(*pts)));
-      return;
-    }
+    const auto points =
+        read_points(L, t, 2, "at least 2 [d, force] points", "d", "", "deformations");
+    if (!id || !points) return;
     Curve c;
-    bool ok = true;
-    for (const auto& [d, force] : increasing_pairs(L, *a, pkey, "d", "", "deformations", ok))
+    for (const auto& [d, force] : *points)
       c.points.push_back({d, force});
-    if (!id || !ok) return;
     c.id = *id;
     c.points_at = t.where("points");
     p.curves.push_back(c);

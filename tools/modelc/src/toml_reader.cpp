@@ -73,4 +73,28 @@ std::vector<std::array<double, 2>> increasing_pairs(Reader& L, const toml::array
   return out;
 }
 
+std::optional<std::vector<std::array<double, 2>>> read_points(Reader& L, Table& t,
+                                                              std::size_t min_points,
+                                                              const char* expected, const char* x,
+                                                              const char* unit, const char* what) {
+  const toml::node* pts = t.get("points", Need::kRequired);
+  if (pts == nullptr) return std::nullopt;
+  const std::string key = t.key("points");
+  const auto* a = pts->as_array();
+  if (a == nullptr || a->size() < min_points) {
+    std::string got = type_name(*pts);
+    if (a != nullptr && min_points == 1) {
+      got = "an empty array";
+    } else if (a != nullptr) {
+      got = std::to_string(a->size()) + (a->size() == 1 ? " point" : " points");
+    }
+    L.error(pts->source(), key, std::string("expected an array of ") + expected + ", got " + got);
+    return std::nullopt;
+  }
+  bool ok = true;
+  std::vector<std::array<double, 2>> out = increasing_pairs(L, *a, key, x, unit, what, ok);
+  if (!ok) return std::nullopt;
+  return out;
+}
+
 }  // namespace ntn::modelc::compile

@@ -284,4 +284,13 @@ std::vector<std::array<double, 2>> increasing_pairs(Reader& L, const toml::array
                                                     const std::string& key, const char* x,
                                                     const char* unit, const char* what, bool& ok);
 
+// The `points` of an "id + points" table (time functions, curves): at least `min_points` pairs
+// [x, y] with x increasing (increasing_pairs). nullopt, reported, when `points` is missing, not an
+// array or too short ("expected an array of <expected>, got " an empty array, or the count when
+// more than one point is needed), or when a point is bad.
+std::optional<std::vector<std::array<double, 2>>> read_points(Reader& L, Table& t,
+                                                              std::size_t min_points,
+                                                              const char* expected, const char* x,
+                                                              const char* unit, const char* what);
+
 }  // namespace ntn::modelc::compile
