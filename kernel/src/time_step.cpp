@@ -102,7 +102,8 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
   // (kNonFinite, w = n1 + n2), with the report set to 0 and that hinge and direction.
   auto springs_of = [&](std::size_t i, auto f) {
     HingeData h;
-    if (!make_hinge_data(spec.hinges[i], spec.settings, nodes, spec.curves, spec.curve_points, h))
+    if (!make_hinge_data(spec.hinges[i], spec.settings, spec.nodes.size(), spec.curves,
+                         spec.curve_points, h))
       return true;
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
       if (!((h.springs >> k) & 1U) || !(h.stiffness[k] > 0 || h.dashpot[k] > 0)) continue;

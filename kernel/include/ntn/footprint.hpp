@@ -30,9 +30,9 @@ class Layout {
   }
   // std::array<T, N> is a T[N] for N > 0; std::array<T, 0> is an empty struct of its own size.
   template <class T>
-  constexpr void array(int n) {
+  constexpr void array(std::size_t n) {
     if (n > 0) {
-      add(static_cast<std::size_t>(n) * sizeof(T), alignof(T));
+      add(n * sizeof(T), alignof(T));
     } else {
       add(sizeof(std::array<T, 0>), alignof(std::array<T, 0>));
     }
@@ -49,8 +49,8 @@ class Layout {
 
 // sizeof(Model<S>), member by member (model.hpp).
 constexpr std::size_t model_footprint(const Sizes& s) {
-  const int dofs = kDofsPerNode * s.nodes;
-  const int hinge_nodes = s.hinges > 0 ? s.nodes : 0;  // Model::kHingeNodes
+  const std::size_t dofs = kDofsPerNode * s.nodes;
+  const std::size_t hinge_nodes = s.hinges > 0 ? s.nodes : 0;  // Model::kHingeNodes
   detail::Layout l;
   l.array<BeamData>(s.elements);                // beams
   l.array<double>(dofs);                        // mass
@@ -103,7 +103,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
 
 // sizeof(State<S>) (state.hpp).
 constexpr std::size_t state_footprint(const Sizes& s) {
-  const int dofs = kDofsPerNode * s.nodes;
+  const std::size_t dofs = kDofsPerNode * s.nodes;
   detail::Layout l;
   l.array<double>(dofs);      // u
   l.array<double>(dofs);      // v
@@ -117,7 +117,7 @@ constexpr std::size_t state_footprint(const Sizes& s) {
 
 // sizeof(ClampWork<S>) and its alignment (state.hpp): the momentum clamp's workspace.
 constexpr detail::Layout clamp_work_layout(const Sizes& s) {
-  const int dofs = s.hinges > 0 ? kDofsPerNode * s.nodes : 0;
+  const std::size_t dofs = s.hinges > 0 ? kDofsPerNode * s.nodes : 0;
   detail::Layout l;
   l.array<double>(dofs);                              // impulse
   l.array<double>(dofs);                              // response
@@ -135,7 +135,7 @@ constexpr std::size_t clamp_work_align(const Sizes& s) {
 
 // sizeof(Scratch<S>) (state.hpp).
 constexpr std::size_t scratch_footprint(const Sizes& s) {
-  const int dofs = kDofsPerNode * s.nodes;
+  const std::size_t dofs = kDofsPerNode * s.nodes;
   detail::Layout l;
   l.array<double>(kDofsPerNode);                        // load_g
   l.array<double>(s.loads + s.inputs);                  // p_slot

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "ntn/model_spec.hpp"
 
@@ -191,7 +193,7 @@ inline void hinge_spring_force(const HingeData& h, std::span<const CurvePoint> p
 // right-handed (to 1e-9), a bad curve, a negative stiffness or dashpot, an eccentric ground
 // hinge, a rigid direction the method refuses.
 template <class RigidDirection>
-bool resolve_hinge(const HingeSpec& spec, const Settings& settings, int node_count,
+bool resolve_hinge(const HingeSpec& spec, const Settings& settings, std::size_t node_count,
                    std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
                    HingeData& h, RigidDirection&& rigid_direction) {
   h = HingeData{};
@@ -199,8 +201,9 @@ bool resolve_hinge(const HingeSpec& spec, const Settings& settings, int node_cou
   h.frame = spec.frame;
   h.eccentricity = spec.eccentricity;
   h.behaviour = spec.behaviour;
-  if (spec.node1 < 0 || spec.node1 >= node_count) return false;
-  if (spec.node2 != kGround && (spec.node2 < 0 || spec.node2 >= node_count)) return false;
+  if (spec.node1 < 0 || std::cmp_greater_equal(spec.node1, node_count)) return false;
+  if (spec.node2 != kGround && (spec.node2 < 0 || std::cmp_greater_equal(spec.node2, node_count)))
+    return false;
   if (spec.node2 == spec.node1) return false;
   if (spec.node2 == kGround &&
       (spec.eccentricity[0] != 0 || spec.eccentricity[1] != 0 || spec.eccentricity[2] != 0))

@@ -49,7 +49,7 @@ decltype(auto) with_hinge_method(HingeMethod method, Fn&& fn) {
 // Resolves a hinge spec for the model's method (resolve_hinge, hinge.hpp): which directions are
 // coupled (`rigid`), which carry a spring force (`springs`, penalty's rigid directions among
 // them), and where curves have rigid branches. False for a bad spec (resolve_hinge).
-inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, int node_count,
+inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, std::size_t node_count,
                             std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
                             HingeData& h) {
   return with_hinge_method(settings.hinge_method, [&](auto method) {

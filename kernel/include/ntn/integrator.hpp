@@ -33,8 +33,7 @@ using Inputs = std::array<double, S.inputs>;
 template <Sizes S>
 bool accept_inputs(const Model<S>& m, State<S>& s, const Inputs<S>& in) {
   bool held = false;
-  for (int i = 0; i < S.inputs; ++i) {
-    const auto k = static_cast<std::size_t>(i);
+  for (std::size_t k = 0; k < S.inputs; ++k) {
     const double x = in[k];
     if (!finite(x)) {
       held = true;
@@ -59,11 +58,10 @@ template <Sizes S>
 void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   const double fg = load_factor(m.time_points, m.time_functions, m.gravity_function, t);
   w.ground = {0.0, 0.0, 0.0};
-  for (int i = 0; i < S.inputs; ++i) {
-    const InputSpec& in = m.inputs[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = m.inputs[i];
     if (in.kind == InputKind::kGroundAcceleration) {
-      w.ground[static_cast<std::size_t>(in.dof)] +=
-          s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
+      w.ground[static_cast<std::size_t>(in.dof)] += s.held_inputs[i] * in.scale;
     }
   }
   w.load_g = {m.gravity[0] * fg - w.ground[0],
@@ -76,16 +74,15 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
     const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
     w.p_slot[static_cast<std::size_t>(k)] = m.mass[j] * w.load_g[j % kDofsPerNode];
   }
-  for (int i = 0; i < S.loads; ++i) {
-    const LoadSpec& l = m.loads[static_cast<std::size_t>(i)];
-    w.p_slot[static_cast<std::size_t>(m.load_slot[static_cast<std::size_t>(i)])] +=
+  for (std::size_t i = 0; i < S.loads; ++i) {
+    const LoadSpec& l = m.loads[i];
+    w.p_slot[static_cast<std::size_t>(m.load_slot[i])] +=
         l.value * load_factor(m.time_points, m.time_functions, l.time_function, t);
   }
-  for (int i = 0; i < S.inputs; ++i) {
-    const InputSpec& in = m.inputs[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = m.inputs[i];
     if (in.kind == InputKind::kNodalForce) {
-      w.p_slot[static_cast<std::size_t>(m.input_slot[static_cast<std::size_t>(i)])] +=
-          s.held_inputs[static_cast<std::size_t>(i)] * in.scale;
+      w.p_slot[static_cast<std::size_t>(m.input_slot[i])] += s.held_inputs[i] * in.scale;
     }
   }
 }
@@ -166,8 +163,8 @@ template <Sizes S>
 void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   w.time = t;
   [[maybe_unused]] int coupled_tree = -1;  // hinge_force: the tree whose coupled R is in w.r
-  for (int c = 0; c < S.outputs; ++c) {
-    const OutputSpec& o = m.outputs[static_cast<std::size_t>(c)];
+  for (std::size_t c = 0; c < S.outputs; ++c) {
+    const OutputSpec& o = m.outputs[c];
     const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
     double value = 0;
     switch (o.kind) {
@@ -209,7 +206,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         }
         break;
     }
-    w.outputs[static_cast<std::size_t>(c)] = value * o.scale;
+    w.outputs[c] = value * o.scale;
   }
 }
 
@@ -221,7 +218,7 @@ bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
   // The check is a select into a double, not `ok &= finite(v)`: GCC vectorizes no loop with a
   // bool reduction, and this is a pass over every DOF.
   double bad = 0;
-  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+  for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
     const double v = s.v[j] + dt * w.a[j];
     s.v[j] = v;
     s.u[j] += dt * v;
@@ -249,7 +246,7 @@ template <Sizes S>
   detail::hinge_springs(m, s, w);
   detail::residual_stage(m, s, w);
   detail::ntn_coupling(m, s, w);
-  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j) {
+  for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
     s.v[j] -= 0.5 * m.dt * w.a[j];
   }
   return accepted ? StepStatus::kOk : StepStatus::kInputHeld;

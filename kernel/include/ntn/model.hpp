@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
@@ -19,7 +21,7 @@ namespace ntn {
 template <Sizes S>
 struct Model {
   static constexpr Sizes kSizes = S;
-  static constexpr int kDofs = kDofsPerNode * S.nodes;
+  static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
 
   std::array<BeamData, S.elements> beams{};
   std::array<double, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
@@ -51,7 +53,7 @@ struct Model {
   StableStepReport stable;
 
   // Hinges (DESIGN §7). Per-node arrays exist only in models with hinges.
-  static constexpr int kHingeNodes = S.hinges > 0 ? S.nodes : 0;
+  static constexpr std::size_t kHingeNodes = S.hinges > 0 ? S.nodes : 0;
   std::array<HingeData, S.hinges> hinges{};
   std::array<CurvePoint, S.curve_points> curve_points{};
   std::array<ForestEdge, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
@@ -121,48 +123,51 @@ inline void assemble_lumped_mass(const SpecView& spec, std::span<double> out) {
 // Every index in the spec is in range, so step() can index without checks.
 template <Sizes S>
 [[nodiscard]] InitStatus check_references(const ModelSpec<S>& spec) {
-  auto node_ok = [](int n) { return n >= 0 && n < S.nodes; };
+  auto node_ok = [](int n) { return n >= 0 && std::cmp_less(n, S.nodes); };
   auto dof_ok = [](int d, int n) { return d >= 0 && d < n; };
-  auto function_ok = [](int f) { return f == kConstant || (f >= 0 && f < S.time_functions); };
-  for (int i = 0; i < S.elements; ++i) {
-    const ElementSpec& e = spec.elements[static_cast<std::size_t>(i)];
-    if (!node_ok(e.node_i) || !node_ok(e.node_j)) return {InitError::kBadReference, i};
+  auto function_ok = [](int f) {
+    return f == kConstant || (f >= 0 && std::cmp_less(f, S.time_functions));
+  };
+  for (std::size_t i = 0; i < S.elements; ++i) {
+    const ElementSpec& e = spec.elements[i];
+    if (!node_ok(e.node_i) || !node_ok(e.node_j))
+      return {InitError::kBadReference, static_cast<int>(i)};
   }
-  for (int f = 0; f < S.time_functions; ++f) {
-    const TimeFunctionSpec& tf = spec.time_functions[static_cast<std::size_t>(f)];
-    if (tf.count < 1 || tf.first < 0 || tf.first + tf.count > S.time_points)
-      return {InitError::kBadTimeFunction, f};
+  for (std::size_t f = 0; f < S.time_functions; ++f) {
+    const TimeFunctionSpec& tf = spec.time_functions[f];
+    if (tf.count < 1 || tf.first < 0 || std::cmp_greater(tf.first + tf.count, S.time_points))
+      return {InitError::kBadTimeFunction, static_cast<int>(f)};
     for (int k = tf.first + 1; k < tf.first + tf.count; ++k) {
       if (!(spec.time_points[static_cast<std::size_t>(k)].t >
             spec.time_points[static_cast<std::size_t>(k - 1)].t))
-        return {InitError::kBadTimeFunction, f};
+        return {InitError::kBadTimeFunction, static_cast<int>(f)};
     }
   }
-  for (int i = 0; i < S.loads; ++i) {
-    const LoadSpec& l = spec.loads[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < S.loads; ++i) {
+    const LoadSpec& l = spec.loads[i];
     if (!node_ok(l.node) || !dof_ok(l.dof, kDofsPerNode) || !function_ok(l.time_function))
-      return {InitError::kBadReference, i};
+      return {InitError::kBadReference, static_cast<int>(i)};
   }
   if (!function_ok(spec.settings.gravity_function)) return {InitError::kBadReference, -1};
-  for (int i = 0; i < S.hinges; ++i) {
+  for (std::size_t i = 0; i < S.hinges; ++i) {
     HingeData h;
-    if (!make_hinge_data(spec.hinges[static_cast<std::size_t>(i)], spec.settings, S.nodes,
-                         spec.curves, spec.curve_points, h))
-      return {InitError::kBadHinge, i};
+    if (!make_hinge_data(spec.hinges[i], spec.settings, S.nodes, spec.curves, spec.curve_points, h))
+      return {InitError::kBadHinge, static_cast<int>(i)};
   }
-  for (int i = 0; i < S.inputs; ++i) {
-    const InputSpec& in = spec.inputs[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = spec.inputs[i];
     const bool ok = in.kind == InputKind::kGroundAcceleration
                         ? dof_ok(in.dof, 3)
                         : node_ok(in.node) && dof_ok(in.dof, kDofsPerNode);
-    if (!ok || !(in.min <= in.max)) return {InitError::kBadInput, i};
+    if (!ok || !(in.min <= in.max)) return {InitError::kBadInput, static_cast<int>(i)};
   }
-  for (int i = 0; i < S.outputs; ++i) {
-    const OutputSpec& o = spec.outputs[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < S.outputs; ++i) {
+    const OutputSpec& o = spec.outputs[i];
     bool ok = dof_ok(o.dof, kDofsPerNode);
     switch (o.kind) {
       case OutputKind::kElementForce:
-        ok = ok && o.element >= 0 && o.element < S.elements && (o.end == 0 || o.end == 1);
+        ok = ok && o.element >= 0 && std::cmp_less(o.element, S.elements) &&
+             (o.end == 0 || o.end == 1);
         break;
       case OutputKind::kDrift:
         ok = ok && node_ok(o.node) && node_ok(o.node2);
@@ -171,13 +176,13 @@ template <Sizes S>
         break;
       case OutputKind::kHingeForce:
       case OutputKind::kHingeDisplacement:
-        ok = ok && o.hinge >= 0 && o.hinge < S.hinges;
+        ok = ok && o.hinge >= 0 && std::cmp_less(o.hinge, S.hinges);
         break;
       default:
         ok = ok && node_ok(o.node);
         break;
     }
-    if (!ok) return {InitError::kBadOutput, i};
+    if (!ok) return {InitError::kBadOutput, static_cast<int>(i)};
   }
   return {};
 }
@@ -188,14 +193,15 @@ template <Sizes S>
 [[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<S>& work) {
   static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
   if (const InitStatus st = check_references(spec); !st.ok()) return st;
-  for (int i = 0; i < S.elements; ++i) {
-    const ElementSpec& e = spec.elements[static_cast<std::size_t>(i)];
-    if (!beam_properties_valid(e)) return {InitError::kBadProperty, i};
+  for (std::size_t i = 0; i < S.elements; ++i) {
+    const ElementSpec& e = spec.elements[i];
+    const int where = static_cast<int>(i);
+    if (!beam_properties_valid(e)) return {InitError::kBadProperty, where};
     const BeamGeometry g = beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
                                          spec.nodes[static_cast<std::size_t>(e.node_j)], e);
-    if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, i};
-    if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, i};
-    BeamData& b = model.beams[static_cast<std::size_t>(i)];
+    if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, where};
+    if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, where};
+    BeamData& b = model.beams[i];
     b.node_i = e.node_i, b.node_j = e.node_j;
     b.rotation = g.rotation;
     b.k = beam_stiffness(e, g.length);
@@ -212,21 +218,21 @@ template <Sizes S>
   const std::array<double, Model<S>::kDofs>& divided = work.divided_mass;
   work.divided_mass = model.mass;
   if constexpr (S.hinges > 0) {
-    for (int i = 0; i < S.hinges; ++i) {
-      (void)make_hinge_data(spec.hinges[static_cast<std::size_t>(i)], spec.settings, S.nodes,
-                            spec.curves, spec.curve_points,
-                            model.hinges[static_cast<std::size_t>(i)]);
+    for (std::size_t i = 0; i < S.hinges; ++i) {
+      (void)make_hinge_data(spec.hinges[i], spec.settings, S.nodes, spec.curves, spec.curve_points,
+                            model.hinges[i]);
     }
     model.curve_points = spec.curve_points;
     model.num_edges = model.num_roots = model.held_dofs = 0;
     model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
     model.num_trees = 0;
-    for (int i = 0; i < S.hinges; ++i) {
-      const HingeData& h = model.hinges[static_cast<std::size_t>(i)];
+    for (std::size_t i = 0; i < S.hinges; ++i) {
+      const HingeData& h = model.hinges[i];
+      const auto hinge = static_cast<std::int32_t>(i);
       if (h.springs != 0)
-        model.spring_hinges[static_cast<std::size_t>(model.num_spring_hinges++)] = i;
+        model.spring_hinges[static_cast<std::size_t>(model.num_spring_hinges++)] = hinge;
       if (h.branches != 0)
-        model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = i;
+        model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = hinge;
     }
     for (auto& e : model.hinge_edge)
       e = -1;
@@ -237,14 +243,16 @@ template <Sizes S>
     if (const InitStatus st = detail::hinge_method_init(spec, model, work); !st.ok()) return st;
   }
 
-  for (int n = 0; n < S.nodes; ++n) {
-    const std::uint8_t fixed = spec.nodes[static_cast<std::size_t>(n)].fixed;
-    model.fixed[static_cast<std::size_t>(n)] = fixed;
-    if (fixed != 0) model.supported_nodes[static_cast<std::size_t>(model.num_supported++)] = n;
+  for (std::size_t n = 0; n < S.nodes; ++n) {
+    const std::uint8_t fixed = spec.nodes[n].fixed;
+    model.fixed[n] = fixed;
+    if (fixed != 0)
+      model.supported_nodes[static_cast<std::size_t>(model.num_supported++)] =
+          static_cast<std::int32_t>(n);
     bool in_tree = false;
-    if constexpr (S.hinges > 0) in_tree = model.node_tree[static_cast<std::size_t>(n)] >= 0;
-    for (int d = 0; d < kDofsPerNode; ++d) {
-      const auto j = static_cast<std::size_t>(kDofsPerNode * n + d);
+    if constexpr (S.hinges > 0) in_tree = model.node_tree[n] >= 0;
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      const std::size_t j = kDofsPerNode * n + d;
       model.damping[j] = spec.settings.alpha * model.mass[j];  // residual() recomputes it so
       double inv = 0.0;
       if (((fixed >> d) & 1U) || in_tree) {  // a tree's accelerations come from the forest
@@ -253,9 +261,9 @@ template <Sizes S>
         // refuses; with hinges it is a mechanism (DESIGN §7.1), held at zero. A spring on it
         // makes the stable step zero, which is refused below.
         if constexpr (S.hinges == 0) {
-          return {InitError::kMassless, n * kDofsPerNode + d};
+          return {InitError::kMassless, static_cast<int>(j)};
         } else {
-          model.held[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1U << d);
+          model.held[n] |= static_cast<std::uint8_t>(1U << d);
           ++model.held_dofs;
         }
       } else {
@@ -276,13 +284,13 @@ template <Sizes S>
     model.slot_dof[static_cast<std::size_t>(model.num_slots)] = dof;
     return model.num_slots++;
   };
-  for (int i = 0; i < S.loads; ++i) {
-    const LoadSpec& l = spec.loads[static_cast<std::size_t>(i)];
-    model.load_slot[static_cast<std::size_t>(i)] = slot_of(kDofsPerNode * l.node + l.dof);
+  for (std::size_t i = 0; i < S.loads; ++i) {
+    const LoadSpec& l = spec.loads[i];
+    model.load_slot[i] = slot_of(kDofsPerNode * l.node + l.dof);
   }
-  for (int i = 0; i < S.inputs; ++i) {
-    const InputSpec& in = spec.inputs[static_cast<std::size_t>(i)];
-    model.input_slot[static_cast<std::size_t>(i)] =
+  for (std::size_t i = 0; i < S.inputs; ++i) {
+    const InputSpec& in = spec.inputs[i];
+    model.input_slot[i] =
         in.kind == InputKind::kNodalForce ? slot_of(kDofsPerNode * in.node + in.dof) : -1;
   }
 

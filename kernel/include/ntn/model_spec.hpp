@@ -15,16 +15,16 @@ enum Dof : std::uint8_t { kUx = 0, kUy, kUz, kRx, kRy, kRz };
 
 // Compile-time sizes of a model. A structural type, so it is a template parameter.
 struct Sizes {
-  int nodes = 0;
-  int elements = 0;
-  int time_functions = 0;
-  int time_points = 0;  // all time-function points, concatenated
-  int loads = 0;
-  int inputs = 0;
-  int outputs = 0;
-  int hinges = 0;        // NTN hinges, member-end releases and supports with a frame (DESIGN §7)
-  int curves = 0;        // force-deformation curves of `curve` hinge directions
-  int curve_points = 0;  // all curve points, concatenated
+  std::size_t nodes = 0;
+  std::size_t elements = 0;
+  std::size_t time_functions = 0;
+  std::size_t time_points = 0;  // all time-function points, concatenated
+  std::size_t loads = 0;
+  std::size_t inputs = 0;
+  std::size_t outputs = 0;
+  std::size_t hinges = 0;  // NTN hinges, member-end releases and supports with a frame (DESIGN §7)
+  std::size_t curves = 0;  // force-deformation curves of `curve` hinge directions
+  std::size_t curve_points = 0;  // all curve points, concatenated
 };
 
 struct NodeSpec {

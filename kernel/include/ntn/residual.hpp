@@ -36,7 +36,7 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
   double g[kDofsPerNode];  // locals: the stores to `out` may alias the model and the scratch
   for (std::size_t d = 0; d < kDofsPerNode; ++d)
     g[d] = w.load_g[d];
-  for (std::size_t n = 0; n < static_cast<std::size_t>(Model<S>::kDofs); n += kDofsPerNode) {
+  for (std::size_t n = 0; n < Model<S>::kDofs; n += kDofsPerNode) {
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       const std::size_t j = n + d;
       const double r = (m.mass[j] * g[d] - w.f[j]) - (alpha * m.mass[j]) * s.v[j];

@@ -25,7 +25,7 @@ ConstNodeBlock node_block(const std::array<double, N>& x, int node) {
 
 template <Sizes S>
 struct State {
-  static constexpr int kDofs = kDofsPerNode * S.nodes;
+  static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
   std::array<double, kDofs> u{};               // m, rad: displacements u_n relative to the ground
   std::array<double, kDofs> v{};               // m/s, rad/s: v_{n-1/2} once started (S 5-6)
   std::array<double, S.inputs> held_inputs{};  // last accepted value of each input channel
@@ -40,7 +40,7 @@ struct State {
 // the parts that respond, and the bookkeeping that lets a sweep skip the stops nothing moved.
 template <Sizes S>
 struct ClampWork {
-  static constexpr int kDofs = S.hinges > 0 ? kDofsPerNode* S.nodes : 0;
+  static constexpr std::size_t kDofs = S.hinges > 0 ? kDofsPerNode* S.nodes : 0;
   // written by clamp_response (b, then the forest's upward pass in place), read by it
   std::array<double, kDofs> impulse{};
   // written by clamp_response (M_c^-1 b), read by clamp_projection and clamp_move
@@ -57,7 +57,7 @@ struct ClampWork {
 // of step(), integrator.hpp).
 template <Sizes S>
 struct Scratch {
-  static constexpr int kDofs = kDofsPerNode * S.nodes;
+  static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
   // External load P_n (DESIGN §5): M g at every DOF (load_g per DOF direction, computed in the
   // residual pass), except at the model's load slots, whose P_n is here (external_load()).
   // load_g, p_slot: written by loads, read by the residual stage, hinge-force and reaction
@@ -86,7 +86,7 @@ struct Scratch {
   // The residual stage's output where the NTN coupling finishes it in place (ntn_exact): the
   // storage of `a`, holding R_n - C v_{n-1/2} at the DOFs of rigid trees (a_n elsewhere) until
   // the coupling stage has turned them into a_n. A name of its own, so that `a` always means a_n.
-  std::span<double, static_cast<std::size_t>(kDofs)> coupling_input() { return a; }
+  std::span<double, kDofs> coupling_input() { return a; }
 };
 
 }  // namespace ntn
