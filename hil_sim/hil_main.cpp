@@ -274,7 +274,7 @@ int replay_log(const std::string& path, ntn::hil::LoopConfig config) {
     std::snprintf(why, sizeof why, "model '%s', this program runs '%s'", h.model.c_str(),
                   name.c_str());
   } else if (h.inputs != kS.inputs || h.outputs != kS.outputs) {
-    std::snprintf(why, sizeof why, "%u inputs and %u outputs, the model has %d and %d", h.inputs,
+    std::snprintf(why, sizeof why, "%u inputs and %u outputs, the model has %zu and %zu", h.inputs,
                   h.outputs, kS.inputs, kS.outputs);
   } else if (h.substeps != static_cast<std::uint32_t>(config.substeps)) {
     std::snprintf(why, sizeof why, "%u substeps per frame, the model runs %d", h.substeps,
@@ -481,17 +481,16 @@ int hil_main(int argc, char** argv) {
   std::array<ntn::io::Record, kS.inputs> records{};
   double record_duration = 0;
   for (const ntn::cli::InputArg& arg : inputs.args) {
-    int index = -1;
-    for (int k = 0; k < kS.inputs; ++k)
-      if (mdl::kInputNames[static_cast<std::size_t>(k)] == arg.name) index = k;
-    if (index < 0) {
+    std::size_t c = kS.inputs;  // the channel; kS.inputs: none
+    for (std::size_t k = 0; k < kS.inputs; ++k)
+      if (mdl::kInputNames[k] == arg.name) c = k;
+    if (c == kS.inputs) {
       std::fprintf(stderr, "error: --input %s=...: the model has no input channel '%s'\n",
                    arg.name.c_str(), arg.name.c_str());
       return 2;
     }
     // The record's values in the input's unit (gal to g, ...), as ntn-run reads them; per step
     // (not through the gate, which sees frame values) every sample must be in range.
-    const auto c = static_cast<std::size_t>(index);
     if (const auto e = ntn::hil::load_input_record(mdl::kSpec.inputs[c], arg.name, arg.file,
                                                    arg.column, per_step, records[c])) {
       std::fprintf(stderr, "%s\n", e->c_str());
@@ -500,7 +499,7 @@ int hil_main(int argc, char** argv) {
     record_duration = std::max(record_duration, records[c].duration());
   }
   const bool udp_in = listen_port >= 0;
-  if (!udp_in && inputs.args.size() != static_cast<std::size_t>(kS.inputs) && kS.inputs > 0) {
+  if (!udp_in && inputs.args.size() != kS.inputs && kS.inputs > 0) {
     std::fprintf(stderr,
                  "error: give --input NAME=FILE for every input channel, or --listen PORT\n");
     return 2;

@@ -145,16 +145,15 @@ int main(int argc, char** argv) {
   std::array<ntn::io::Record, kS.inputs> records{};
   std::array<bool, kS.inputs> fed{};
   for (const ntn::cli::InputArg& in : inputs.args) {
-    int index = -1;
-    for (int k = 0; k < kS.inputs; ++k) {
-      if (mdl::kInputNames[static_cast<std::size_t>(k)] == in.name) index = k;
+    std::size_t k = kS.inputs;  // the channel; kS.inputs: none
+    for (std::size_t c = 0; c < kS.inputs; ++c) {
+      if (mdl::kInputNames[c] == in.name) k = c;
     }
-    if (index < 0) {
+    if (k == kS.inputs) {
       std::fprintf(stderr, "error: --input %s: the model has no input channel '%s'\n",
                    in.name.c_str(), in.name.c_str());
       return 2;
     }
-    const auto k = static_cast<std::size_t>(index);
     if (const auto e = ntn::hil::load_input_record(mdl::kSpec.inputs[k], in.name, in.file,
                                                    in.column, true, records[k])) {
       std::fprintf(stderr, "%s\n", e->c_str());
@@ -164,12 +163,12 @@ int main(int argc, char** argv) {
   }
   double record_duration = 0;
   std::string longest;
-  for (int k = 0; k < kS.inputs; ++k) {
-    const auto& r = records[static_cast<std::size_t>(k)];
-    if (!fed[static_cast<std::size_t>(k)]) {
+  for (std::size_t k = 0; k < kS.inputs; ++k) {
+    const auto& r = records[k];
+    if (!fed[k]) {
       std::fprintf(stderr, "error: no record for input channel '%s' (use --input %s=FILE)\n",
-                   std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str(),
-                   std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str());
+                   std::string(mdl::kInputNames[k]).c_str(),
+                   std::string(mdl::kInputNames[k]).c_str());
       return 2;
     }
     if (r.duration() > record_duration) record_duration = r.duration(), longest = r.source;
@@ -275,20 +274,19 @@ int main(int argc, char** argv) {
   if (!quiet) {
     std::printf("ntn-run  model %s (%s)\n", std::string(mdl::kName).c_str(),
                 std::string(mdl::kSourceFile).c_str());
-    for (int k = 0; k < kS.inputs; ++k) {
-      const auto& r = records[static_cast<std::size_t>(k)];
+    for (std::size_t k = 0; k < kS.inputs; ++k) {
+      const auto& r = records[k];
       std::string notes;
       if (!r.converted_from.empty()) notes += ", converted from " + r.converted_from;
       if (r.unit_assumed) notes += " (the file states no unit: taken as " + r.units + ")";
       if (r.t0 != 0)
         notes += ", file time " + ntn::cli::num(r.t0) + " s played at t = 0 (its first row)";
       std::printf("  input %-12s %s: %zu samples at %g s, peak %.4g %s%s\n",
-                  std::string(mdl::kInputNames[static_cast<std::size_t>(k)]).c_str(),
-                  r.source.c_str(), r.values.size(), r.dt, r.peak_abs(), r.units.c_str(),
-                  notes.c_str());
+                  std::string(mdl::kInputNames[k]).c_str(), r.source.c_str(), r.values.size(), r.dt,
+                  r.peak_abs(), r.units.c_str(), notes.c_str());
     }
-    std::printf("  size        %d nodes, %d elements, %d hinges, %d DOFs\n", kS.nodes, kS.elements,
-                kS.hinges, 6 * kS.nodes);
+    std::printf("  size        %zu nodes, %zu elements, %zu hinges, %zu DOFs\n", kS.nodes,
+                kS.elements, kS.hinges, 6 * kS.nodes);
     std::string governing;
     if (stable.governing_hinge >= 0) {
       governing = "hinge " + std::to_string(stable.governing_hinge) + ", direction " +
@@ -312,10 +310,10 @@ int main(int argc, char** argv) {
         "%.3f us/step\n",
         static_cast<long long>(n), simulated, wall, simulated / wall,
         wall / static_cast<double>(n) * 1e6);
-    for (int c = 0; c < kS.outputs; ++c) {
-      const auto& o = mdl::kSpec.outputs[static_cast<std::size_t>(c)];
-      const auto& p = peaks[static_cast<std::size_t>(c)];
-      const std::string name(mdl::kOutputNames[static_cast<std::size_t>(c)]);
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      const auto& o = mdl::kSpec.outputs[c];
+      const auto& p = peaks[c];
+      const std::string name(mdl::kOutputNames[c]);
       if (o.kind == ntn::OutputKind::kDrift) {
         std::printf("  peak drift       %-16s %s %% at t = %.3f s\n", name.c_str(),
                     fmt("%.5g", 100 * p.value).c_str(), p.time);
@@ -328,8 +326,8 @@ int main(int argc, char** argv) {
                     fmt("%.4g", p.value / 1e3).c_str(), o.dof < 3 ? "kN" : "kN m", p.time);
       } else {
         std::printf("  peak             %-16s %s %s at t = %.3f s\n", name.c_str(),
-                    fmt("%.5g", p.value).c_str(),
-                    std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]).c_str(), p.time);
+                    fmt("%.5g", p.value).c_str(), std::string(mdl::kOutputUnits[c]).c_str(),
+                    p.time);
       }
     }
     if (result.input_held_frames > 0)
@@ -357,10 +355,10 @@ int main(int argc, char** argv) {
        << ",\n  \"real_time_factor\": " << fmt("%.6g", simulated / wall)
        << ",\n  \"diverged\": " << (diverged ? "true" : "false") << ",\n  \"output_hash\": \""
        << digest << "\",\n  \"peaks\": {";
-    for (int c = 0; c < kS.outputs; ++c) {
-      js << (c ? ",\n" : "\n") << "    \"" << mdl::kOutputNames[static_cast<std::size_t>(c)]
-         << "\": {\"abs\": " << fmt("%.17g", peaks[static_cast<std::size_t>(c)].value)
-         << ", \"time\": " << fmt("%.9g", peaks[static_cast<std::size_t>(c)].time) << "}";
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      js << (c ? ",\n" : "\n") << "    \"" << mdl::kOutputNames[c]
+         << "\": {\"abs\": " << fmt("%.17g", peaks[c].value)
+         << ", \"time\": " << fmt("%.9g", peaks[c].time) << "}";
     }
     js << "\n  }\n}\n";
     if (auto e = ntn::cli::close_output(js, "--summary-json", json_path)) {

@@ -78,8 +78,7 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
   for (std::size_t h = 0; h < spec.hinges.size(); ++h) {
     const HingeSpec& hs = spec.hinges[h];
     HingeData check;
-    if (!make_hinge_data(hs, settings, static_cast<int>(spec.nodes.size()), spec.curves,
-                         spec.curve_points, check)) {
+    if (!make_hinge_data(hs, settings, spec.nodes.size(), spec.curves, spec.curve_points, check)) {
       out.error = hinge_name(h) +
                   " is not valid (nodes, frame, eccentricity of a ground hinge, curve, negative "
                   "stiffness" +

@@ -184,9 +184,7 @@ void check_hinge_spring_numbers(Compilation& comp) {
   const std::vector<double>& mass = comp.mass;
   for (std::size_t hi = 0; hi < d.hinges.size(); ++hi) {
     HingeData hd;
-    if (!make_hinge_data(d.hinges[hi], s, static_cast<int>(d.nodes.size()), d.curves,
-                         d.curve_points, hd))
-      continue;
+    if (!make_hinge_data(d.hinges[hi], s, d.nodes.size(), d.curves, d.curve_points, hd)) continue;
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
       if (!((hd.springs >> k) & 1U)) continue;
       double s1[6], s2[6], n1 = 0, n2 = 0;

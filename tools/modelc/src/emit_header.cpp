@@ -54,6 +54,9 @@ std::string lit(double v) {
 std::string lit(int v) {
   return std::to_string(v);
 }
+std::string lit(std::size_t v) {
+  return std::to_string(v);
+}
 std::string lit(bool v) {
   return v ? "true" : "false";
 }

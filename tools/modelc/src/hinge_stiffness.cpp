@@ -118,8 +118,7 @@ void check_kernel_accepts_hinges(Compilation& comp) {
   const Settings& s = comp.d.settings;
   for (std::size_t hi = 0; hi < d.hinges.size(); ++hi) {
     HingeData hd;
-    if (!make_hinge_data(d.hinges[hi], s, static_cast<int>(d.nodes.size()), d.curves,
-                         d.curve_points, hd)) {
+    if (!make_hinge_data(d.hinges[hi], s, d.nodes.size(), d.curves, d.curve_points, hd)) {
       L.error(comp.hinge_at[hi], "internal error: the kernel refuses " +
                                      d.describe_hinge(static_cast<int>(hi)) +
                                      " (ntn::make_hinge_data); please report this model");

@@ -6,16 +6,16 @@ namespace ntn::modelc {
 
 Sizes ModelDescription::sizes() const {
   Sizes s;
-  s.nodes = static_cast<int>(nodes.size());
-  s.elements = static_cast<int>(elements.size());
-  s.time_functions = static_cast<int>(time_functions.size());
-  s.time_points = static_cast<int>(time_points.size());
-  s.loads = static_cast<int>(loads.size());
-  s.inputs = static_cast<int>(inputs.size());
-  s.outputs = static_cast<int>(outputs.size());
-  s.hinges = static_cast<int>(hinges.size());
-  s.curves = static_cast<int>(curves.size());
-  s.curve_points = static_cast<int>(curve_points.size());
+  s.nodes = nodes.size();
+  s.elements = elements.size();
+  s.time_functions = time_functions.size();
+  s.time_points = time_points.size();
+  s.loads = loads.size();
+  s.inputs = inputs.size();
+  s.outputs = outputs.size();
+  s.hinges = hinges.size();
+  s.curves = curves.size();
+  s.curve_points = curve_points.size();
   return s;
 }
 

@@ -87,9 +87,9 @@ std::string info_text(const ModelDescription& m) {
     o += buf + text + "\n";
   };
 
-  int given = 0;
+  std::size_t given = 0;
   for (int id : m.node_ids)
-    given += id != kGeneratedNode ? 1 : 0;
+    given += id != kGeneratedNode ? 1U : 0U;
   line("model", m.name + (m.title.empty() ? "" : ": " + m.title));
   line("file", m.source_file);
   line("nodes", std::to_string(z.nodes) + " (" + std::to_string(given) + " given, " +
@@ -97,7 +97,8 @@ std::string info_text(const ModelDescription& m) {
   line("elements",
        std::to_string(z.elements) + " in " + std::to_string(m.members.size()) + " members");
   line("DOFs", std::to_string(kDofsPerNode * z.nodes) + " (" + std::to_string(mt.free_dofs) +
-                   " free, " + std::to_string(kDofsPerNode * z.nodes - mt.free_dofs) +
+                   " free, " +
+                   std::to_string(kDofsPerNode * z.nodes - static_cast<std::size_t>(mt.free_dofs)) +
                    " supported)");
   line("loads", std::to_string(z.loads) + " nodal loads, " + std::to_string(z.time_functions) +
                     " time functions (" + std::to_string(z.time_points) + " points)");
@@ -202,26 +203,25 @@ std::string info_text(const ModelDescription& m) {
   const MemoryFootprint mem = memory_footprint(z);
   line("memory", "Model " + std::to_string(mem.model) + " B + State " + std::to_string(mem.state) +
                      " B + Scratch " + std::to_string(mem.scratch) + " B = " + bytes(mem.total));
-  const auto hinges = static_cast<std::size_t>(z.hinges);
-  const std::size_t hinge_nodes = z.hinges > 0 ? static_cast<std::size_t>(z.nodes) : 0;
-  const std::size_t hinge_bytes = mem.per_hinge * hinges + mem.per_node_with_hinges * hinge_nodes +
-                                  mem.per_curve_point * static_cast<std::size_t>(z.curve_points);
-  const std::size_t rest = mem.total - mem.per_element * static_cast<std::size_t>(z.elements) -
-                           mem.per_node * static_cast<std::size_t>(z.nodes) - hinge_bytes;
+  const std::size_t hinge_nodes = z.hinges > 0 ? z.nodes : 0;
+  const std::size_t hinge_bytes = mem.per_hinge * z.hinges +
+                                  mem.per_node_with_hinges * hinge_nodes +
+                                  mem.per_curve_point * z.curve_points;
+  const std::size_t rest =
+      mem.total - mem.per_element * z.elements - mem.per_node * z.nodes - hinge_bytes;
   line("", "per element " + std::to_string(mem.per_element) + " B (ntn::BeamData) x " +
-               std::to_string(z.elements) + " = " +
-               std::to_string(mem.per_element * static_cast<std::size_t>(z.elements)) + " B");
+               std::to_string(z.elements) + " = " + std::to_string(mem.per_element * z.elements) +
+               " B");
   line("", "per node " + std::to_string(mem.per_node) +
                " B (6 DOFs x 7 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
-               " = " + std::to_string(mem.per_node * static_cast<std::size_t>(z.nodes)) + " B");
+               " = " + std::to_string(mem.per_node * z.nodes) + " B");
   if (z.hinges > 0) {
     line("", "per hinge " + std::to_string(mem.per_hinge) +
                  " B (ntn::HingeData + forest edge, root, mass, index) x " +
                  std::to_string(z.hinges) + " + per node " +
                  std::to_string(mem.per_node_with_hinges) +
                  " B (tree, held, residual scale, coupled force) x " + std::to_string(z.nodes) +
-                 " + curve points " +
-                 std::to_string(mem.per_curve_point * static_cast<std::size_t>(z.curve_points)) +
+                 " + curve points " + std::to_string(mem.per_curve_point * z.curve_points) +
                  " B = " + std::to_string(hinge_bytes) + " B");
   }
   line("",

@@ -48,8 +48,7 @@ void choose_time_step(Compilation& comp) {
       const auto h = static_cast<std::size_t>(st.governing_hinge);
       const auto k = static_cast<std::size_t>(st.hinge_direction);
       HingeData hd;
-      if (make_hinge_data(d.hinges[h], s, static_cast<int>(d.nodes.size()), d.curves,
-                          d.curve_points, hd)) {
+      if (make_hinge_data(d.hinges[h], s, d.nodes.size(), d.curves, d.curve_points, hd)) {
         values = " (k = " + num(hd.stiffness[k]) + (k < 3 ? " N/m" : " N m/rad") +
                  ", dashpot c = " + num(hd.dashpot[k]) + (k < 3 ? " N s/m)" : " N m s/rad)");
       }

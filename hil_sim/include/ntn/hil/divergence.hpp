@@ -59,7 +59,7 @@ inline const char* to_string(DivergenceReason r) {
 template <Sizes S>
 double kinetic_energy(const Model<S>& m, const State<S>& s) {
   double t = 0;
-  for (std::size_t j = 0; j < static_cast<std::size_t>(Model<S>::kDofs); ++j)
+  for (std::size_t j = 0; j < Model<S>::kDofs; ++j)
     t += m.mass[j] * s.v[j] * s.v[j];
   return 0.5 * t;
 }
@@ -80,7 +80,7 @@ double time_function_peak(const Model<S>& m, int function) {
 template <Sizes S>
 double response_energy_bound(const Model<S>& m) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  constexpr auto kDofs = static_cast<std::size_t>(Model<S>::kDofs);
+  constexpr std::size_t kDofs = Model<S>::kDofs;
   // alpha: the same damping / mass ratio at every DOF that has mass.
   double alpha = -1;
   for (std::size_t j = 0; j < kDofs; ++j) {
@@ -100,11 +100,10 @@ double response_energy_bound(const Model<S>& m) {
   }
   // Mass of the unsupported DOFs per translation direction.
   std::array<double, 3> mass_dir{};
-  for (int n = 0; n < S.nodes; ++n) {
-    for (int d = 0; d < 3; ++d) {
-      if ((m.fixed[static_cast<std::size_t>(n)] >> d) & 1U) continue;
-      mass_dir[static_cast<std::size_t>(d)] +=
-          m.mass[static_cast<std::size_t>(kDofsPerNode * n + d)];
+  for (std::size_t n = 0; n < S.nodes; ++n) {
+    for (std::size_t d = 0; d < 3; ++d) {
+      if ((m.fixed[n] >> d) & 1U) continue;
+      mass_dir[d] += m.mass[kDofsPerNode * n + d];
     }
   }
   const auto at_dof = [&](int node, int dof, double force) {
