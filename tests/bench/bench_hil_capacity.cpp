@@ -16,6 +16,7 @@
 #include <numbers>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frame_models.hpp"
@@ -83,7 +84,7 @@ Row run_size(const Options& o) {
   constexpr Sizes S = sizes_of(G);
   Row row;
   row.elements = S.elements, row.nodes = S.nodes;
-  if (S.elements > o.max_elements) return row;
+  if (std::cmp_greater(S.elements, o.max_elements)) return row;
   auto& spec = static_instance<ModelSpec<S>>();
   build_frame<G>(spec);
   row.dt_stable = stable_time_step(view(spec)).dt_stable;
@@ -94,7 +95,7 @@ Row run_size(const Options& o) {
   auto& model = static_instance<Model<S>>();
   const InitStatus st = init(spec, model, static_instance<InitWorkspace<S>>());
   if (!st.ok()) {
-    std::fprintf(stderr, "init failed (%d elements): %s at %d\n", S.elements, to_string(st.error),
+    std::fprintf(stderr, "init failed (%zu elements): %s at %d\n", S.elements, to_string(st.error),
                  st.where);
     std::exit(2);
   }

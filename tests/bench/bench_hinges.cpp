@@ -325,15 +325,16 @@ Drift drift(Variant v, double kt, double kr, double seconds) {
       double& peak = j % kDofsPerNode < 3 ? out.peak_u : out.peak_phi;
       peak = std::max(peak, std::fabs(s.u[j]));
     }
-    for (int h = 0; h < S.hinges; ++h) {
-      const HingeData& hd = m.hinges[static_cast<std::size_t>(h)];
-      const HingeSpec& hs = spec.hinges[static_cast<std::size_t>(h)];
+    for (std::size_t h = 0; h < S.hinges; ++h) {
+      const HingeData& hd = m.hinges[h];
+      const HingeSpec& hs = spec.hinges[h];
       double d[6];
       hinge_relative(hd, &s.u[static_cast<std::size_t>(kDofsPerNode * hd.node1)],
                      &s.u[static_cast<std::size_t>(kDofsPerNode * hd.node2)], d);
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if (hs.behaviour[k] != HingeBehaviour::kRigid) continue;
-        if (k < 3 && std::fabs(d[k]) > out.max_d) out.max_d = std::fabs(d[k]), out.worst_hinge = h;
+        if (k < 3 && std::fabs(d[k]) > out.max_d)
+          out.max_d = std::fabs(d[k]), out.worst_hinge = static_cast<int>(h);
         if (k >= 3) out.max_d_phi = std::max(out.max_d_phi, std::fabs(d[k]));
       }
     }
@@ -373,7 +374,7 @@ double series_125_below(double x) {
 int calibrate() {
   constexpr double kSeconds = 1.0;
   constexpr double kTrial = 1e9;  // N/m and N m/rad: stiff, yet the elements keep the step
-  std::printf("Penalty calibration: %d hinges, %.1f s of the benchmark load from rest\n",
+  std::printf("Penalty calibration: %zu hinges, %.1f s of the benchmark load from rest\n",
               kSizes<Joints::kPinned>.hinges, kSeconds);
   const Drift exact = drift<Joints::kPinned>(Variant::kExact, kTrial, kTrial, kSeconds);
   print_drift("ntn_exact", 0, 0, exact);
@@ -506,7 +507,7 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
   lap(kInputsLoads);
   ntn::detail::element_forces(m, s, w);
   lap(kElements);
-  constexpr auto kDofs = static_cast<std::size_t>(Model<S>::kDofs);
+  constexpr std::size_t kDofs = Model<S>::kDofs;
   if constexpr (S.hinges == 0) {
     ntn::detail::residual(m, s, w, m.inv_mass.data(), w.a.data());
     lap(kDivide);

@@ -36,7 +36,7 @@ namespace {
 
 namespace mdl = NTN_MODEL_NS;
 constexpr ntn::Sizes kS = mdl::kSizes;
-constexpr auto kDofs = static_cast<std::size_t>(ntn::Model<kS>::kDofs);
+constexpr std::size_t kDofs = ntn::Model<kS>::kDofs;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 ntn::Model<kS> model;
@@ -129,8 +129,8 @@ struct SoakSink {
     if (cycle < cycle_peaks->size())
       (*cycle_peaks)[cycle] = std::max((*cycle_peaks)[cycle], energy);
     // Rigid hinge directions: d = B u_{n+1} after the step's projection.
-    for (int h = 0; h < kS.hinges; ++h) {
-      const ntn::HingeData& hd = model.hinges[static_cast<std::size_t>(h)];
+    for (std::size_t h = 0; h < kS.hinges; ++h) {
+      const ntn::HingeData& hd = model.hinges[h];
       const auto i1 = static_cast<std::size_t>(6 * hd.node1);
       const bool ground = hd.node2 == ntn::kGround;
       const auto i2 = ground ? 0 : static_cast<std::size_t>(6 * hd.node2);

@@ -95,7 +95,7 @@ void expect_follow(const std::array<double, ntn::State<kSizes>::kDofs>& u0) {
 
 double total_ry_momentum(const std::array<double, ntn::State<kSizes>::kDofs>& v) {
   double sum = 0;
-  for (int n = 0; n < kSizes.nodes; ++n)
+  for (std::size_t n = 0; n < kSizes.nodes; ++n)
     sum += sim.model.mass[dof(n, ntn::kRy)] * v[dof(n, ntn::kRy)];
   return sum;
 }
@@ -115,7 +115,7 @@ TEST(Clamp, OneStopBetweenLoneNodesLandsOnItsLimitAndKeepsMomentum) {
   EXPECT_NEAR(hinge_d(0, ntn::kRy), kPlay, 1e-14 * kPlay);
   EXPECT_LT(std::abs(hinge_d(1, ntn::kRy)), kPlay);  // the right stop stays inside its play
   EXPECT_EQ(sim.state.u[dof(kRightEnd, ntn::kRy)], u0[dof(kRightEnd, ntn::kRy)]);
-  for (int n = 0; n < kSizes.nodes; ++n) {
+  for (std::size_t n = 0; n < kSizes.nodes; ++n) {
     if (n == kLeftEnd || n == kJoint) continue;
     for (int d = 0; d < 6; ++d)
       EXPECT_EQ(sim.state.u[dof(n, d)], u0[dof(n, d)]) << "node " << n << " DOF " << d;

@@ -56,8 +56,7 @@ void add_hinge(Forest& f, const ntn::HingeSpec& spec) {
   ntn::HingeData h;
   const std::array<ntn::CurveSpec, 0> no_curves{};
   const std::array<ntn::CurvePoint, 0> no_points{};
-  ASSERT_TRUE(
-      ntn::make_hinge_data(spec, s, static_cast<int>(f.nodes.size()), no_curves, no_points, h));
+  ASSERT_TRUE(ntn::make_hinge_data(spec, s, f.nodes.size(), no_curves, no_points, h));
   f.hinges.push_back(h);
 }
 

@@ -51,7 +51,7 @@ TEST(Model, LumpedMassAddsUpToTheTotalMass) {
   }
   for (int d = 0; d < 3; ++d) {
     double sum = 0;
-    for (int n = 0; n < kS.nodes; ++n)
+    for (std::size_t n = 0; n < kS.nodes; ++n)
       sum += model.mass[dof(n, d)];
     EXPECT_NEAR(sum, total, 1e-13 * total) << "direction " << d;
   }
@@ -62,7 +62,7 @@ TEST(Model, LumpedMassAddsUpToTheTotalMass) {
 TEST(Model, SupportsAndDamping) {
   ASSERT_TRUE(init_frame([](ntn::ModelSpec<kS>& s) { s.settings.alpha = 0.7; }).ok());
   EXPECT_EQ(model.num_supported, 4);
-  for (int n = 0; n < kS.nodes; ++n) {
+  for (std::size_t n = 0; n < kS.nodes; ++n) {
     for (int d = 0; d < 6; ++d) {
       const std::size_t j = dof(n, d);
       if (n < 4) {

@@ -122,7 +122,7 @@ TEST(Outputs, AbsoluteAccelerationAndReactionUnderGroundAcceleration) {
   }
   ASSERT_TRUE(r.converged);
   double total_mass = 0;
-  for (int n = 0; n < S.nodes; ++n)
+  for (std::size_t n = 0; n < S.nodes; ++n)
     total_mass += mo.mass[dof(n, ntn::kUz)];
   EXPECT_NEAR(sc.outputs[0] / (ag * g), 1.0, 1e-8);
   EXPECT_EQ(sc.outputs[1], ag * g);

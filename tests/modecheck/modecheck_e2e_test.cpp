@@ -58,8 +58,8 @@ constexpr double kPulse = 0.020;       // s, half-sine
 constexpr double kPulseForce = 20e3;   // N in x and in y
 
 int input_index(const char* name) {
-  for (int k = 0; k < kS.inputs; ++k)
-    if (mdl::kInputNames[static_cast<std::size_t>(k)] == std::string_view(name)) return k;
+  for (std::size_t k = 0; k < kS.inputs; ++k)
+    if (mdl::kInputNames[k] == std::string_view(name)) return static_cast<int>(k);
   return -1;
 }
 
@@ -83,10 +83,9 @@ bool simulate(const std::string& csv_path) {
   std::FILE* out = std::fopen(csv_path.c_str(), "wb");
   if (out == nullptr) return false;
   std::fputs("time[s]", out);
-  for (int c = 0; c < kS.outputs; ++c) {
-    std::fprintf(out, ",%s[%s]",
-                 std::string(mdl::kOutputNames[static_cast<std::size_t>(c)]).c_str(),
-                 std::string(mdl::kOutputUnits[static_cast<std::size_t>(c)]).c_str());
+  for (std::size_t c = 0; c < kS.outputs; ++c) {
+    std::fprintf(out, ",%s[%s]", std::string(mdl::kOutputNames[c]).c_str(),
+                 std::string(mdl::kOutputUnits[c]).c_str());
   }
   std::fputc('\n', out);
   bool ok = ntn::start(g_model, g_state, g_scratch, inputs_at(0.0)) == ntn::StepStatus::kOk;

@@ -103,7 +103,7 @@ TEST(GeneratedHeader, MechanismIsWhatTheKernelHolds) {
   const ntn::InitStatus st = ntn_test::init_model(pj::kSpec, g_pinned);
   ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
   int compiler_dofs = 0;
-  std::vector<std::uint8_t> bits(static_cast<std::size_t>(pj::kSizes.nodes), 0);
+  std::vector<std::uint8_t> bits(pj::kSizes.nodes, 0);
   for (const auto& m : r.model->mechanisms) {
     bits[static_cast<std::size_t>(m.node)] = m.dofs;
     for (int d = 0; d < 6; ++d)
@@ -111,9 +111,8 @@ TEST(GeneratedHeader, MechanismIsWhatTheKernelHolds) {
   }
   EXPECT_EQ(compiler_dofs, 1);
   EXPECT_EQ(g_pinned.held_dofs, compiler_dofs);
-  for (int n = 0; n < pj::kSizes.nodes; ++n)
-    EXPECT_EQ(g_pinned.held[static_cast<std::size_t>(n)], bits[static_cast<std::size_t>(n)])
-        << "node " << n;
+  for (std::size_t n = 0; n < pj::kSizes.nodes; ++n)
+    EXPECT_EQ(g_pinned.held[n], bits[n]) << "node " << n;
 }
 
 TEST(GeneratedHeader, CantileverMatchesFileAndInitializes) {

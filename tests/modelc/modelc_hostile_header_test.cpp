@@ -47,7 +47,7 @@ void all_equal(const Strings& names, std::string_view want, const char* what, st
     all_equal(h::kOutputUnits, want, "unit", i);                              \
     all_equal(h::kMemberNames, want, "member name", i);                       \
     all_equal(h::kHingeNames, want, "hinge name", i);                         \
-    EXPECT_EQ(h::kSizes.hinges, 5);                                           \
+    EXPECT_EQ(h::kSizes.hinges, 5U);                                          \
     EXPECT_EQ(h::kSpec.settings.limit_stiffness, 1.0e12);                     \
   } while (false)
 

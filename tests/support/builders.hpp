@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 
 #include "ntn/model_spec.hpp"
 
@@ -109,7 +111,9 @@ class FrameBuilder {
 
   int nodes() const { return nodes_; }
   int elements() const { return elements_; }
-  bool complete() const { return nodes_ == S.nodes && elements_ == S.elements; }
+  bool complete() const {
+    return std::cmp_equal(nodes_, S.nodes) && std::cmp_equal(elements_, S.elements);
+  }
 
  private:
   ntn::ModelSpec<S>& spec_;
@@ -126,23 +130,27 @@ void straight_beam(ntn::ModelSpec<S>& spec, double length, const Material& m, co
                    const Vec3& origin = {0, 0, 0}) {
   static_assert(S.nodes >= S.elements + 1, "a line of N elements needs N + 1 nodes");
   const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-  for (int k = 0; k <= S.elements; ++k) {
+  for (std::size_t k = 0; k <= S.elements; ++k) {
     const double t = length * static_cast<double>(k) / static_cast<double>(S.elements) / n;
-    ntn::NodeSpec& node = spec.nodes[static_cast<std::size_t>(k)];
+    ntn::NodeSpec& node = spec.nodes[k];
     node = {};
     node.x = origin[0] + t * axis[0], node.y = origin[1] + t * axis[1];
     node.z = origin[2] + t * axis[2];
   }
   spec.nodes[0].fixed = fixed_first;
-  spec.nodes[static_cast<std::size_t>(S.elements)].fixed = fixed_last;
-  for (int k = 0; k < S.elements; ++k) {
-    spec.elements[static_cast<std::size_t>(k)] = element(k, k + 1, m, s, ref);
+  spec.nodes[S.elements].fixed = fixed_last;
+  for (std::size_t k = 0; k < S.elements; ++k) {
+    const int i = static_cast<int>(k);
+    spec.elements[k] = element(i, i + 1, m, s, ref);
   }
 }
 
 // Global index of node DOF d.
 constexpr std::size_t dof(int node, int d) {
   return static_cast<std::size_t>(ntn::kDofsPerNode * node + d);
+}
+constexpr std::size_t dof(std::size_t node, int d) {
+  return ntn::kDofsPerNode * node + static_cast<std::size_t>(d);
 }
 
 }  // namespace ntn_test

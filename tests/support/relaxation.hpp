@@ -23,7 +23,7 @@ template <ntn::Sizes S>
 void relaxation_measures(const ntn::Model<S>& m, const ntn::State<S>& s, const ntn::Scratch<S>& w,
                          double& residual, double& motion) {
   double rr = 0, pp = 0, kin = 0, work = 0;
-  for (std::size_t j = 0; j < static_cast<std::size_t>(ntn::Model<S>::kDofs); ++j) {
+  for (std::size_t j = 0; j < ntn::Model<S>::kDofs; ++j) {
     if (m.inv_mass[j] == 0.0) continue;  // supported DOF: its residual is the reaction
     const double p = ntn::external_load(m, w, j);
     const double r = p - w.f[j];
@@ -68,7 +68,7 @@ template <ntn::Sizes S>
 void hinged_relaxation_measures(const ntn::Model<S>& m, const ntn::State<S>& s,
                                 const ntn::Scratch<S>& w, double& residual, double& motion) {
   double rr = 0, pp = 0, kin = 0, work = 0;
-  for (std::size_t j = 0; j < static_cast<std::size_t>(ntn::Model<S>::kDofs); ++j) {
+  for (std::size_t j = 0; j < ntn::Model<S>::kDofs; ++j) {
     if ((m.fixed[j / ntn::kDofsPerNode] >> (j % ntn::kDofsPerNode)) & 1U) continue;
     const double r = m.mass[j] * w.a[j];
     const double p = ntn::external_load(m, w, j);

@@ -203,7 +203,7 @@ Momentum fly() {
     st.v[dof(n == 2 ? 4 : n, ntn::kUx)] = 1.0;
   auto momentum = [&](int d) {
     double p = 0;
-    for (int n = 0; n < kPair.nodes; ++n)
+    for (std::size_t n = 0; n < kPair.nodes; ++n)
       p += pair.model.mass[dof(n, d)] * st.v[dof(n, d)];
     return p;
   };
@@ -318,7 +318,7 @@ TEST(HingeGap, FreeFlyingTreeKeepsItsMomentum) {
       st.v[dof(n, ntn::kUy)] = 0.3;
     auto momentum = [&](int d) {
       double p = 0;
-      for (int n = 0; n < kTree.nodes; ++n)
+      for (std::size_t n = 0; n < kTree.nodes; ++n)
         p += tree.model.mass[dof(n, d)] * st.v[dof(n, d)];
       return p;
     };

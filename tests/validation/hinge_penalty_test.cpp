@@ -134,8 +134,8 @@ Comparison compare(Sim<S>& pen, Sim<S>& ex, void (*build)(ntn::ModelSpec<S>&), d
   ex.spec.settings.dt = pen.spec.settings.dt;
   // B of each hinge, node-1 and node-2 columns, for the penalty run's slips.
   Eigen::Matrix<double, 6, 6> b1[S.hinges], b2[S.hinges];
-  for (int h = 0; h < S.hinges; ++h) {
-    const ntn::HingeSpec& hs = pen.spec.hinges[static_cast<std::size_t>(h)];
+  for (std::size_t h = 0; h < S.hinges; ++h) {
+    const ntn::HingeSpec& hs = pen.spec.hinges[h];
     const Eigen::MatrixXd Bh = ntn_test::hinge_b(ntn::view(pen.spec), hs);
     b1[h] = Bh.block<6, 6>(0, 6 * hs.node1);
     b2[h] = Bh.block<6, 6>(0, 6 * hs.node2);
@@ -160,8 +160,8 @@ Comparison compare(Sim<S>& pen, Sim<S>& ex, void (*build)(ntn::ModelSpec<S>&), d
       out.peak = std::max(out.peak, std::abs(pen.state.u[j]));
       diff = std::max(diff, std::abs(pen.state.u[j] - ex.state.u[j]));
     }
-    for (int h = 0; h < S.hinges; ++h) {
-      const ntn::HingeSpec& hs = pen.spec.hinges[static_cast<std::size_t>(h)];
+    for (std::size_t h = 0; h < S.hinges; ++h) {
+      const ntn::HingeSpec& hs = pen.spec.hinges[h];
       const Eigen::Map<const Eigen::Matrix<double, 6, 1>> u1(&pen.state.u[6 * hs.node1]);
       const Eigen::Map<const Eigen::Matrix<double, 6, 1>> u2(&pen.state.u[6 * hs.node2]);
       const Eigen::Matrix<double, 6, 1> d = b1[h] * u1 + b2[h] * u2;
