@@ -42,8 +42,8 @@ inline constexpr int kInputs = 2;  // ground acceleration in x and in y (in g)
 
 constexpr Sizes sizes_of(Grid g) {
   Sizes s;
-  s.nodes = node_count(g);
-  s.elements = element_count(g);
+  s.nodes = static_cast<std::size_t>(node_count(g));
+  s.elements = static_cast<std::size_t>(element_count(g));
   s.inputs = kInputs;
   return s;
 }
@@ -63,8 +63,8 @@ constexpr int hinge_count(Grid g, Joints j) {
 
 constexpr Sizes sizes_of(Grid g, Joints j) {
   Sizes s = sizes_of(g);
-  s.nodes += hinge_count(g, j);  // one node of its own per hinged beam end
-  s.hinges = hinge_count(g, j);
+  s.hinges = static_cast<std::size_t>(hinge_count(g, j));
+  s.nodes += s.hinges;  // one node of its own per hinged beam end
   if (j == Joints::kMixed) s.curves = 1, s.curve_points = 4;
   return s;
 }

@@ -3,6 +3,7 @@
 // reference z), each member meshed into `divisions` elements, the column bases clamped.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "ntn/model_spec.hpp"
@@ -12,8 +13,8 @@
 namespace ntn_test {
 
 constexpr ntn::Sizes portal_frame_sizes(int divisions, ntn::Sizes extra = {}) {
-  extra.nodes = 8 + 8 * (divisions - 1);
-  extra.elements = 8 * divisions;
+  extra.nodes = static_cast<std::size_t>(8 + 8 * (divisions - 1));
+  extra.elements = static_cast<std::size_t>(8 * divisions);
   return extra;
 }
 
