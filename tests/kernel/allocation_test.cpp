@@ -129,6 +129,9 @@ ntn::Scratch<kS> scratch;
 // hold a NaN input and the stable-step eigen solves inside init.
 TEST(KernelAllocations, NoneInInitStartAnd1e5Steps) {
   ASSERT_TRUE(ntn_test::feature_frame(spec));
+  // An initial state ([initial], a static preload) on a free node: initial_state() copies it.
+  spec.nodes[1].u0 = {1e-4, -2e-4, 0, 0, 1e-5, 0};
+  spec.nodes[1].v0 = {0, 0.01, 0, 0, 0, 0};
   constexpr long kSteps = 100'000;
   ntn::InitStatus st;
   ntn::StepStatus first = ntn::StepStatus::kDiverged;
@@ -138,7 +141,7 @@ TEST(KernelAllocations, NoneInInitStartAnd1e5Steps) {
     const ntn_test::AllocationScope scope;
     const ntn_test::EigenNoMalloc guard;
     st = ntn::init(spec, model, init_work);
-    state = {};
+    ntn::initial_state(model, state);
     first = ntn::start(model, state, scratch, {0.01, 0.0, 1.0});
     std::array<double, kS.inputs> in{};
     for (long n = 0; n < kSteps; ++n) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include "ntn/kernel.hpp"
@@ -205,6 +206,46 @@ TEST(Integrator, UndampedEnergyIsConservedOver1e5Steps) {
   EXPECT_LT(eh_dev, 1e-9);
   EXPECT_LE(e_max, e0 * (1 + 1e-9));
   EXPECT_LE(last, first * (1 + 1e-9));
+}
+
+}  // namespace
+
+namespace {
+
+// initial_state(): the model's u_0 and v_0 (NodeSpec::u0, v0) into the state, every counter of
+// a previous run reset; a run from it equals a run whose caller wrote the same u_0, v_0 into a
+// fresh State (the same bits after 200 steps).
+TEST(Integrator, InitialStateIsTheModelsU0AndV0) {
+  build(/*alpha=*/5.0, 0.9, /*loaded=*/true);
+  spec.nodes[kN].u0 = {1e-3, -2e-3, 5e-4, 0, 1e-3, -1e-3};
+  spec.nodes[kN / 2].v0 = {0, 0.1, 0, 0.2, 0, 0};
+  ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
+  state.tick = 77, state.faults = 3, state.inputs_held = 2, state.u[dof(1, 0)] = 9;
+  ntn::initial_state(model, state);
+  EXPECT_EQ(state.tick, 0);
+  EXPECT_EQ(state.faults, 0U);
+  EXPECT_EQ(state.inputs_held, 0U);
+  for (int n = 0; n <= kN; ++n) {
+    for (int d = 0; d < 6; ++d) {
+      EXPECT_EQ(state.u[dof(n, d)],
+                spec.nodes[static_cast<std::size_t>(n)].u0[static_cast<std::size_t>(d)]);
+      EXPECT_EQ(state.v[dof(n, d)],
+                spec.nodes[static_cast<std::size_t>(n)].v0[static_cast<std::size_t>(d)]);
+    }
+  }
+  const auto run = [](ntn::State<kS>& s) {
+    EXPECT_EQ(ntn::start(model, s, scratch, {}), ntn::StepStatus::kOk);
+    for (int n = 0; n < 200; ++n)
+      EXPECT_EQ(ntn::step(model, s, scratch, {}), ntn::StepStatus::kOk);
+  };
+  run(state);
+  ntn::State<kS> own{};
+  own.u[dof(kN, 0)] = 1e-3, own.u[dof(kN, 1)] = -2e-3, own.u[dof(kN, 2)] = 5e-4;
+  own.u[dof(kN, 4)] = 1e-3, own.u[dof(kN, 5)] = -1e-3;
+  own.v[dof(kN / 2, 1)] = 0.1, own.v[dof(kN / 2, 3)] = 0.2;
+  run(own);
+  EXPECT_EQ(std::memcmp(own.u.data(), state.u.data(), sizeof own.u), 0);
+  EXPECT_EQ(std::memcmp(own.v.data(), state.v.data(), sizeof own.v), 0);
 }
 
 }  // namespace

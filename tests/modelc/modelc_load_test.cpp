@@ -493,7 +493,7 @@ TEST(ModelInfo, ReportsFigures) {
   ASSERT_TRUE(r.ok());
   const std::string t = ntn::modelc::info_text(*r.model);
   // Per node: 6 DOFs x 7 double arrays (mass, inv_mass, damping, u, v, f, a) + 1 + 4.
-  const std::string per_node = "per node " + std::to_string(6 * 7 * 8 + 1 + 4) + " B";
+  const std::string per_node = "per node " + std::to_string(6 * 9 * 8 + 1 + 4) + " B";
   const std::string per_element = "per element " + std::to_string(sizeof(ntn::BeamData)) + " B";
   for (const std::string& s :
        {std::string("nodes        104"), std::string("elements     104 in 26 members"),

@@ -38,6 +38,10 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
     EXPECT_EQ(a.fixed, b.fixed) << i;
     for (std::size_t k = 0; k < a.added.size(); ++k)
       expect_bits(a.added[k], b.added[k], "added", i);
+    for (std::size_t k = 0; k < a.u0.size(); ++k) {
+      expect_bits(a.u0[k], b.u0[k], "u0", i);
+      expect_bits(a.v0[k], b.v0[k], "v0", i);
+    }
   }
   for (std::size_t i = 0; i < h.elements.size(); ++i) {
     const ElementSpec &a = h.elements[i], &b = d.elements[i];

@@ -75,6 +75,7 @@ class Staged {
     add_point_masses(*comp_);
     add_loads(*comp_);
     add_channels(*comp_);
+    add_initial_values(*comp_);
   }
   // Every error so far, one formatted line each ("m.toml:L:C: error: key 'K': message").
   std::string errors() { return format_all(sink_.take_errors()); }

@@ -229,9 +229,22 @@ bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
 
 }  // namespace detail
 
-// Starts a run from the caller's u_0 and v_0 in `s` (zero by default): with ntn_exact, u_0 and
-// v_0 first take the rigid components of their tree parents (the constraints hold from t_0);
-// v_{-1/2} = v_0 - dt/2 a_0 (DESIGN §5), tick = 0.
+// Resets `s` to the model's initial state: u_0 and v_0 as the model gives them (NodeSpec::u0, v0:
+// the model compiler's static preload and [initial] values, zero by default), everything else as
+// a new State. A run from the model file is initial_state() then start().
+template <Sizes S>
+void initial_state(const Model<S>& m, State<S>& s) {
+  s.u = m.u0;  // field by field: a State{} temporary of a large model would not fit the stack
+  s.v = m.v0;
+  s.held_inputs.fill(0.0);
+  s.tick = 0;
+  s.inputs_held = s.inputs_out_of_range = 0;
+  s.faults = 0;
+}
+
+// Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with
+// ntn_exact, u_0 and v_0 first take the rigid components of their tree parents (the constraints
+// hold from t_0); v_{-1/2} = v_0 - dt/2 a_0 (DESIGN §5), tick = 0.
 template <Sizes S>
 [[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w,
                                const std::array<double, S.inputs>& in) {

@@ -31,6 +31,10 @@ struct Model {
   std::array<double, kDofs> inv_mass{};
   std::array<double, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
+  // The run's initial state u_0, v_0 (NodeSpec::u0, v0; zero by default): initial_state() puts
+  // it in a State before start().
+  std::array<double, kDofs> u0{};
+  std::array<double, kDofs> v0{};
   std::array<std::uint8_t, S.nodes> fixed{};            // support bits per node (bit d: DOF d)
   std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
   int num_supported = 0;
@@ -254,6 +258,8 @@ template <Sizes S>
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       const std::size_t j = kDofsPerNode * n + d;
       model.damping[j] = spec.settings.alpha * model.mass[j];  // residual() recomputes it so
+      model.u0[j] = spec.nodes[n].u0[d];
+      model.v0[j] = spec.nodes[n].v0[d];
       double inv = 0.0;
       if (((fixed >> d) & 1U) || in_tree) {  // a tree's accelerations come from the forest
       } else if (!(divided[j] > 0)) {

@@ -31,6 +31,10 @@ struct NodeSpec {
   double x = 0, y = 0, z = 0;                // m
   std::uint8_t fixed = 0;                    // bit d set: DOF d is held at zero (support)
   std::array<double, kDofsPerNode> added{};  // point mass kg (ux,uy,uz), inertia kg m^2 (rx,ry,rz)
+  // The run's initial state (initial_state(), integrator.hpp): u_0 in m and rad, v_0 in m/s and
+  // rad/s, global axes: the model compiler's static preload plus the file's [initial] values.
+  std::array<double, kDofsPerNode> u0{};
+  std::array<double, kDofsPerNode> v0{};
 };
 
 // One 2-node frame element with its material and section resolved (DESIGN §4).

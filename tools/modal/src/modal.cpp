@@ -116,6 +116,93 @@ std::string dof_names(std::uint8_t bits) {
 
 }  // namespace
 
+StaticResult static_solution(const SpecView& spec, std::span<const double> load) {
+  StaticResult r;
+  const auto n = static_cast<Eigen::Index>(kDofsPerNode * spec.nodes.size());
+  if (static_cast<Eigen::Index>(load.size()) != n) {
+    r.error = "the load vector has " + std::to_string(load.size()) + " entries, the model " +
+              std::to_string(n) + " DOFs";
+    return r;
+  }
+  const HingeLinearization lin =
+      linearize_hinges(spec, spec.settings.hinge_method == HingeMethod::kPenalty);
+  if (!lin.error.empty()) {
+    r.error = lin.error;
+    return r;
+  }
+  r.notes = lin.notes;
+  const ConstraintMap cm = build_constraints(spec, lin.hinges);
+  if (!cm.error.empty()) {
+    r.error = cm.error;
+    return r;
+  }
+  int bad_element = -1;
+  const SpMat K = stiffness(spec, lin.hinges, bad_element);
+  if (bad_element >= 0) {
+    r.error = "element " + std::to_string(bad_element) + " has a bad geometry or bad properties";
+    return r;
+  }
+  const SpMat& T = cm.T;
+  const SpMat Kq = SpMat(T.transpose() * K * T);
+  const Eigen::VectorXd Pq = T.transpose() * Eigen::Map<const Eigen::VectorXd>(load.data(), n);
+
+  // Coordinates without stiffness: mechanisms the kernel holds at zero. They must carry no load.
+  const Eigen::VectorXd diag = Kq.diagonal();
+  const double kmax = diag.cwiseAbs().maxCoeff();
+  const double pmax = Pq.cwiseAbs().maxCoeff();
+  std::vector<int> keep_of(static_cast<std::size_t>(Kq.cols()), -1);
+  int kept = 0;
+  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
+    if (diag(c) > kMechanismTolerance * kmax) {
+      keep_of[static_cast<std::size_t>(c)] = kept++;
+    } else if (std::abs(Pq(c)) > 1e-12 * pmax) {
+      r.error =
+          "a load acts on a DOF that nothing holds (a mechanism): the structure cannot "
+          "carry it statically";
+      return r;
+    }
+  }
+  Triplets t;
+  for (Eigen::Index c = 0; c < Kq.outerSize(); ++c) {
+    for (SpMat::InnerIterator it(Kq, c); it; ++it) {
+      const int i = keep_of[static_cast<std::size_t>(it.row())];
+      const int j = keep_of[static_cast<std::size_t>(it.col())];
+      if (i >= 0 && j >= 0) t.emplace_back(i, j, it.value());
+    }
+  }
+  SpMat Kr(kept, kept);
+  Kr.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd Pr(kept);
+  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
+    const int i = keep_of[static_cast<std::size_t>(c)];
+    if (i >= 0) Pr(i) = Pq(c);
+  }
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(Kr);
+  bool ok = ldlt.info() == Eigen::Success;
+  if (ok && kept > 0) {
+    // Positive definite to working precision; a pivot near zero is a rigid-body motion.
+    const Eigen::VectorXd d = ldlt.vectorD();
+    ok = d.minCoeff() > 1e-13 * d.cwiseAbs().maxCoeff();
+  }
+  if (!ok) {
+    r.error =
+        "the stiffness is singular: the structure (supports, hinges) can move as a rigid "
+        "body or has a mechanism that the load would move";
+    return r;
+  }
+  const Eigen::VectorXd qr = kept > 0 ? Eigen::VectorXd(ldlt.solve(Pr)) : Eigen::VectorXd(Pr);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(Kq.cols());
+  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
+    const int i = keep_of[static_cast<std::size_t>(c)];
+    if (i >= 0) q(c) = qr(i);
+  }
+  const double pn = Pq.norm();
+  r.relative_residual = pn > 0 ? (Kq * q - Pq).norm() / pn : 0.0;
+  const Eigen::VectorXd u = T * q;
+  r.u.assign(u.data(), u.data() + u.size());
+  return r;
+}
+
 double ModalResult::shape(int mode, int node, int dof) const {
   return shapes(kDofsPerNode * node + dof, mode);
 }

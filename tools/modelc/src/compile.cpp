@@ -67,6 +67,7 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   add_point_masses(comp);
   add_loads(comp);
   add_channels(comp);
+  add_initial_values(comp);
   if (sink.failed()) return std::nullopt;
 
   // Pass 3: rigid cycles (topology only), then mass from the kernel's lumped mass, curves
@@ -76,7 +77,7 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   for (const Stage stage :
        {check_rigid_cycles, check_element_numbers, assemble_mass, check_nodes_have_mass,
         check_force_numbers, set_hinge_stiffness, check_curve_branches, check_kernel_accepts_hinges,
-        check_effective_mass, check_hinge_spring_numbers, choose_time_step}) {
+        check_effective_mass, check_hinge_spring_numbers, choose_time_step, static_preload}) {
     stage(comp);
     if (sink.failed()) return std::nullopt;
   }

@@ -14,6 +14,7 @@
 //   add_point_masses       hinges_supports.cpp  point masses on their nodes
 //   add_loads              loads.cpp            nodal loads
 //   add_channels           channels.cpp         inputs and outputs (units, drift heights)
+//   add_initial_values     initial_state.cpp    [[initial.nodes]] u_0, v_0; [initial] gravity
 //   --- checks: a stage runs only when no error was found before it ---
 //   check_rigid_cycles     check_topology.cpp   cycles of rigid hinge directions
 //   check_element_numbers  check_numbers.cpp    what the kernel derives from each element
@@ -26,6 +27,7 @@
 //   check_effective_mass   check_mass.cpp       massless springs (errors), mechanisms (notes)
 //   check_hinge_spring_numbers   check_numbers.cpp    k / m and c / m of hinge springs
 //   choose_time_step       time_step.cpp        stable step, dt, the frame rule
+//   static_preload         initial_state.cpp    gravity = "static": K u = P, u_0 += u
 #pragma once
 
 #include <array>
@@ -92,6 +94,7 @@ void add_supports(Compilation& comp);
 void add_point_masses(Compilation& comp);
 void add_loads(Compilation& comp);
 void add_channels(Compilation& comp);
+void add_initial_values(Compilation& comp);
 
 void check_rigid_cycles(Compilation& comp);
 void check_element_numbers(Compilation& comp);
@@ -104,5 +107,6 @@ void check_kernel_accepts_hinges(Compilation& comp);
 void check_effective_mass(Compilation& comp);
 void check_hinge_spring_numbers(Compilation& comp);
 void choose_time_step(Compilation& comp);
+void static_preload(Compilation& comp);
 
 }  // namespace ntn::modelc::compile

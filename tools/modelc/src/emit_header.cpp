@@ -271,7 +271,9 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {
     return "{.x = " + lit(n.x) + ", .y = " + lit(n.y) + ", .z = " + lit(n.z) +
            ", .fixed = " + std::to_string(static_cast<unsigned>(n.fixed)) +
-           ", .added = " + lits(n.added) + "}";
+           ", .added = " + lits(n.added) +
+           (n.u0 == std::array<double, kDofsPerNode>{} ? "" : ", .u0 = " + lits(n.u0)) +
+           (n.v0 == std::array<double, kDofsPerNode>{} ? "" : ", .v0 = " + lits(n.v0)) + "}";
   });
   array_init(o, "elements", m.elements, [](const ElementSpec& e) {
     return "{.node_i = " + lit(e.node_i) + ", .node_j = " + lit(e.node_j) + ", .E = " + lit(e.E) +

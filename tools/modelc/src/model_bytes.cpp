@@ -19,9 +19,9 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   f.scratch = scratch_footprint(s);
   f.total = f.model + f.state + f.scratch;
   f.per_element = sizeof(BeamData);
-  // Per node: 6 DOFs x 7 per-DOF double arrays (Model: mass, inv_mass, damping; State: u, v;
-  // Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
-  f.per_node = kDofsPerNode * 7 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
+  // Per node: 6 DOFs x 9 per-DOF double arrays (Model: mass, inv_mass, damping, u0, v0; State:
+  // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
+  f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
   // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
   // of hinges with springs, with branches, of projected edges and of the trees' stops, a tree
   // slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).

@@ -131,7 +131,26 @@ std::string info_text(const ModelDescription& m) {
   }
   if (s.gravity[0] != 0 || s.gravity[1] != 0 || s.gravity[2] != 0) {
     line("gravity", "(" + f("%g", s.gravity[0]) + ", " + f("%g", s.gravity[1]) + ", " +
-                        f("%g", s.gravity[2]) + ") m/s^2");
+                        f("%g", s.gravity[2]) + ") m/s^2" +
+                        (m.preload.on ? ", static preload (the run starts at rest in equilibrium)"
+                                      : ", applied at t = 0 (sudden)"));
+  }
+  if (m.preload.on) {
+    static const char* const kAxis[3] = {"x", "y", "z"};
+    line("initial",
+         "static preload under gravity and " + std::to_string(m.preload.loads) +
+             " constant nodal loads: largest displacement " +
+             f("%.6g", m.preload.max_displacement) + " m" +
+             (m.preload.max_node >= 0 ? " along " + std::string(kAxis[m.preload.max_dof]) + " at " +
+                                            m.describe_node(m.preload.max_node)
+                                      : std::string()) +
+             " (relative residual " + f("%.2g", m.preload.relative_residual) + ")");
+    for (const std::string& note : m.preload.notes)
+      line("", note);
+  }
+  if (m.initial_nodes > 0) {
+    line("initial", std::to_string(m.initial_nodes) +
+                        " nodes with initial displacements or velocities ([[initial.nodes]])");
   }
 
   if (z.hinges > 0) {
@@ -213,7 +232,7 @@ std::string info_text(const ModelDescription& m) {
                std::to_string(z.elements) + " = " + std::to_string(mem.per_element * z.elements) +
                " B");
   line("", "per node " + std::to_string(mem.per_node) +
-               " B (6 DOFs x 7 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
+               " B (6 DOFs x 9 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
                " = " + std::to_string(mem.per_node * z.nodes) + " B");
   if (z.hinges > 0) {
     line("", "per hinge " + std::to_string(mem.per_hinge) +

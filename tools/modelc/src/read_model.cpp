@@ -129,6 +129,63 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
   }
 }
 
+// [initial]: gravity = "sudden" | "static", and [[initial.nodes]] {node, u, v} (3 or 6 numbers).
+void read_initial_table(Reader& L, const toml::table& root, InitialTable& init) {
+  const toml::node* n = root.get("initial");
+  if (n == nullptr) return;
+  const auto* it = n->as_table();
+  if (it == nullptr) {
+    L.error(n->source(), "initial", "expected a table ([initial]), got " + type_name(*n));
+    return;
+  }
+  Table t(L, *it, "initial", {"gravity", "nodes"});
+  t.check_unknown();
+  if (auto g = t.choice("gravity", Need::kOptional, {"sudden", "static"})) {
+    init.gravity_static = *g == 1;
+  }
+  init.gravity_at = t.where("gravity");
+  for_each_table(
+      L, *it, "nodes",
+      [&](const toml::table& tt, const std::string& path) {
+        Table nt(L, tt, path, {"node", "u", "v"});
+        nt.check_unknown();
+        InitialNode in;
+        auto node = nt.integer("node", Need::kRequired, 0, kMaxNodeId);
+        bool ok = node.has_value();
+        // u and v: [x, y, z] translations, or all six DOFs [ux, uy, uz, rx, ry, rz].
+        auto six = [&](std::string_view k, std::array<double, kDofsPerNode>& out) {
+          const toml::node* a = nt.get(k, Need::kOptional);
+          if (a == nullptr) return true;
+          const auto* arr = a->as_array();
+          if (arr != nullptr && arr->size() != 3 && arr->size() != 6) {
+            L.error(a->source(), nt.key(k),
+                    "expected 3 values (ux, uy, uz) or 6 (ux, uy, uz, rx, ry, rz), got " +
+                        std::to_string(arr->size()));
+            return false;
+          }
+          const std::size_t count = arr != nullptr && arr->size() == 3 ? 3 : 6;
+          auto v = nt.numbers(k, Need::kOptional, count);
+          if (!v) return false;
+          for (std::size_t d = 0; d < count; ++d)
+            out[d] = (*v)[d];
+          return true;
+        };
+        ok = six("u", in.u) && ok;
+        ok = six("v", in.v) && ok;
+        if (!nt.has("u") && !nt.has("v")) {
+          L.error(tt.source(), path,
+                  "gives neither 'u' nor 'v' (the node's initial displacement "
+                  "and velocity)");
+          ok = false;
+        }
+        if (!ok) return;
+        in.node = *node;
+        in.at = nt.where("node");
+        init.nodes.push_back(in);
+      },
+      "initial");
+}
+
 static_assert(static_cast<int>(HingeMethod::kNtnExact) == 0 &&
               static_cast<int>(HingeMethod::kNtnPaper) == 1 &&
               static_cast<int>(HingeMethod::kPenalty) == 2);  // the order of kHingeMethods
@@ -139,7 +196,7 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
   {
     Table top(L, root, "",
               {"model", "materials", "sections", "nodes", "members", "supports", "point_masses",
-               "time_functions", "loads", "inputs", "outputs", "curves", "hinges"});
+               "time_functions", "loads", "inputs", "outputs", "curves", "hinges", "initial"});
     top.check_unknown();
   }
   read_model_table(L, root, p.model);
@@ -595,6 +652,8 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     h.id = *id;
     p.hinges.push_back(h);
   });
+
+  read_initial_table(L, root, p.initial);
 }
 
 }  // namespace

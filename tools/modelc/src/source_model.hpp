@@ -158,6 +158,22 @@ struct ModelTable {
   Where hinge_method_at;
 };
 
+// [[initial.nodes]]: a node's initial displacement and velocity (global axes, DOF order; a
+// three-number array gives the translations).
+struct InitialNode {
+  long long node = 0;
+  Where at;
+  std::array<double, kDofsPerNode> u{}, v{};
+};
+
+// [initial]: how the run starts. gravity = "static": from the static equilibrium under gravity
+// and the constant loads (the preload); "sudden" (default): undeformed, gravity from t = 0.
+struct InitialTable {
+  bool gravity_static = false;
+  Where gravity_at;
+  std::vector<InitialNode> nodes;
+};
+
 struct SourceModel {
   ModelTable model;
   std::vector<Material> materials;
@@ -172,6 +188,7 @@ struct SourceModel {
   std::vector<Output> outputs;
   std::vector<Curve> curves;
   std::vector<HingeIn> hinges;
+  InitialTable initial;
 };
 
 }  // namespace ntn::modelc::compile

@@ -256,20 +256,24 @@ class Table {
 // (--input NAME=FILE) and the generated header.
 std::optional<IdAt> read_id(Reader& L, Table& t, std::string_view k, Need need = Need::kRequired);
 
-// Calls f(table, path) for each table of the array of tables `name` at the root.
+// Calls f(table, path) for each table of the array of tables `name` in `root` (the file's root,
+// or the table at `parent`, e.g. "initial" for [[initial.nodes]]).
 template <class F>
-void for_each_table(Reader& L, const toml::table& root, std::string_view name, F f) {
+void for_each_table(Reader& L, const toml::table& root, std::string_view name, F f,
+                    std::string_view parent = {}) {
   const toml::node* n = root.get(name);
   if (n == nullptr) return;
+  const std::string full =
+      parent.empty() ? std::string(name) : std::string(parent) + "." + std::string(name);
   const auto* a = n->as_array();
   if (a == nullptr) {
-    L.error(n->source(), std::string(name),
-            "expected an array of tables ([[" + std::string(name) + "]]), got " + type_name(*n));
+    L.error(n->source(), full,
+            "expected an array of tables ([[" + full + "]]), got " + type_name(*n));
     return;
   }
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::node& e = (*a)[i];
-    const std::string path = std::string(name) + "[" + std::to_string(i) + "]";
+    const std::string path = full + "[" + std::to_string(i) + "]";
     if (const auto* t = e.as_table()) {
       f(*t, path);
     } else {

@@ -135,6 +135,7 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
   std::array<double, S.outputs> out{}, last_good{};
   std::uint16_t in_flags = 0;
   source.frame_inputs(0, current, in_flags);
+  initial_state(model, state);  // the model's u_0, v_0 (static preload, [initial]; zero by default)
   (void)start(model, state, scratch, current);
   if (checkpoint != nullptr) *checkpoint = state;
   previous = current;

@@ -91,6 +91,23 @@ struct ModalResult {
 
 ModalResult modal_analysis(const SpecView& spec, const ModalOptions& options = {});
 
+// The static displacement under a constant load (DESIGN §5, the gravity preload): K u = P with
+// the kernel's own K (elements and hinge springs, as modal_analysis assembles it), supports and
+// rigid hinge directions tied exactly (u = T q; under the `penalty` method rigid directions are
+// its penalty springs, as the kernel integrates them), curves linearized about u = 0
+// (linearize_hinges, whose notes are passed on). Solved once with a sparse LDL^T. Coordinates
+// with no stiffness (mechanisms, which the kernel holds at zero) are left at zero; a load on one,
+// or a structure that can move as a rigid body, is an error.
+struct StaticResult {
+  std::string error;  // empty: ok
+  bool ok() const { return error.empty(); }
+  std::vector<double> u;           // 6 per node, global axes
+  double relative_residual = 0;    // |T^T (K u - P)| / |T^T P| of the solution
+  std::vector<std::string> notes;  // how curves were linearized
+};
+
+StaticResult static_solution(const SpecView& spec, std::span<const double> load);
+
 // A measured channel: node DOF in global axes.
 struct Channel {
   int node = 0;

@@ -97,6 +97,19 @@ struct ModelDescription {
   double damping_frequency = 0;  // Hz, [model.damping] frequency as given (0 likewise)
   StableStepReport stable;       // the kernel's stable step report for this model (its method)
 
+  // [initial] (NodeSpec::u0, v0 hold the result): the static preload under gravity and the
+  // constant loads, and the nodes given initial values.
+  struct Preload {
+    bool on = false;                 // gravity = "static"
+    int loads = 0;                   // constant nodal loads in it (besides gravity)
+    double max_displacement = 0;     // m, the largest translation of the preload
+    int max_node = -1;               // where
+    int max_dof = 0;                 // and along which axis (0..2)
+    double relative_residual = 0;    // of the static solve
+    std::vector<std::string> notes;  // how curves were linearized, loads left out
+  } preload;
+  int initial_nodes = 0;  // [[initial.nodes]] given
+
   Sizes sizes() const;
   SpecView view() const;
 
