@@ -148,6 +148,32 @@ TEST(MemberLoadsStatics, SimplySupportedUniform) {
   }
 }
 
+// The other bending plane and the axial direction: q along global y bends about local z (Iz;
+// theta_z = dv/dx, so the start rotates negatively when the beam deflects to -y): midspan
+// -5 q L^4 / (384 E Iz), start rotation -q L^3 / (24 E Iz); q along x on the bar held in x at
+// node 1 only: end displacement q L^2 / (2 E A) (exact nodal values of linear elements).
+// Tolerance kRoundOff.
+TEST(MemberLoadsStatics, SimplySupportedAlongYAndAxial) {
+  constexpr double kIz = 6.04e-6, kA = 5.38e-3;
+  const ModelDescription d =
+      load(beam(kL, 4, kSimple + "[[member_loads]]\nmember = \"B\"\nq = [10e3, -10e3, 0]\n"));
+  const Solution s = solve(d);
+  const int mid = node_at(d, kL / 2), end = node_at(d, kL);
+  ASSERT_GE(mid, 0);
+  ASSERT_GE(end, 0);
+  const double v = s.u(6 * mid + 1), th = s.u(5), u = s.u(6 * end);
+  const double v_exact = -5 * kQ * std::pow(kL, 4) / (384 * kE * kIz);
+  const double th_exact = -kQ * std::pow(kL, 3) / (24 * kE * kIz);
+  const double u_exact = kQ * kL * kL / (2 * kE * kA);
+  std::printf(
+      "  v mid %.12g m (rel. error %.2e), rz start %.12g rad (rel. error %.2e), u end "
+      "%.12g m (rel. error %.2e)\n",
+      v, rel(v, v_exact), th, rel(th, th_exact), u, rel(u, u_exact));
+  EXPECT_LT(rel(v, v_exact), kRoundOff);
+  EXPECT_LT(rel(th, th_exact), kRoundOff);
+  EXPECT_LT(rel(u, u_exact), kRoundOff);
+}
+
 // Fixed-fixed beam, uniform q: the supports' moments q L^2 / 12 (hogging: -q L^2 / 12 about y at
 // the start, +q L^2 / 12 at the end) and forces q L / 2, from K u - P. Tolerance 1e-9 relative
 // (the issue's; exact nodal values up to round-off).

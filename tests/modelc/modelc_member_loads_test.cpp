@@ -158,5 +158,23 @@ dof = "ux"
   EXPECT_EQ(d.members[0].element_count, 4);
 }
 
+// At a released end the end element's node is the release node (on the member's side of the
+// hinge): the member load's forces go there, none to the joint.
+TEST(MemberLoads, ReleasedEndLoadsTheReleaseNode) {
+  std::string text = column("[[member_loads]]\nmember = \"C\"\nq = [100, 0, 0]\n");
+  text.replace(text.find("divisions = 3"), 13, "divisions = 3\nrelease_end = [\"ry\"]");
+  testing::Staged s{text};
+  ASSERT_TRUE(s.read()) << s.errors();
+  s.describe();
+  EXPECT_EQ(s.errors(), "");
+  const auto& d = s.d();
+  bool on_release = false;
+  for (const LoadSpec& l : d.loads) {
+    EXPECT_NE(l.node, d.members[0].end_node);
+    on_release = on_release || l.node == d.members[0].end_release_node;
+  }
+  EXPECT_TRUE(on_release);
+}
+
 }  // namespace
 }  // namespace ntn::modelc::compile
