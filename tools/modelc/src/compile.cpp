@@ -4,7 +4,7 @@
 // the results of the ones before it.
 #include "compile.hpp"
 
-#include <cmath>
+#include <algorithm>
 #include <utility>
 
 #include "messages.hpp"
@@ -50,9 +50,12 @@ int Compilation::node_of(const NodeRef& r, const Where& at) {
   if (it == points.end()) return -1;
   const auto mi = static_cast<std::size_t>(it->second.member);
   if (mi >= member_nodes.size()) return -1;
-  for (const auto& [t, n] : member_nodes[mi]) {
-    if (std::abs(t - it->second.t) <= kSamePoint) return n;
-  }
+  const auto& along = member_nodes[mi];  // ascending t
+  const auto at_or_after =
+      std::lower_bound(along.begin(), along.end(), it->second.t - kSamePoint,
+                       [](const std::pair<double, int>& tn, double t) { return tn.first < t; });
+  if (at_or_after != along.end() && at_or_after->first <= it->second.t + kSamePoint)
+    return at_or_after->second;
   return -1;  // the member was not meshed (its error was reported)
 }
 

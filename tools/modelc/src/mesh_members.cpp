@@ -73,6 +73,19 @@ void mesh_members(Compilation& comp) {
 
   comp.member_index.assign(p.members.size(), -1);
   comp.member_nodes.assign(p.members.size(), {});
+  // The member points of each member, as sorted fractions of its length.
+  std::vector<std::vector<double>> point_ts(p.members.size());
+  for (const auto& [mp, pa] : comp.points) {
+    (void)mp;
+    point_ts[static_cast<std::size_t>(pa.member)].push_back(pa.t);
+  }
+  for (auto& ts : point_ts)
+    std::sort(ts.begin(), ts.end());
+  // Whether sorted `ts` holds a value within kSamePoint of t.
+  const auto near = [](const std::vector<double>& ts, double t) {
+    const auto it = std::lower_bound(ts.begin(), ts.end(), t - kSamePoint);
+    return it != ts.end() && *it <= t + kSamePoint;
+  };
   for (std::size_t mi = 0; mi < p.members.size(); ++mi) {
     const Member& m = p.members[mi];
     const int a = node_ref(m.nodes[0], m.nodes_at);
@@ -121,14 +134,11 @@ void mesh_members(Compilation& comp) {
       cuts.push_back(static_cast<double>(k) / static_cast<double>(m.divisions));
       split.push_back(false);
     }
-    for (const auto& [mp, pa] : comp.points) {
-      (void)mp;
-      if (pa.member != static_cast<int>(mi)) continue;
-      const auto same = [&pa](double c) { return std::abs(c - pa.t) <= kSamePoint; };
-      if (same(0.0) || same(1.0) || std::any_of(cuts.begin(), cuts.end(), same)) continue;
-      const auto pos = std::lower_bound(cuts.begin(), cuts.end(), pa.t);
+    for (const double t : point_ts[mi]) {
+      if (t <= kSamePoint || t >= 1 - kSamePoint || near(cuts, t)) continue;
+      const auto pos = std::lower_bound(cuts.begin(), cuts.end(), t);
       split.insert(split.begin() + (pos - cuts.begin()), true);
-      cuts.insert(pos, pa.t);
+      cuts.insert(pos, t);
     }
     const int elements = static_cast<int>(cuts.size()) + 1;
 
@@ -166,15 +176,10 @@ void mesh_members(Compilation& comp) {
     }
     along.emplace_back(1.0, b);
     // The member points made or reused on this member, for reports.
-    for (const auto& [t, n] : along) {
-      const bool used = std::any_of(comp.points.begin(), comp.points.end(), [&](const auto& q) {
-        return q.second.member == static_cast<int>(mi) && std::abs(q.second.t - t) <= kSamePoint;
-      });
-      if (!used) continue;
-      bool was_split = false;
-      for (std::size_t c = 0; c < cuts.size(); ++c) {
-        if (cuts[c] == t) was_split = split[c];
-      }
+    for (std::size_t k = 0; k < along.size() && !point_ts[mi].empty(); ++k) {
+      const auto& [t, n] = along[k];
+      if (!near(point_ts[mi], t)) continue;
+      const bool was_split = k > 0 && k + 1 < along.size() && split[k - 1];
       d.member_points.push_back({member, t, n, was_split});
     }
     // Member-end releases: a node at the end, coincident with the joint, takes the end element;
