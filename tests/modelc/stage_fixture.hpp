@@ -69,11 +69,13 @@ class Staged {
   // The stages that make the description (everything before the checks).
   void describe() {
     resolve_ids(*comp_);
+    collect_member_points(*comp_);
     mesh_members(*comp_);
     add_hinges(*comp_);
     add_supports(*comp_);
     add_point_masses(*comp_);
     add_loads(*comp_);
+    add_member_loads(*comp_);
     add_channels(*comp_);
     add_initial_values(*comp_);
   }

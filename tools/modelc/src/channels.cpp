@@ -37,7 +37,7 @@ void add_channels(Compilation& comp) {
     switch (o.kind) {
       case OutKind::kNode: {
         os.kind = o.node_kind;
-        os.node = node_ref(o.nodes[0], o.nodes_at);
+        os.node = comp.node_of(o.nodes[0], o.nodes_at);
         if (os.node < 0) continue;
         const std::size_t k = o.node_kind == OutputKind::kAbsoluteAcceleration
                                   ? 2
@@ -60,21 +60,20 @@ void add_channels(Compilation& comp) {
       }
       case OutKind::kDrift: {
         os.kind = OutputKind::kDrift;
-        os.node = node_ref(o.nodes[0], o.nodes_at);
-        os.node2 = node_ref(o.nodes[1], o.nodes_at);
+        os.node = comp.node_of(o.nodes[0], o.nodes_at);
+        os.node2 = comp.node_of(o.nodes[1], o.nodes_at);
         if (os.node < 0 || os.node2 < 0) continue;
         const double z0 = d.nodes[static_cast<std::size_t>(os.node)].z;
         const double z1 = d.nodes[static_cast<std::size_t>(os.node2)].z;
         const double h = z1 - z0;
         if (h == 0.0) {
-          L.error(o.nodes_at, "drift height is zero: nodes " + std::to_string(o.nodes[0]) +
-                                  " and " + std::to_string(o.nodes[1]) +
-                                  " are both at z = " + num(z0) + " m");
+          L.error(o.nodes_at, "drift height is zero: nodes " + o.nodes[0].text() + " and " +
+                                  o.nodes[1].text() + " are both at z = " + num(z0) + " m");
           continue;
         }
         if (h < 0.0) {
-          L.error(o.nodes_at, "the upper node " + std::to_string(o.nodes[1]) + " (z = " + num(z1) +
-                                  " m) is below the lower node " + std::to_string(o.nodes[0]) +
+          L.error(o.nodes_at, "the upper node " + o.nodes[1].text() + " (z = " + num(z1) +
+                                  " m) is below the lower node " + o.nodes[0].text() +
                                   " (z = " + num(z0) + " m)");
           continue;
         }

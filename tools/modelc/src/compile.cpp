@@ -4,7 +4,10 @@
 // the results of the ones before it.
 #include "compile.hpp"
 
+#include <algorithm>
 #include <utility>
+
+#include "messages.hpp"
 
 namespace ntn::modelc::compile {
 
@@ -41,6 +44,26 @@ int Compilation::node_ref(long long id, const Where& at) {
   return -1;
 }
 
+int Compilation::node_of(const NodeRef& r, const Where& at) {
+  if (!r.point) return node_ref(r.id, at);
+  const auto it = points.find(&*r.point);
+  if (it == points.end()) return -1;
+  const auto mi = static_cast<std::size_t>(it->second.member);
+  if (mi >= member_nodes.size()) return -1;
+  const auto& along = member_nodes[mi];  // ascending t
+  const auto at_or_after =
+      std::lower_bound(along.begin(), along.end(), it->second.t - kSamePoint,
+                       [](const std::pair<double, int>& tn, double t) { return tn.first < t; });
+  if (at_or_after != along.end() && at_or_after->first <= it->second.t + kSamePoint)
+    return at_or_after->second;
+  return -1;  // the member was not meshed (its error was reported)
+}
+
+std::string NodeRef::text() const {
+  if (!point) return std::to_string(id);
+  return point->member.id + "@" + num(point->at) + (point->in_metres ? "m" : "");
+}
+
 int Compilation::ref(const std::map<std::string, int>& index, const IdAt& id,
                      const std::string& what) {
   const auto it = index.find(id.id);
@@ -61,11 +84,13 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   // Pass 2: references, meshing, geometry; every problem reported.
   start_description(comp, file);
   resolve_ids(comp);
+  collect_member_points(comp);
   mesh_members(comp);
   add_hinges(comp);
   add_supports(comp);
   add_point_masses(comp);
   add_loads(comp);
+  add_member_loads(comp);
   add_channels(comp);
   add_initial_values(comp);
   if (sink.failed()) return std::nullopt;

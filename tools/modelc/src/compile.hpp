@@ -7,12 +7,17 @@
 //   start_description      compile.cpp          name, title, settings as given
 //   resolve_ids            resolve_ids.cpp      id -> index maps, duplicates; time functions and
 //                                               curves concatenated; gravity_function
-//   mesh_members           mesh_members.cpp     nodes, elements (orientation, divisions), the
-//                                               nodes of member-end releases
+//   collect_member_points  member_points.cpp    points inside members given for node ids
+//                                               (supports, loads, masses, outputs), checked
+//   mesh_members           mesh_members.cpp     nodes, elements (orientation, divisions, a node
+//                                               at each member point), the nodes of member-end
+//                                               releases
 //   add_hinges             hinges_supports.cpp  explicit hinges and member-end releases
 //   add_supports           hinges_supports.cpp  supports (with axes: hinges to the ground)
 //   add_point_masses       hinges_supports.cpp  point masses on their nodes
 //   add_loads              loads.cpp            nodal loads
+//   add_member_loads       member_loads.cpp     distributed member loads as consistent nodal
+//                                               forces and moments
 //   add_channels           channels.cpp         inputs and outputs (units, drift heights)
 //   add_initial_values     initial_state.cpp    [[initial.nodes]] u_0, v_0; [initial] gravity
 //   --- checks: a stage runs only when no error was found before it ---
@@ -59,6 +64,17 @@ struct PendingHinge {
   Where at;                          // the key that made the hinge
 };
 
+// A point inside a member (MemberPoint), checked by collect_member_points: the member (index in
+// SourceModel::members) and the point as a fraction of its length.
+struct PointAt {
+  int member = -1;
+  double t = 0;
+};
+
+// Two fractions of a member's length closer than this are the same point (a member point on a
+// division point or an end reuses that node).
+inline constexpr double kSamePoint = 1e-9;
+
 struct Compilation {
   Compilation(DiagnosticSink& sink, const SourceModel& source) : L(sink), p(source) {}
 
@@ -72,9 +88,19 @@ struct Compilation {
   std::vector<std::array<Where, kDofsPerNode>> dir_at;  // per hinge and direction
   std::vector<Where> load_at;  // per kernel load: the [[loads]] table that made it
   std::vector<double> mass;    // lumped mass per DOF (assemble_mass)
+  // Member points: each valid one (collect_member_points -> mesh_members, node_of); per member
+  // of the file, its index in d.members (-1: not meshed, an error was reported) and its nodes
+  // along it, (fraction of the length, node index) from start (0) to end (1), the joints at
+  // the ends (not the nodes of releases).
+  std::map<const MemberPoint*, PointAt> points;
+  std::vector<int> member_index;
+  std::vector<std::vector<std::pair<double, int>>> member_nodes;
 
   // The index of user node `id`, or -1 after an "unknown node" error at `at`.
   int node_ref(long long id, const Where& at);
+  // The node index of a node reference: a user node (node_ref) or a member point (the node
+  // mesh_members put there); -1 after an error (a point's errors were reported when collected).
+  int node_of(const NodeRef& r, const Where& at);
   // The index of `id` in `index`, or -1 after an "unknown WHAT 'id'" error at the id.
   int ref(const std::map<std::string, int>& index, const IdAt& id, const std::string& what);
   // The place of node n's id in the file (generated nodes: none, reported at 1:1).
@@ -88,11 +114,13 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
 
 void start_description(Compilation& comp, const std::string& file);
 void resolve_ids(Compilation& comp);
+void collect_member_points(Compilation& comp);
 void mesh_members(Compilation& comp);
 void add_hinges(Compilation& comp);
 void add_supports(Compilation& comp);
 void add_point_masses(Compilation& comp);
 void add_loads(Compilation& comp);
+void add_member_loads(Compilation& comp);
 void add_channels(Compilation& comp);
 void add_initial_values(Compilation& comp);
 

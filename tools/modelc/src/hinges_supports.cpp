@@ -144,15 +144,14 @@ void add_supports(Compilation& comp) {
   DiagnosticSink& L = comp.L;
   const SourceModel& p = comp.p;
   ModelDescription& d = comp.d;
-  auto node_ref = [&comp](long long id, const Where& at) { return comp.node_ref(id, at); };
   std::map<int, int> support_of;  // node -> support index
   for (std::size_t i = 0; i < p.supports.size(); ++i) {
     const Support& sp = p.supports[i];
-    const int n = node_ref(sp.node, sp.at);
+    const int n = comp.node_of(sp.node, sp.at);
     if (n < 0) continue;
     const auto [it, inserted] = support_of.emplace(n, static_cast<int>(i));
     if (!inserted) {
-      L.error(sp.at, "node " + std::to_string(sp.node) + " already has a support (line " +
+      L.error(sp.at, "node " + sp.node.text() + " already has a support (line " +
                          std::to_string(p.supports[static_cast<std::size_t>(it->second)].at.line) +
                          ")");
       continue;
@@ -167,8 +166,8 @@ void add_supports(Compilation& comp) {
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         hs.behaviour[k] = ((sp.fixed >> k) & 1U) ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
       }
-      add_hinge(comp, hs, {"support." + std::to_string(sp.node), HingeOrigin::kSupport, -1, 0},
-                sp.axes_at, nullptr);
+      add_hinge(comp, hs, {"support." + sp.node.text(), HingeOrigin::kSupport, -1, 0}, sp.axes_at,
+                nullptr);
       continue;
     }
     d.nodes[static_cast<std::size_t>(n)].fixed = sp.fixed;
@@ -179,9 +178,8 @@ void add_supports(Compilation& comp) {
 void add_point_masses(Compilation& comp) {
   const SourceModel& p = comp.p;
   ModelDescription& d = comp.d;
-  auto node_ref = [&comp](long long id, const Where& at) { return comp.node_ref(id, at); };
   for (const PointMass& pm : p.point_masses) {
-    const int n = node_ref(pm.node, pm.at);
+    const int n = comp.node_of(pm.node, pm.at);
     if (n < 0) continue;
     auto& added = d.nodes[static_cast<std::size_t>(n)].added;
     for (std::size_t k = 0; k < 3; ++k) {

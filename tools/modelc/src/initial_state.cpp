@@ -25,12 +25,12 @@ void add_initial_values(Compilation& comp) {
                 "' varies it: remove gravity_function, or use gravity = \"sudden\"");
   }
   for (const InitialNode& in : p.initial.nodes) {
-    const int n = comp.node_ref(in.node, in.at);
+    const int n = comp.node_of(in.node, in.at);
     if (n < 0) continue;
     NodeSpec& ns = d.nodes[static_cast<std::size_t>(n)];
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
       if (((ns.fixed >> k) & 1U) && (in.u[k] != 0.0 || in.v[k] != 0.0)) {
-        L.error(in.at, "node " + std::to_string(in.node) + ": " + std::string(kDofNames[k]) +
+        L.error(in.at, "node " + in.node.text() + ": " + std::string(kDofNames[k]) +
                            " is held by a support, so its initial displacement and velocity "
                            "are 0 (got u = " +
                            num(in.u[k]) + ", v = " + num(in.v[k]) + ")");

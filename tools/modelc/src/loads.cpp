@@ -7,11 +7,10 @@ namespace ntn::modelc::compile {
 void add_loads(Compilation& comp) {
   const SourceModel& p = comp.p;
   ModelDescription& d = comp.d;
-  auto node_ref = [&comp](long long id, const Where& at) { return comp.node_ref(id, at); };
   auto ref = [&comp](const std::map<std::string, int>& index, const IdAt& id,
                      const std::string& what) { return comp.ref(index, id, what); };
   for (const Load& l : p.loads) {
-    const int n = node_ref(l.node, l.at);
+    const int n = comp.node_of(l.node, l.at);
     int f = kConstant;
     if (l.function) f = ref(comp.ids.functions, *l.function, "time function");
     if (n < 0 || (l.function && f < 0)) continue;

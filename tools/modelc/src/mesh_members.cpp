@@ -1,10 +1,13 @@
 // Stage mesh_members: the user's nodes in file order, then each member: its material and
 // section, its orientation vector (given, or the default reference turned by `roll`), the
 // kernel's geometry check (zero length, orientation parallel to the axis), `divisions` equal
-// elements with the interior nodes between, and for a member-end release a node at that end
-// and a pending hinge in the member's local axes (added by add_hinges).
+// elements with the interior nodes between, a node at each member point (collect_member_points:
+// an end or division point within kSamePoint of the length is reused, any other point splits
+// its element there), and for a member-end release a node at that end and a pending hinge in
+// the member's local axes (added by add_hinges).
 #include "compile.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -68,6 +71,21 @@ void mesh_members(Compilation& comp) {
                      "the model has no members, so it has no mass and nothing to integrate");
   }
 
+  comp.member_index.assign(p.members.size(), -1);
+  comp.member_nodes.assign(p.members.size(), {});
+  // The member points of each member, as sorted fractions of its length.
+  std::vector<std::vector<double>> point_ts(p.members.size());
+  for (const auto& [mp, pa] : comp.points) {
+    (void)mp;
+    point_ts[static_cast<std::size_t>(pa.member)].push_back(pa.t);
+  }
+  for (auto& ts : point_ts)
+    std::sort(ts.begin(), ts.end());
+  // Whether sorted `ts` holds a value within kSamePoint of t.
+  const auto near = [](const std::vector<double>& ts, double t) {
+    const auto it = std::lower_bound(ts.begin(), ts.end(), t - kSamePoint);
+    return it != ts.end() && *it <= t + kSamePoint;
+  };
   for (std::size_t mi = 0; mi < p.members.size(); ++mi) {
     const Member& m = p.members[mi];
     const int a = node_ref(m.nodes[0], m.nodes_at);
@@ -108,33 +126,61 @@ void mesh_members(Compilation& comp) {
       continue;
     }
 
-    // Mesh: divisions equal elements, interior nodes at x_a + (k / N)(x_b - x_a).
+    // Interior points: the division points k / N, and the member points that are none of them
+    // (nor an end), ascending; split[k]: point k is a member point's.
+    std::vector<double> cuts;
+    std::vector<bool> split;
+    for (int k = 1; k < m.divisions; ++k) {
+      cuts.push_back(static_cast<double>(k) / static_cast<double>(m.divisions));
+      split.push_back(false);
+    }
+    for (const double t : point_ts[mi]) {
+      if (t <= kSamePoint || t >= 1 - kSamePoint || near(cuts, t)) continue;
+      const auto pos = std::lower_bound(cuts.begin(), cuts.end(), t);
+      split.insert(split.begin() + (pos - cuts.begin()), true);
+      cuts.insert(pos, t);
+    }
+    const int elements = static_cast<int>(cuts.size()) + 1;
+
+    // Mesh: interior nodes at x_a + t (x_b - x_a) for each interior point t.
     MemberInfo info;
     info.name = m.id.id;
     info.material = ma.id.id;
     info.section = se.id.id;
     info.first_element = static_cast<int>(d.elements.size());
-    info.element_count = m.divisions;
+    info.element_count = elements;
     info.start_node = a;
     info.end_node = b;
     info.first_interior_node = static_cast<int>(d.nodes.size());
-    info.interior_node_count = m.divisions - 1;
+    info.interior_node_count = elements - 1;
+    const int member = static_cast<int>(d.members.size());
+    auto& along = comp.member_nodes[mi];
+    along.emplace_back(0.0, a);
     int prev = a;
-    for (int k = 1; k <= m.divisions; ++k) {
+    for (int k = 1; k <= elements; ++k) {
       int next = b;
-      if (k < m.divisions) {
-        const double t = static_cast<double>(k) / static_cast<double>(m.divisions);
+      if (k < elements) {
+        const double t = cuts[static_cast<std::size_t>(k - 1)];
         NodeSpec n;
         n.x = na.x + t * dx, n.y = na.y + t * dy, n.z = na.z + t * dz;
         next = static_cast<int>(d.nodes.size());
         d.nodes.push_back(n);
         d.node_ids.push_back(kGeneratedNode);
+        along.emplace_back(t, next);
       }
       ElementSpec el = e;
       el.node_i = prev, el.node_j = next;
       d.elements.push_back(el);
       d.element_member.push_back(static_cast<int>(mi));
       prev = next;
+    }
+    along.emplace_back(1.0, b);
+    // The member points made or reused on this member, for reports.
+    for (std::size_t k = 0; k < along.size() && !point_ts[mi].empty(); ++k) {
+      const auto& [t, n] = along[k];
+      if (!near(point_ts[mi], t)) continue;
+      const bool was_split = k > 0 && k + 1 < along.size() && split[k - 1];
+      d.member_points.push_back({member, t, n, was_split});
     }
     // Member-end releases: a node at the end, coincident with the joint, takes the end element;
     // a hinge in the member's local axes (the end element's rotation) joins it to the joint.
@@ -165,6 +211,7 @@ void mesh_members(Compilation& comp) {
       releases.push_back(ph);
       (end == 0 ? info.start_release_node : info.end_release_node) = rnode;
     }
+    comp.member_index[mi] = member;
     d.members.push_back(info);
   }
 }

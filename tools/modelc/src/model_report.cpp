@@ -102,6 +102,30 @@ std::string info_text(const ModelDescription& m) {
                    " supported)");
   line("loads", std::to_string(z.loads) + " nodal loads, " + std::to_string(z.time_functions) +
                     " time functions (" + std::to_string(z.time_points) + " points)");
+  for (const MemberLoadInfo& ml : m.member_loads) {
+    // The check of the consistent loads: their forces add up to the load's total.
+    auto vec = [](const std::array<double, 3>& v) {
+      return "(" + f("%.9g", v[0]) + ", " + f("%.9g", v[1]) + ", " + f("%.9g", v[2]) + ") N";
+    };
+    const std::array<double, 3> diff{ml.nodal[0] - ml.total[0], ml.nodal[1] - ml.total[1],
+                                     ml.nodal[2] - ml.total[2]};
+    line(&ml == &m.member_loads.front() ? "member loads" : "",
+         "member " + m.members[static_cast<std::size_t>(ml.member)].name + ": total " +
+             vec(ml.total) + ", sum of its " + std::to_string(ml.load_count) + " nodal loads " +
+             vec(ml.nodal) + ", difference " +
+             f("%.3g", std::sqrt(diff[0] * diff[0] + diff[1] * diff[1] + diff[2] * diff[2])) +
+             " N");
+  }
+  for (const MemberPointInfo& mp : m.member_points) {
+    const MemberInfo& mi = m.members[static_cast<std::size_t>(mp.member)];
+    const NodeSpec& a = m.nodes[static_cast<std::size_t>(mi.start_node)];
+    const NodeSpec& b = m.nodes[static_cast<std::size_t>(mi.end_node)];
+    const double len = std::hypot(b.x - a.x, b.y - a.y, b.z - a.z);
+    line(&mp == &m.member_points.front() ? "points" : "",
+         "member " + mi.name + " at " + f("%.9g", mp.at) + " (" + f("%.9g", mp.at * len) +
+             " m): " + m.describe_node(mp.node) +
+             (mp.split ? ", a new node splitting an element" : ", an existing node"));
+  }
   line("channels", std::to_string(z.inputs) + " inputs, " + std::to_string(z.outputs) + " outputs");
   for (std::size_t c = 0; c < m.output_alarms.size(); ++c) {
     const OutputAlarm& a = m.output_alarms[c];

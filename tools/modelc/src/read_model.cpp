@@ -150,7 +150,7 @@ void read_initial_table(Reader& L, const toml::table& root, InitialTable& init) 
         Table nt(L, tt, path, {"node", "u", "v"});
         nt.check_unknown();
         InitialNode in;
-        auto node = nt.integer("node", Need::kRequired, 0, kMaxNodeId);
+        auto node = read_node_ref(L, nt, "node", Need::kRequired);
         bool ok = node.has_value();
         // u and v: [x, y, z] translations, or all six DOFs [ux, uy, uz, rx, ry, rz].
         auto six = [&](std::string_view k, std::array<double, kDofsPerNode>& out) {
@@ -192,11 +192,96 @@ static_assert(static_cast<int>(HingeMethod::kNtnExact) == 0 &&
 static_assert(static_cast<int>(ClampRule::kMomentum) == 0 &&
               static_cast<int>(ClampRule::kPaper) == 1);  // the order of kClampRules
 
+// One [[member_loads]] table: the member, q or q_start + q_end, axes, the part (from / to or
+// from_m / to_m) and the time function. Ranges in metres need the member's length: checked by
+// add_member_loads.
+void read_member_load(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p) {
+  Table t(L, tt, path,
+          {"member", "q", "q_start", "q_end", "axes", "from", "to", "from_m", "to_m", "function"});
+  t.check_unknown();
+  MemberLoad ml;
+  auto member = read_id(L, t, "member");
+  bool ok = member.has_value();
+  if (t.conflict("q", "q_start") || t.conflict("q", "q_end")) return;
+  if (t.has("q")) {
+    auto q = t.numbers("q", Need::kRequired, 3);
+    if (q) ml.q_start = ml.q_end = {(*q)[0], (*q)[1], (*q)[2]};
+    ok = ok && q;
+  } else if (t.has("q_start") || t.has("q_end")) {
+    const std::string hint = " (a linearly varying load needs both q_start and q_end)";
+    std::optional<std::vector<double>> qs, qe;
+    for (const std::string_view k : {"q_start", "q_end"}) {
+      auto& q = k == "q_start" ? qs : qe;
+      if (t.has(k)) {
+        q = t.numbers(k, Need::kRequired, 3);
+      } else {
+        t.get(k, Need::kRequired, hint);
+      }
+    }
+    if (qs) ml.q_start = {(*qs)[0], (*qs)[1], (*qs)[2]};
+    if (qe) ml.q_end = {(*qe)[0], (*qe)[1], (*qe)[2]};
+    ok = ok && qs && qe;
+  } else {
+    t.get("q", Need::kRequired, " (or q_start and q_end for a linearly varying load)");
+    ok = false;
+  }
+  if (auto ax = t.choice("axes", Need::kOptional, {"global", "member"})) {
+    ml.member_axes = *ax == 1;
+  } else if (t.has("axes")) {
+    ok = false;
+  }
+  // Fractions or metres, not both.
+  for (const std::string_view f : {"from", "to"}) {
+    for (const std::string_view m : {"from_m", "to_m"}) {
+      if (t.conflict(f, m)) return;
+    }
+  }
+  ml.in_metres = t.has("from_m") || t.has("to_m");
+  const std::string_view kf = ml.in_metres ? "from_m" : "from";
+  const std::string_view kt = ml.in_metres ? "to_m" : "to";
+  ml.from_at = t.where(kf), ml.to_at = t.where(kt);
+  const auto from = t.number(kf, Need::kOptional);
+  const auto to = t.number(kt, Need::kOptional);
+  ok = ok && (from || !t.has(kf)) && (to || !t.has(kt));
+  if (from) ml.from = *from;
+  if (to) ml.to = *to;
+  if (ml.in_metres && !to) ml.to = -1;  // the member's end: set by add_member_loads
+  if (from && !(ml.in_metres ? *from >= 0 : *from >= 0 && *from <= 1)) {
+    L.error(ml.from_at, ml.in_metres
+                            ? "must be between 0 and the member's length (got " + num(*from) + " m)"
+                            : "must be between 0 and 1 (a fraction of the member's "
+                              "length; got " +
+                                  num(*from) + ")");
+    ok = false;
+  } else if (to && !(ml.in_metres ? *to >= 0 : *to >= 0 && *to <= 1)) {
+    L.error(ml.to_at, ml.in_metres
+                          ? "must be between 0 and the member's length (got " + num(*to) + " m)"
+                          : "must be between 0 and 1 (a fraction of the member's "
+                            "length; got " +
+                                num(*to) + ")");
+    ok = false;
+  } else if (ok && (to || !ml.in_metres) && !(ml.from < ml.to)) {
+    L.error(t.has(kt) ? ml.to_at : ml.from_at, std::string(kf) + " = " + num(ml.from) +
+                                                   " must be less than " + std::string(kt) + " = " +
+                                                   num(ml.to) + "");
+    ok = false;
+  }
+  if (t.has("function")) {
+    ml.function = read_id(L, t, "function");
+    ok = ok && ml.function;
+  }
+  if (!ok) return;
+  ml.member = *member;
+  ml.at = t.where("member");
+  p.member_loads.push_back(ml);
+}
+
 void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
   {
     Table top(L, root, "",
               {"model", "materials", "sections", "nodes", "members", "supports", "point_masses",
-               "time_functions", "loads", "inputs", "outputs", "curves", "hinges", "initial"});
+               "time_functions", "loads", "member_loads", "inputs", "outputs", "curves", "hinges",
+               "initial"});
     top.check_unknown();
   }
   read_model_table(L, root, p.model);
@@ -320,7 +405,7 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
   for_each_table(L, root, "supports", [&](const toml::table& tt, const std::string& path) {
     Table t(L, tt, path, {"node", "fix", "axes"});
     t.check_unknown();
-    auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    auto node = read_node_ref(L, t, "node", Need::kRequired);
     std::optional<std::array<double, 9>> axes;
     if (const toml::node* ax = t.get("axes", Need::kOptional)) {
       axes = read_axes(L, *ax, t.key("axes"));
@@ -363,7 +448,7 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
   for_each_table(L, root, "point_masses", [&](const toml::table& tt, const std::string& path) {
     Table t(L, tt, path, {"node", "mass", "inertia"});
     t.check_unknown();
-    auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    auto node = read_node_ref(L, t, "node", Need::kRequired);
     auto mass = t.non_negative("mass", Need::kRequired);
     auto inertia = t.numbers("inertia", Need::kOptional, 3, true);
     if (!node || !mass || (!inertia && t.has("inertia"))) return;
@@ -390,7 +475,7 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     Table t(L, tt, path, {"node", "dof", "value", "force", "function"});
     t.check_unknown();
     Load l;
-    auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+    auto node = read_node_ref(L, t, "node", Need::kRequired);
     bool ok = node.has_value();
     if (t.conflict("dof", "force") || t.conflict("value", "force")) return;
     if (t.has("force")) {
@@ -418,6 +503,10 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     if (!ok) return;
     l.node = *node, l.at = t.where("node");
     p.loads.push_back(l);
+  });
+
+  for_each_table(L, root, "member_loads", [&](const toml::table& tt, const std::string& path) {
+    read_member_load(L, tt, path, p);
   });
 
   for_each_table(L, root, "inputs", [&](const toml::table& tt, const std::string& path) {
@@ -485,7 +574,7 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
                     : *kind == 1 ? OutputKind::kVelocity
                     : *kind == 2 ? OutputKind::kAcceleration
                                  : OutputKind::kAbsoluteAcceleration;
-      auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);
+      auto node = read_node_ref(L, t, "node", Need::kRequired);
       auto dof = t.choice("dof", Need::kRequired, kDofNames);
       if (node) o.nodes = {*node}, o.nodes_at = t.where("node");
       if (dof) o.dof = *dof;
@@ -506,7 +595,12 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
       Table t(L, tt, path, {"name", "kind", "nodes", "direction", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kDrift;
-      auto nodes = t.node_ids("nodes", Need::kRequired, 2);
+      std::optional<std::vector<NodeRef>> nodes;
+      if (const toml::node* nn = t.get("nodes", Need::kRequired)) {
+        nodes = L.array_of<NodeRef>(
+            *nn, t.key("nodes"), 2,
+            [&L](const toml::node& e, const std::string& ek) { return read_node_ref(L, e, ek); });
+      }
       auto dir = t.choice("direction", Need::kRequired, {"x", "y"});
       if (nodes) o.nodes = *nodes, o.nodes_at = t.where("nodes");
       if (dir) o.dof = *dir;

@@ -33,6 +33,24 @@ struct Section {
   Where A_at, Iy_at, Iz_at, J_at, shear_at;
 };
 
+// A point inside a member, given where a node id is accepted: { member = "B1", at = 0.5 } (a
+// fraction of the length) or { member = "B1", at_m = 2.0 } (metres from the member's start). The
+// mesher puts a node there (mesh_members); Compilation::node_of resolves it.
+struct MemberPoint {
+  IdAt member;
+  double at = 0;           // as given: a fraction, or metres when in_metres
+  bool in_metres = false;  // at_m
+  Where at_at;             // the at / at_m value
+};
+
+// A node reference: a user node id or a point inside a member.
+struct NodeRef {
+  long long id = 0;
+  std::optional<MemberPoint> point;
+  // "12", or "B1 at 0.5" / "B1 at 2 m" for messages.
+  std::string text() const;
+};
+
 struct UserNode {
   long long id = 0;
   Where at;
@@ -66,7 +84,7 @@ struct Member {
 };
 
 struct Support {
-  long long node = 0;
+  NodeRef node;
   Where at;
   std::uint8_t fixed = 0;
   std::optional<std::array<double, 9>> axes;  // a support with its own frame: a ground hinge
@@ -95,7 +113,7 @@ struct HingeIn {
 };
 
 struct PointMass {
-  long long node = 0;
+  NodeRef node;
   Where at;
   double mass = 0;
   std::array<double, 3> inertia{};
@@ -107,9 +125,22 @@ struct TimeFunction {
 };
 
 struct Load {
-  long long node = 0;
+  NodeRef node;
   Where at;
   std::vector<std::pair<int, double>> components;  // (dof, value)
+  std::optional<IdAt> function;
+};
+
+// A distributed load on a member ([[member_loads]]): per unit length along the member (not
+// projected), q_start at `from` to q_end at `to`, linear in between (uniform: q_start = q_end).
+struct MemberLoad {
+  IdAt member;
+  Where at;  // the member key
+  std::array<double, 3> q_start{}, q_end{};
+  bool member_axes = false;  // axes = "member": the components are in the member's local x, y, z
+  double from = 0, to = 1;   // fractions of the length, or metres when in_metres
+  bool in_metres = false;    // from_m / to_m
+  Where from_at, to_at;      // the from / from_m and to / to_m values (the table when not given)
   std::optional<IdAt> function;
 };
 
@@ -128,7 +159,7 @@ struct Output {
   IdAt name;
   OutKind kind = OutKind::kNode;
   OutputKind node_kind = OutputKind::kDisplacement;
-  std::vector<long long> nodes;  // node kinds: 1; drift: 2
+  std::vector<NodeRef> nodes;  // node kinds: 1; drift: 2
   Where nodes_at;
   int dof = 0;  // DOF, direction or component
   Where dof_at;
@@ -161,7 +192,7 @@ struct ModelTable {
 // [[initial.nodes]]: a node's initial displacement and velocity (global axes, DOF order; a
 // three-number array gives the translations).
 struct InitialNode {
-  long long node = 0;
+  NodeRef node;
   Where at;
   std::array<double, kDofsPerNode> u{}, v{};
 };
@@ -184,6 +215,7 @@ struct SourceModel {
   std::vector<PointMass> point_masses;
   std::vector<TimeFunction> time_functions;
   std::vector<Load> loads;
+  std::vector<MemberLoad> member_loads;
   std::vector<Input> inputs;
   std::vector<Output> outputs;
   std::vector<Curve> curves;

@@ -46,6 +46,63 @@ std::optional<IdAt> read_id(Reader& L, Table& t, std::string_view k, Need need) 
   return IdAt{*s, t.where(k)};
 }
 
+std::optional<NodeRef> read_node_ref(Reader& L, const toml::node& n, const std::string& key) {
+  if (n.is_integer()) {
+    const auto id = L.integer(n, key, 0, kMaxNodeId);
+    if (!id) return std::nullopt;
+    NodeRef r;
+    r.id = *id;
+    return r;
+  }
+  const auto* tt = n.as_table();
+  if (tt == nullptr) {
+    L.error(n.source(), key,
+            "expected a node id or a point inside a member ({ member = \"B1\", at = 0.5 } or "
+            "{ member = \"B1\", at_m = 2.0 }), got " +
+                type_name(n));
+    return std::nullopt;
+  }
+  Table t(L, *tt, key, {"member", "at", "at_m"});
+  t.check_unknown();
+  bool ok = !std::any_of(tt->begin(), tt->end(), [](auto&& kv) {
+    const std::string_view k = kv.first.str();
+    return k != "member" && k != "at" && k != "at_m";
+  });
+  MemberPoint mp;
+  auto member = read_id(L, t, "member");
+  ok = ok && member.has_value();
+  if (t.conflict("at", "at_m")) return std::nullopt;
+  if (!t.has("at") && !t.has("at_m")) {
+    L.error(tt->source(), key,
+            "a point inside a member needs 'at' (a fraction of the length, 0 to 1) or 'at_m' "
+            "(metres from the member's start)");
+    return std::nullopt;
+  }
+  mp.in_metres = t.has("at_m");
+  const std::string_view ak = mp.in_metres ? "at_m" : "at";
+  const auto at = t.number(ak, Need::kRequired);
+  if (at && mp.in_metres && *at < 0) {
+    L.error(t.where(ak), "must be between 0 and the member's length (got " + num(*at) + " m)");
+    ok = false;
+  } else if (at && !mp.in_metres && !(*at >= 0 && *at <= 1)) {
+    L.error(t.where(ak),
+            "must be between 0 and 1 (a fraction of the member's length; got " + num(*at) + ")");
+    ok = false;
+  }
+  if (!ok || !at) return std::nullopt;
+  mp.member = *member;
+  mp.at = *at;
+  mp.at_at = t.where(ak);
+  NodeRef r;
+  r.point = mp;
+  return r;
+}
+
+std::optional<NodeRef> read_node_ref(Reader& L, Table& t, std::string_view k, Need need) {
+  const toml::node* n = t.get(k, need);
+  return n ? read_node_ref(L, *n, t.key(k)) : std::nullopt;
+}
+
 // An array of [x, y] points whose x increases strictly (time-function and curve points): each
 // bad entry and each x that does not come after the previous one is reported; `ok` turns false.
 std::vector<std::array<double, 2>> increasing_pairs(Reader& L, const toml::array& a,

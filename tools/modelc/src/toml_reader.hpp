@@ -256,6 +256,13 @@ class Table {
 // (--input NAME=FILE) and the generated header.
 std::optional<IdAt> read_id(Reader& L, Table& t, std::string_view k, Need need = Need::kRequired);
 
+// A node reference (source_model.hpp NodeRef) at value n of key `key`: a node id (0 to
+// kMaxNodeId) or a member point { member = "B1", at = 0.5 } / { member = "B1", at_m = 2.0 }
+// (at in [0, 1], at_m >= 0: its upper bound, the member's length, is the compiler's check).
+std::optional<NodeRef> read_node_ref(Reader& L, const toml::node& n, const std::string& key);
+// The same for key k of table t.
+std::optional<NodeRef> read_node_ref(Reader& L, Table& t, std::string_view k, Need need);
+
 // Calls f(table, path) for each table of the array of tables `name` in `root` (the file's root,
 // or the table at `parent`, e.g. "initial" for [[initial.nodes]]).
 template <class F>

@@ -2,6 +2,7 @@
 // model file gave (nodes, members, channels) so that tools can report in the user's terms.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,17 +19,35 @@ struct MemberInfo {
   std::string material;
   std::string section;
   int first_element = 0;        // elements [first_element, first_element + element_count)
-  int element_count = 0;        // = divisions
+  int element_count = 0;        // divisions, plus one per member point between division points
   int start_node = 0;           // node index of the member's first end
   int end_node = 0;             // node index of the member's second end
   int first_interior_node = 0;  // generated nodes [first, first + count), start to end
-  int interior_node_count = 0;  // = divisions - 1
+  int interior_node_count = 0;  // = element_count - 1
   // Member-end releases: the node made at that end (after the interior nodes) and its hinge
   // (node 1 = that node, node 2 = start_node / end_node), or -1 without a release.
   int start_release_node = -1;
   int end_release_node = -1;
   int start_hinge = -1;
   int end_hinge = -1;
+};
+
+// A point inside a member that the file gave for a node ({ member, at } / { member, at_m }):
+// where it is and the node it became (one entry per distinct point).
+struct MemberPointInfo {
+  int member = 0;      // index in members
+  double at = 0;       // fraction of the length
+  int node = 0;        // node index
+  bool split = false;  // true: a new node split an element; false: an end or division point
+};
+
+// A distributed member load ([[member_loads]]) and the check of its consistent nodal loads.
+struct MemberLoadInfo {
+  int member = 0;                 // index in members
+  std::array<double, 3> total{};  // N, the integral of q over the loaded part, global x, y, z
+  std::array<double, 3> nodal{};  // N, the sum of the nodal forces it produced, global
+  int first_load = 0;             // its nodal loads: loads [first_load, first_load + count)
+  int load_count = 0;
 };
 
 // A limit alarm on an output channel ([[outputs]] alarm, alarm_hysteresis), in the channel's
@@ -79,11 +98,13 @@ struct ModelDescription {
   std::vector<std::string> time_function_ids;
   std::vector<std::string> input_names;
   std::vector<std::string> output_names;
-  std::vector<std::string> output_units;   // "m", "m/s", "m/s2", "rad", "N", "N m", "-", ...
-  std::vector<OutputAlarm> output_alarms;  // per output
-  std::vector<HingeInfo> hinge_info;       // per hinge
-  std::vector<std::string> curve_ids;      // per curve
-  std::vector<Mechanism> mechanisms;       // ascending node index
+  std::vector<std::string> output_units;       // "m", "m/s", "m/s2", "rad", "N", "N m", "-", ...
+  std::vector<OutputAlarm> output_alarms;      // per output
+  std::vector<HingeInfo> hinge_info;           // per hinge
+  std::vector<std::string> curve_ids;          // per curve
+  std::vector<Mechanism> mechanisms;           // ascending node index
+  std::vector<MemberPointInfo> member_points;  // member by member, start to end
+  std::vector<MemberLoadInfo> member_loads;    // file order
   // Which hinge stiffnesses the file gave (false: the compiler's default, config/README.md).
   bool penalty_stiffness_given = false;
   bool penalty_rotational_stiffness_given = false;
