@@ -107,10 +107,11 @@ std::int64_t source_epoch_ns(const Source& source) {
   }
 }
 
-// Runs `config.frames` frames. Source: `void frame_inputs(std::int64_t k, std::span<double> v,
-// std::uint16_t& flags)` gives frame k's accepted inputs (through the input gate: finite, in
-// range) and the gate's flag:: bits; it is called for frame 0 before the loop fixes its
-// deadlines, so it may wait there for its first input and then say, through an optional
+// Runs `config.frames` frames from the model's initial state (ntn::initial_state: u_0, v_0 of the
+// model, every counter of `state` reset). Source: `void frame_inputs(std::int64_t k,
+// std::span<double> v, std::uint16_t& flags)` gives frame k's accepted inputs (through the input
+// gate: finite, in range) and the gate's flag:: bits; it is called for frame 0 before the loop
+// fixes its deadlines, so it may wait there for its first input and then say, through an optional
 // `std::int64_t epoch_ns() const`, when frame 0 is due (see source_epoch_ns). Sink: `void
 // frame_outputs(std::int64_t k,
 // std::span<const double> v, std::uint16_t flags)` gets the outputs with the gate's bits and
