@@ -74,6 +74,7 @@ class Staged {
     add_hinges(*comp_);
     add_supports(*comp_);
     add_point_masses(*comp_);
+    hold_out_of_plane(*comp_);
     add_loads(*comp_);
     add_member_loads(*comp_);
     add_channels(*comp_);

@@ -89,6 +89,7 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   add_hinges(comp);
   add_supports(comp);
   add_point_masses(comp);
+  hold_out_of_plane(comp);
   add_loads(comp);
   add_member_loads(comp);
   add_channels(comp);

@@ -14,7 +14,9 @@
 //                                               releases
 //   add_hinges             hinges_supports.cpp  explicit hinges and member-end releases
 //   add_supports           hinges_supports.cpp  supports (with axes: hinges to the ground)
-//   add_point_masses       hinges_supports.cpp  point masses on their nodes
+//   add_point_masses       hinges_supports.cpp  point masses on their nodes (on an offset: a
+//                                               node and a rigid eccentric hinge)
+//   hold_out_of_plane      plane.cpp            [model] plane: out-of-plane DOFs held
 //   add_loads              loads.cpp            nodal loads
 //   add_member_loads       member_loads.cpp     distributed member loads as consistent nodal
 //                                               forces and moments
@@ -119,6 +121,7 @@ void mesh_members(Compilation& comp);
 void add_hinges(Compilation& comp);
 void add_supports(Compilation& comp);
 void add_point_masses(Compilation& comp);
+void hold_out_of_plane(Compilation& comp);
 void add_loads(Compilation& comp);
 void add_member_loads(Compilation& comp);
 void add_channels(Compilation& comp);

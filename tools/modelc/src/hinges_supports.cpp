@@ -10,6 +10,7 @@
 
 #include "messages.hpp"
 #include "ntn/beam.hpp"
+#include "roll.hpp"
 
 namespace ntn::modelc::compile {
 namespace {
@@ -42,11 +43,12 @@ void add_hinge(Compilation& comp, const HingeSpec& hs, const HingeInfo& info, co
     const auto [it, inserted] =
         comp.ids.hinges.emplace(info.name, static_cast<int>(d.hinges.size()));
     if (!inserted && it->second < static_cast<int>(p.hinges.size())) {
-      L.error(
-          p.hinges[static_cast<std::size_t>(it->second)].id.at,
-          "hinge id '" + info.name + "' is also the name of the " +
-              (info.origin == HingeOrigin::kRelease ? "member-end release" : "support with axes") +
-              " at " + at.key + ": choose another id");
+      L.error(p.hinges[static_cast<std::size_t>(it->second)].id.at,
+              "hinge id '" + info.name + "' is also the name of the " +
+                  (info.origin == HingeOrigin::kRelease   ? "member-end release"
+                   : info.origin == HingeOrigin::kSupport ? "support with axes"
+                                                          : "point mass on an offset") +
+                  " at " + at.key + ": choose another id");
     }
   }
   std::array<Where, kDofsPerNode> w;
@@ -96,6 +98,12 @@ void add_hinges(Compilation& comp) {
           hs.frame = beam_geometry(d.nodes[static_cast<std::size_t>(el.node_i)],
                                    d.nodes[static_cast<std::size_t>(el.node_j)], el)
                          .rotation;
+          // axes = { member, roll }: the member's y and z rows turned about its x (roll.hpp).
+          std::array<double, 3> y{hs.frame[3], hs.frame[4], hs.frame[5]};
+          std::array<double, 3> z{hs.frame[6], hs.frame[7], hs.frame[8]};
+          roll_about_x(h.frame_roll, y, z);
+          for (std::size_t i = 0; i < 3; ++i)
+            hs.frame[3 + i] = y[i], hs.frame[6 + i] = z[i];
         }
       }
     }
@@ -174,13 +182,47 @@ void add_supports(Compilation& comp) {
   }
 }
 
-// Point masses add up on their node.
+// Point masses add up on their node. One with an offset is its own node at the mass centre
+// (node + offset) carrying the mass and inertia, joined to the node by a hinge rigid in all six
+// directions with that eccentricity: the kernel's exact eccentric rigid hinge (DESIGN §7.1) is
+// the rigid offset; under "penalty" it is six penalty springs; "ntn_paper" has no eccentricity.
 void add_point_masses(Compilation& comp) {
+  DiagnosticSink& L = comp.L;
   const SourceModel& p = comp.p;
   ModelDescription& d = comp.d;
+  std::map<int, int> offsets_on;  // node -> point masses on offsets so far (for their names)
   for (const PointMass& pm : p.point_masses) {
     const int n = comp.node_of(pm.node, pm.at);
     if (n < 0) continue;
+    if (pm.offset) {
+      const std::array<double, 3>& e = *pm.offset;
+      if (d.settings.hinge_method == HingeMethod::kNtnPaper) {
+        L.error(pm.offset_at,
+                "a point mass on an offset is an eccentric rigid hinge, which needs "
+                "hinge_method = \"ntn_exact\" or \"penalty\": the seed's algorithm "
+                "(\"ntn_paper\", S 17-37) has no eccentricity");
+        continue;
+      }
+      const NodeSpec& at = d.nodes[static_cast<std::size_t>(n)];
+      NodeSpec c;
+      c.x = at.x + e[0], c.y = at.y + e[1], c.z = at.z + e[2];
+      c.added = {pm.mass, pm.mass, pm.mass, pm.inertia[0], pm.inertia[1], pm.inertia[2]};
+      const int centre = static_cast<int>(d.nodes.size());
+      d.nodes.push_back(c);
+      d.node_ids.push_back(kGeneratedNode);
+      HingeSpec hs;  // rigid in all six, global axes
+      hs.node1 = n;
+      hs.node2 = centre;
+      hs.eccentricity = e;  // e = x2 - x1
+      const int k = ++offsets_on[n];
+      add_hinge(comp, hs,
+                {"point mass at " + std::string(pm.node.point ? "" : "node ") + pm.node.text() +
+                     " (offset" +
+                     (k > 1 ? " " + std::to_string(k) : std::string()) + ")",
+                 HingeOrigin::kPointMass, -1, 0},
+                pm.offset_at, nullptr);
+      continue;
+    }
     auto& added = d.nodes[static_cast<std::size_t>(n)].added;
     for (std::size_t k = 0; k < 3; ++k) {
       added[k] += pm.mass;

@@ -9,10 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "messages.hpp"
 #include "ntn/beam.hpp"
+#include "roll.hpp"
 
 namespace ntn::modelc::compile {
 namespace {
@@ -33,15 +33,13 @@ void set_orientation(const Member& m, double dx, double dy, double dz, double le
     const double zn = std::sqrt(ez[0] * ez[0] + ez[1] * ez[1] + ez[2] * ez[2]);
     for (double& c : ez)
       c /= zn;
-    const double ey[3] = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
-                          ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
-    // Right-handed turn by `roll` about local x: z' = cos(roll) z - sin(roll) y.
-    const double th = m.roll_deg * std::numbers::pi / 180.0;
-    const double c = m.roll_deg == 0.0 ? 1.0 : std::cos(th);
-    const double sn = m.roll_deg == 0.0 ? 0.0 : std::sin(th);
-    e.ref_x = c * ez[0] - sn * ey[0];
-    e.ref_y = c * ez[1] - sn * ey[1];
-    e.ref_z = c * ez[2] - sn * ey[2];
+    std::array<double, 3> y = {ez[1] * ex[2] - ez[2] * ex[1], ez[2] * ex[0] - ez[0] * ex[2],
+                               ez[0] * ex[1] - ez[1] * ex[0]};  // y = z x x
+    std::array<double, 3> z = {ez[0], ez[1], ez[2]};
+    roll_about_x(m.roll_deg, y, z);  // the reference: local z turned by `roll`
+    e.ref_x = z[0];
+    e.ref_y = z[1];
+    e.ref_z = z[2];
   }
 }
 

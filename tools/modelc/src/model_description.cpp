@@ -47,6 +47,11 @@ std::string ModelDescription::describe_node(int node) const {
              " (released, model node " + std::to_string(node) + ")";
     }
   }
+  for (std::size_t h = 0; h < hinge_info.size(); ++h) {
+    if (hinge_info[h].origin == HingeOrigin::kPointMass && hinges[h].node2 == node)
+      return "the mass centre of the " + hinge_info[h].name + " (model node " +
+             std::to_string(node) + ")";
+  }
   return "model node " + std::to_string(node);
 }
 
@@ -58,6 +63,8 @@ std::string ModelDescription::describe_hinge(int hinge) const {
       return "member-end release " + h.name;
     case HingeOrigin::kSupport:
       return "support with axes " + h.name;
+    case HingeOrigin::kPointMass:
+      return "the rigid offset of the " + h.name;
     case HingeOrigin::kExplicit:
       break;
   }

@@ -94,6 +94,12 @@ std::string info_text(const ModelDescription& m) {
   line("file", m.source_file);
   line("nodes", std::to_string(z.nodes) + " (" + std::to_string(given) + " given, " +
                     std::to_string(z.nodes - given) + " from meshing members)");
+  if (!m.plane.empty()) {
+    line("plane", m.plane + ": " + m.plane_held_names +
+                      " held on every node: " + std::to_string(m.plane_held_dofs) +
+                      " DOFs held as supports, " + std::to_string(m.plane_rigid_directions) +
+                      " hinge directions made rigid (config/README.md, plane)");
+  }
   line("elements",
        std::to_string(z.elements) + " in " + std::to_string(m.members.size()) + " members");
   line("DOFs", std::to_string(kDofsPerNode * z.nodes) + " (" + std::to_string(mt.free_dofs) +
@@ -182,8 +188,13 @@ std::string info_text(const ModelDescription& m) {
          std::to_string(z.hinges) + ": " + std::to_string(m.hinge_count(HingeOrigin::kExplicit)) +
              " explicit, " + std::to_string(m.hinge_count(HingeOrigin::kRelease)) +
              " member-end releases, " + std::to_string(m.hinge_count(HingeOrigin::kSupport)) +
-             " supports with axes; " + std::to_string(z.curves) + " curves (" +
-             std::to_string(z.curve_points) + " points)");
+             " supports with axes" +
+             (m.hinge_count(HingeOrigin::kPointMass) > 0
+                  ? ", " + std::to_string(m.hinge_count(HingeOrigin::kPointMass)) +
+                        " rigid offsets of point masses"
+                  : std::string()) +
+             "; " + std::to_string(z.curves) + " curves (" + std::to_string(z.curve_points) +
+             " points)");
     line("method", std::string(method_name(s.hinge_method)) + ", clamp " +
                        (s.clamp == ClampRule::kMomentum ? "momentum" : "paper (S 33)"));
     const char* def = " (default: 1e4 x largest EA/l)";

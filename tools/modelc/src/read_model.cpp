@@ -25,6 +25,7 @@ const std::vector<std::string_view> kReactionDirections = {"x", "y", "z", "rx", 
 const std::vector<std::string_view> kComponents = {"N", "Vy", "Vz", "T", "My", "Mz"};
 const std::vector<std::string_view> kHingeMethods = {"ntn_exact", "ntn_paper", "penalty"};
 const std::vector<std::string_view> kClampRules = {"momentum", "paper"};
+const std::vector<std::string_view> kPlanes = {"xz", "xy", "yz"};
 
 void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
   const toml::node* n = root.get("model");
@@ -37,10 +38,11 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
     L.error(n->source(), "model", "expected a table ([model]), got " + type_name(*n));
     return;
   }
-  Table t(L, *mt, "model",
-          {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
-           "allow_unstable", "damping", "hinge_method", "clamp", "penalty_stiffness",
-           "penalty_rotational_stiffness", "limit_stiffness", "limit_rotational_stiffness"});
+  Table t(
+      L, *mt, "model",
+      {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
+       "allow_unstable", "damping", "hinge_method", "clamp", "penalty_stiffness",
+       "penalty_rotational_stiffness", "limit_stiffness", "limit_rotational_stiffness", "plane"});
   t.check_unknown();
   if (auto name = t.string("name", Need::kRequired)) {
     if (is_cpp_identifier(*name)) {
@@ -91,6 +93,8 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
   m.hinge_method_at = t.where("hinge_method");
   if (auto c = t.choice("clamp", Need::kOptional, kClampRules))
     m.clamp = static_cast<ClampRule>(*c);
+  if (auto pl = t.choice("plane", Need::kOptional, kPlanes)) m.plane = static_cast<Plane>(*pl + 1);
+  m.plane_at = t.where("plane");
   m.penalty_stiffness = t.positive("penalty_stiffness", Need::kOptional);
   m.penalty_rotational_stiffness = t.positive("penalty_rotational_stiffness", Need::kOptional);
   m.limit_stiffness = t.positive("limit_stiffness", Need::kOptional);
@@ -189,6 +193,8 @@ void read_initial_table(Reader& L, const toml::table& root, InitialTable& init) 
 static_assert(static_cast<int>(HingeMethod::kNtnExact) == 0 &&
               static_cast<int>(HingeMethod::kNtnPaper) == 1 &&
               static_cast<int>(HingeMethod::kPenalty) == 2);  // the order of kHingeMethods
+static_assert(static_cast<int>(Plane::kXz) == 1 && static_cast<int>(Plane::kXy) == 2 &&
+              static_cast<int>(Plane::kYz) == 3);  // the order of kPlanes, after kNone
 static_assert(static_cast<int>(ClampRule::kMomentum) == 0 &&
               static_cast<int>(ClampRule::kPaper) == 1);  // the order of kClampRules
 
@@ -446,14 +452,16 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
   });
 
   for_each_table(L, root, "point_masses", [&](const toml::table& tt, const std::string& path) {
-    Table t(L, tt, path, {"node", "mass", "inertia"});
+    Table t(L, tt, path, {"node", "mass", "inertia", "offset"});
     t.check_unknown();
     auto node = read_node_ref(L, t, "node", Need::kRequired);
     auto mass = t.non_negative("mass", Need::kRequired);
     auto inertia = t.numbers("inertia", Need::kOptional, 3, true);
-    if (!node || !mass || (!inertia && t.has("inertia"))) return;
-    PointMass pm{*node, t.where("node"), *mass, {}};
+    auto offset = t.numbers("offset", Need::kOptional, 3);
+    if (!node || !mass || (!inertia && t.has("inertia")) || (!offset && t.has("offset"))) return;
+    PointMass pm{*node, t.where("node"), *mass, {}, std::nullopt, t.where("offset")};
     if (inertia) pm.inertia = {(*inertia)[0], (*inertia)[1], (*inertia)[2]};
+    if (offset) pm.offset = std::array<double, 3>{(*offset)[0], (*offset)[1], (*offset)[2]};
     p.point_masses.push_back(pm);
   });
 
@@ -722,12 +730,30 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
         ok = false;
       }
     } else if (const toml::node* ax = t.get("axes", Need::kOptional)) {
-      auto R = read_axes(L, *ax, t.key("axes"));
-      if (R) {
-        h.frame = FrameKind::kAxes;
-        h.axes = *R;
+      if (const auto* at = ax->as_table()) {
+        // axes = { member = "id", roll = degrees }: the member's local axes turned by roll.
+        const std::string akey = t.key("axes");
+        Table fr(L, *at, akey, {"member", "roll"});
+        fr.check_unknown();
+        auto m = read_id(L, fr, "member");
+        const toml::node* r = fr.get("roll", Need::kRequired,
+                                     " (degrees about the member's local x; without a roll, "
+                                     "give frame = { member = \"id\" })");
+        const auto roll = r != nullptr ? L.number(*r, fr.key("roll")) : std::nullopt;
+        if (m && roll) {
+          h.frame = FrameKind::kMember;
+          h.frame_member = *m;
+          h.frame_roll = *roll;
+        }
+        ok = ok && m && roll;
+      } else {
+        auto R = read_axes(L, *ax, t.key("axes"));
+        if (R) {
+          h.frame = FrameKind::kAxes;
+          h.axes = *R;
+        }
+        ok = ok && R;
       }
-      ok = ok && R;
     }
     if (auto e = t.boolean("eccentric", Need::kOptional)) h.eccentric = *e;
     h.eccentric_at = t.where("eccentric");

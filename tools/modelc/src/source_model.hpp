@@ -105,7 +105,8 @@ struct HingeIn {
   std::optional<long long> node2;  // none: the ground
   Where nodes_at;
   FrameKind frame = FrameKind::kGlobal;
-  IdAt frame_member;
+  IdAt frame_member;      // kMember: frame = { member } or axes = { member, roll }
+  double frame_roll = 0;  // kMember: degrees about the member's local x (axes = { member, roll })
   std::array<double, 9> axes{};
   bool eccentric = false;
   Where eccentric_at;
@@ -116,7 +117,9 @@ struct PointMass {
   NodeRef node;
   Where at;
   double mass = 0;
-  std::array<double, 3> inertia{};
+  std::array<double, 3> inertia{};  // about the mass centre (the node, or node + offset)
+  std::optional<std::array<double, 3>> offset;  // m, global: the mass centre is node + offset
+  Where offset_at;
 };
 
 struct TimeFunction {
@@ -169,8 +172,13 @@ struct Output {
   double alarm = 0, alarm_hysteresis = 0;  // limit alarm on |value| (0: none), channel units
 };
 
+// A planar model ([model] plane): the plane its motion stays in.
+enum class Plane { kNone, kXz, kXy, kYz };
+
 struct ModelTable {
   std::string name, title;
+  Plane plane = Plane::kNone;
+  Where plane_at;
   bool dt_auto = true;
   double dt = 0;
   Where dt_at;

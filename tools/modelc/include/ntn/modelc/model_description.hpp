@@ -58,11 +58,14 @@ struct OutputAlarm {
 };
 
 // Where a hinge came from. Hinges are ordered: explicit [[hinges]] in file order, then
-// member-end releases (member order, start before end), then supports with axes (file order).
-enum class HingeOrigin : std::uint8_t { kExplicit, kRelease, kSupport };
+// member-end releases (member order, start before end), then supports with axes (file order),
+// then point masses on an offset (file order: node 1 the node, node 2 the mass centre).
+enum class HingeOrigin : std::uint8_t { kExplicit, kRelease, kSupport, kPointMass };
 
 struct HingeInfo {
-  std::string name;  // the id, "<member>.start" / "<member>.end", or "support.<node id>"
+  // The id, "<member>.start" / "<member>.end", "support.<node id>" or "point mass at node <id>
+  // (offset)" (" (offset 2)", ... for more than one on a node).
+  std::string name;
   HingeOrigin origin = HingeOrigin::kExplicit;
   int member = -1;  // kRelease: member index
   int end = 0;      // kRelease: 0 start, 1 end
@@ -110,6 +113,13 @@ struct ModelDescription {
   bool penalty_rotational_stiffness_given = false;
   bool limit_stiffness_given = false;
   bool limit_rotational_stiffness_given = false;
+
+  // [model] plane: "xz", "xy", "yz" (empty: a 3D model), the DOFs it holds on every node, and how
+  // (config/README.md): support bits set, hinge directions made rigid.
+  std::string plane;
+  std::string plane_held_names;  // "uy, rx, rz", ...
+  int plane_held_dofs = 0;
+  int plane_rigid_directions = 0;
 
   bool dt_auto = true;           // dt = "auto" in the file
   double dt_requested = 0;       // s, the number given when !dt_auto
