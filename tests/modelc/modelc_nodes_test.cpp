@@ -168,6 +168,25 @@ offset = [0, 0, 0.5]
   EXPECT_EQ(s.comp().hinge_at[0].key, "point_masses[0].offset");
 }
 
+TEST(ModelcPointMassOffset, PenaltyLeavesRotationsWithoutInertiaFree) {
+  // Under "penalty" a rigid direction is a spring, which needs mass on both nodes: the mass
+  // centre's rotations without inertia are left free (a mechanism note), the others rigid.
+  Staged s{with_model("hinge_method = \"penalty\"", R"([[point_masses]]
+node = 2
+mass = 500
+inertia = [0, 4, 0]
+offset = [0.5, 0, 0]
+)")};
+  describe(s);
+  EXPECT_EQ(s.errors(), "");
+  ASSERT_EQ(s.d().hinges.size(), 1U);
+  const auto& b = s.d().hinges[0].behaviour;
+  for (int k : {kUx, kUy, kUz, kRy})
+    EXPECT_EQ(b[static_cast<std::size_t>(k)], HingeBehaviour::kRigid) << k;
+  EXPECT_EQ(b[kRx], HingeBehaviour::kFree);
+  EXPECT_EQ(b[kRz], HingeBehaviour::kFree);
+}
+
 TEST(ModelcPointMassOffset, Errors) {
   {
     Staged s{with_model("hinge_method = \"ntn_paper\"", R"([[point_masses]]

@@ -214,6 +214,14 @@ void add_point_masses(Compilation& comp) {
       hs.node1 = n;
       hs.node2 = centre;
       hs.eccentricity = e;  // e = x2 - x1
+      // Under "penalty" a rigid direction is a spring, and a spring needs mass on both sides: a
+      // rotation without inertia is left free (a massless, unloaded DOF of the mass centre,
+      // reported as a mechanism). The translations follow the node's rotation all the same:
+      // their rows, T (u2 - u1 - phi1 x e), hold phi1 only.
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (d.settings.hinge_method == HingeMethod::kPenalty && pm.inertia[k] == 0)
+          hs.behaviour[3 + k] = HingeBehaviour::kFree;
+      }
       const int k = ++offsets_on[n];
       add_hinge(comp, hs,
                 {"point mass at " + std::string(pm.node.point ? "" : "node ") + pm.node.text() +
