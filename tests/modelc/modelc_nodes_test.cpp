@@ -91,6 +91,21 @@ axes = { member = "X", roll = 30 }
     EXPECT_EQ(s.errors(), "m.toml:43:19: error: key 'hinges[0].axes.member': unknown member 'X'\n");
   }
   {
+    Staged s{column(R"([[nodes]]
+id = 3
+xyz = [0, 0, 3]
+
+[[hinges]]
+id = "R"
+nodes = [2, 3]
+axes = "C"
+)")};
+    EXPECT_FALSE(s.read());
+    EXPECT_EQ(s.errors(),
+              "m.toml:43:8: error: key 'hinges[0].axes': must be rows [[x], [y], [z]] or { member "
+              "= \"id\", roll = degrees }, got a string\n");
+  }
+  {
     Staged s{column(two_hinges("inf"))};
     EXPECT_FALSE(s.read());
     EXPECT_EQ(s.errors(),

@@ -746,6 +746,11 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
           h.frame_roll = *roll;
         }
         ok = ok && m && roll;
+      } else if (!ax->is_array()) {
+        L.error(ax->source(), t.key("axes"),
+                "must be rows [[x], [y], [z]] or { member = \"id\", roll = degrees }, got " +
+                    type_name(*ax));
+        ok = false;
       } else {
         auto R = read_axes(L, *ax, t.key("axes"));
         if (R) {
