@@ -356,6 +356,25 @@ axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
   EXPECT_EQ(d.plane_rigid_directions, 3);
 }
 
+TEST(ModelcPlane, APointMassOnAnOffsetIsHeldThroughItsNode) {
+  // The mass centre hangs from node 2 by a hinge rigid in all six: the tree {2, centre} takes
+  // the bits on node 2 (the lower index) only, and the hinge is left as it is.
+  Staged s{with_model("plane = \"yz\"", R"([[point_masses]]
+node = 2
+mass = 50
+offset = [0, 0.5, 0]
+)")};
+  describe(s);
+  EXPECT_EQ(s.errors(), "");
+  const ModelDescription& d = s.d();
+  ASSERT_EQ(d.nodes.size(), 5U);  // 1, 2, C's interior 3 and 4, the mass centre
+  constexpr std::uint8_t kYz = (1U << kUx) | (1U << kRy) | (1U << kRz);
+  EXPECT_EQ(d.nodes[1].fixed, kYz);
+  EXPECT_EQ(d.nodes[4].fixed, 0);
+  EXPECT_EQ(d.plane_rigid_directions, 0);
+  EXPECT_EQ(d.plane_held_dofs, 3 * 3);  // nodes 2, 3, 4; node 1 is held already
+}
+
 TEST(ModelcPlane, Errors) {
   {
     Staged s{with_model("plane = \"xw\"", "")};
