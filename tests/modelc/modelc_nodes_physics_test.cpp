@@ -292,7 +292,7 @@ TEST(ModelcPointMassOffsetPhysics, PenaltySpringsApproachTheExactOffset) {
   // modal analysis with those springs (penalty_as_springs) must approach the exact ties: the
   // gap is of order (the mode's stiffness / the penalty stiffness), tiny with the default
   // penalty of 1e4 x the stiffest element term (measured 3e-8): tolerance 1e-6. A wrong lever
-  // arm (a spring tying u2 to u1 alone) would leave the arm's 0.5 m out: 20 % off.
+  // arm (a spring tying u2 to u1 alone) would drop the arm from the flexibility f_C: tens of %.
   std::string text;
   {
     std::FILE* f =
