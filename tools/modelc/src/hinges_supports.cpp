@@ -225,8 +225,7 @@ void add_point_masses(Compilation& comp) {
       const int k = ++offsets_on[n];
       add_hinge(comp, hs,
                 {"point mass at " + std::string(pm.node.point ? "" : "node ") + pm.node.text() +
-                     " (offset" +
-                     (k > 1 ? " " + std::to_string(k) : std::string()) + ")",
+                     " (offset" + (k > 1 ? " " + std::to_string(k) : std::string()) + ")",
                  HingeOrigin::kPointMass, -1, 0},
                 pm.offset_at, nullptr);
       continue;
