@@ -130,7 +130,10 @@ StaticResult static_solution(const SpecView& spec, std::span<const double> load)
     r.error = lin.error;
     return r;
   }
-  r.notes = lin.notes;
+  for (const std::string& note : lin.notes) {
+    // At rest the dashpots carry nothing: that note is about modes, not statics.
+    if (note.rfind("hinge dashpots", 0) != 0) r.notes.push_back(note);
+  }
   const ConstraintMap cm = build_constraints(spec, lin.hinges);
   if (!cm.error.empty()) {
     r.error = cm.error;
