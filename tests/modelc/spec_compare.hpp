@@ -31,6 +31,7 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   ASSERT_EQ(z.hinges, S.hinges);
   ASSERT_EQ(z.curves, S.curves);
   ASSERT_EQ(z.curve_points, S.curve_points);
+  ASSERT_EQ(z.element_loads, S.element_loads);
   for (std::size_t i = 0; i < h.nodes.size(); ++i) {
     const NodeSpec &a = h.nodes[i], &b = d.nodes[i];
     expect_bits(a.x, b.x, "node x", i), expect_bits(a.y, b.y, "node y", i);
@@ -112,6 +113,12 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   for (std::size_t i = 0; i < h.curve_points.size(); ++i) {
     expect_bits(h.curve_points[i].d, d.curve_points[i].d, "curve d", i);
     expect_bits(h.curve_points[i].force, d.curve_points[i].force, "curve force", i);
+  }
+  for (std::size_t i = 0; i < h.element_loads.size(); ++i) {
+    EXPECT_EQ(h.element_loads[i].element, d.element_loads[i].element) << i;
+    EXPECT_EQ(h.element_loads[i].time_function, d.element_loads[i].time_function) << i;
+    for (std::size_t k = 0; k < 12; ++k)
+      expect_bits(h.element_loads[i].local[k], d.element_loads[i].local[k], "element load", i);
   }
   const Settings &a = h.settings, &b = d.settings;
   expect_bits(a.dt, b.dt, "dt", 0);

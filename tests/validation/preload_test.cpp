@@ -15,6 +15,7 @@
 #include <memory>
 #include <numbers>
 
+#include "fixed_beam_udl_model.hpp"
 #include "frame3d_gravity_static_model.hpp"
 #include "frame3d_gravity_sudden_model.hpp"
 #include "ntn/kernel.hpp"
@@ -172,6 +173,39 @@ TEST(GravityPreload, RunWithRecordDiffersFromTheSuddenStartByTheFreeRinging) {
       worst, scale, sag, a.model->u0[sag], apart);
   EXPECT_LE(worst, 1e-9 * scale);
   EXPECT_GE(apart, 0.9 * std::abs(a.model->u0[sag]));
+}
+
+// Element end forces under a member load: a fixed-fixed beam under q started from its preload.
+// The element-force channels are K_L T u minus the element's own load (ElementLoadSpec), the end
+// forces of the loaded element, so they read the beam's closed form at the element ends: support
+// moments q L^2 / 12, midspan q L^2 / 24 (internal moment M(x) = q (6 x L - 6 x^2 - L^2) / 12),
+// support shear q L / 2, midspan shear 0. The channel at an element's start is -M(x), at its end
+// +M(x) (the forces the nodes exert on the element). The preload is exact for consistent loads,
+// so the tolerance is rounding: 1e-9 of q L^2 / 12 and of q L / 2. Without the element's own load
+// the support moment would be off by q h^2 / 12 (h = L / 4: 6 %).
+TEST(MemberLoadForces, ElementChannelsReadTheLoadedBeamsEndForces) {
+  namespace beam = ntn::models::fixed_beam_udl;
+  constexpr ntn::Sizes kB = beam::kSizes;
+  static_assert(kB.element_loads == 4);
+  const auto m = std::make_unique<ntn::Model<kB>>();
+  const auto s = std::make_unique<ntn::State<kB>>();
+  const auto w = std::make_unique<ntn::Scratch<kB>>();
+  ASSERT_TRUE(ntn_test::init_model(beam::kSpec, *m).ok());
+  ntn::initial_state(*m, *s);
+  ASSERT_EQ(ntn::start(*m, *s, *w, {}), ntn::StepStatus::kOk);
+  ASSERT_EQ(ntn::step(*m, *s, *w, {}), ntn::StepStatus::kOk);  // outputs at t_0
+  const double q = 10e3, L = 6.0;
+  const double m_support = q * L * L / 12, v_support = q * L / 2;
+  const auto& out = w->outputs;  // My_start, Vz_start, My_mid, Vz_mid, My_end
+  std::printf(
+      "  My support %.9g N m (q L^2/12 = %.9g), midspan %.9g (q L^2/24 = %.9g), other "
+      "support %.9g; Vz support %.9g N, midspan %.3g N\n",
+      out[0], m_support, out[2], m_support / 2, out[4], out[1], out[3]);
+  EXPECT_NEAR(std::abs(out[0]), m_support, 1e-9 * m_support);
+  EXPECT_NEAR(out[2], out[0] / 2, 1e-9 * m_support);  // the same sign: -M(0) and +M(L/2)
+  EXPECT_NEAR(out[4], -out[0], 1e-9 * m_support);     // +M(L) = M(0)
+  EXPECT_NEAR(out[1], v_support, 1e-9 * v_support);   // upward at the start (local z = +Z)
+  EXPECT_NEAR(out[3], 0.0, 1e-9 * v_support);
 }
 
 }  // namespace

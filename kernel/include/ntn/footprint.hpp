@@ -65,6 +65,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<TimePoint>(s.time_points);            // time_points
   l.array<TimeFunctionSpec>(s.time_functions);  // time_functions
   l.array<LoadSpec>(s.loads);                   // loads
+  l.array<ElementLoadSpec>(s.element_loads);    // element_loads
   l.array<std::int32_t>(s.loads + s.inputs);    // slot_dof
   l.array<std::int32_t>(s.loads);               // load_slot
   l.array<std::int32_t>(s.inputs);              // input_slot

@@ -191,6 +191,11 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         const auto f = beam_local_end_forces(b, &s.u[static_cast<std::size_t>(6 * b.node_i)],
                                              &s.u[static_cast<std::size_t>(6 * b.node_j)]);
         value = f[static_cast<std::size_t>(6 * o.end + o.dof)];
+        for (const ElementLoadSpec& l : m.element_loads) {  // the element's own load
+          if (l.element != o.element) continue;
+          value -= l.local[static_cast<std::size_t>(6 * o.end + o.dof)] *
+                   load_factor(m.time_points, m.time_functions, l.time_function, t);
+        }
         break;
       }
       case OutputKind::kDrift:

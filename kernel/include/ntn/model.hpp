@@ -42,6 +42,7 @@ struct Model {
   std::array<TimePoint, S.time_points> time_points{};
   std::array<TimeFunctionSpec, S.time_functions> time_functions{};
   std::array<LoadSpec, S.loads> loads{};
+  std::array<ElementLoadSpec, S.element_loads> element_loads{};  // for the element-force outputs
   // The DOFs that carry a nodal load or a force input ("load slots"), each once: only there does
   // P_n differ from M g (gravity and base excitation), which the residual pass computes on the fly.
   std::array<std::int32_t, S.loads + S.inputs> slot_dof{};  // slot -> its DOF
@@ -150,6 +151,11 @@ template <Sizes S>
   for (std::size_t i = 0; i < S.loads; ++i) {
     const LoadSpec& l = spec.loads[i];
     if (!node_ok(l.node) || !dof_ok(l.dof, kDofsPerNode) || !function_ok(l.time_function))
+      return {InitError::kBadReference, static_cast<int>(i)};
+  }
+  for (std::size_t i = 0; i < S.element_loads; ++i) {
+    const ElementLoadSpec& l = spec.element_loads[i];
+    if (l.element < 0 || !std::cmp_less(l.element, S.elements) || !function_ok(l.time_function))
       return {InitError::kBadReference, static_cast<int>(i)};
   }
   if (!function_ok(spec.settings.gravity_function)) return {InitError::kBadReference, -1};
@@ -303,6 +309,7 @@ template <Sizes S>
   model.time_points = spec.time_points;
   model.time_functions = spec.time_functions;
   model.loads = spec.loads;
+  model.element_loads = spec.element_loads;
   model.inputs = spec.inputs;
   model.outputs = spec.outputs;
   model.gravity = spec.settings.gravity;

@@ -24,7 +24,8 @@ struct Sizes {
   std::size_t outputs = 0;
   std::size_t hinges = 0;  // NTN hinges, member-end releases and supports with a frame (DESIGN §7)
   std::size_t curves = 0;  // force-deformation curves of `curve` hinge directions
-  std::size_t curve_points = 0;  // all curve points, concatenated
+  std::size_t curve_points = 0;   // all curve points, concatenated
+  std::size_t element_loads = 0;  // distributed loads on elements (the member loads' parts)
 };
 
 struct NodeSpec {
@@ -86,7 +87,8 @@ enum class OutputKind : std::uint8_t {
   kDisplacement,          // node DOF, m or rad
   kVelocity,              // node DOF, m/s or rad/s
   kAcceleration,          // node DOF, relative to the ground, m/s^2 or rad/s^2
-  kElementForce,          // element end force in local axes: component 0..5 = N, Vy, Vz, T, My, Mz
+  kElementForce,          // element end force in local axes: component 0..5 = N, Vy, Vz, T, My, Mz,
+                          // K_L T u minus the element's own loads (ElementLoadSpec)
   kDrift,                 // (u[node2] - u[node]) / height in DOF `dof`: inter-storey drift ratio
   kReaction,              // sum over supported DOFs `dof` of (F - P): support reaction, N or N m
   kAbsoluteAcceleration,  // node DOF, a_n plus the ground acceleration: what an accelerometer reads
@@ -130,6 +132,17 @@ struct HingeSpec {
   std::array<double, kDofsPerNode> stiffness{};            // N/m or N m/rad (kLinear)
   std::array<double, kDofsPerNode> dashpot{};              // N s/m or N m s/rad (kLinear)
   std::array<int, kDofsPerNode> curve{};                   // index into curves (kCurve)
+};
+
+// A distributed load on one element (a member load's part on it, the model compiler's
+// [[member_loads]]): its consistent nodal forces in the element's local axes [F_i, M_i, F_j, M_j]
+// (the order of beam_local_force), times the time function. The nodal loads (LoadSpec) carry
+// them into the step; the element-force outputs subtract them, so that a channel reads the
+// element's end forces under its load, K_L T u - f (the fixed-end forces when u = 0).
+struct ElementLoadSpec {
+  int element = 0;
+  int time_function = kConstant;
+  std::array<double, 12> local{};  // N and N m, local axes
 };
 
 // Points [first, first + count) of a force-deformation curve, deformation strictly increasing.
@@ -198,6 +211,7 @@ struct ModelSpec {
   std::array<HingeSpec, S.hinges> hinges{};
   std::array<CurveSpec, S.curves> curves{};
   std::array<CurvePoint, S.curve_points> curve_points{};
+  std::array<ElementLoadSpec, S.element_loads> element_loads{};
   Settings settings{};
 };
 
@@ -214,14 +228,15 @@ struct SpecView {
   std::span<const HingeSpec> hinges;
   std::span<const CurveSpec> curves;
   std::span<const CurvePoint> curve_points;
+  std::span<const ElementLoadSpec> element_loads;
   Settings settings;
 };
 
 template <Sizes S>
 constexpr SpecView view(const ModelSpec<S>& spec) {
-  return {spec.nodes,  spec.elements,     spec.time_points, spec.time_functions,
-          spec.loads,  spec.inputs,       spec.outputs,     spec.hinges,
-          spec.curves, spec.curve_points, spec.settings};
+  return {spec.nodes,  spec.elements,     spec.time_points,   spec.time_functions,
+          spec.loads,  spec.inputs,       spec.outputs,       spec.hinges,
+          spec.curves, spec.curve_points, spec.element_loads, spec.settings};
 }
 
 }  // namespace ntn

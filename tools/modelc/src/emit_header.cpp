@@ -265,7 +265,8 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
        ", .time_points = " + lit(z.time_points) + ", .loads = " + lit(z.loads) +
        ", .inputs = " + lit(z.inputs) + ", .outputs = " + lit(z.outputs) +
        ", .hinges = " + lit(z.hinges) + ", .curves = " + lit(z.curves) +
-       ", .curve_points = " + lit(z.curve_points) + "};\n\n";
+       ", .curve_points = " + lit(z.curve_points) + ", .element_loads = " + lit(z.element_loads) +
+       "};\n\n";
 
   o += "inline constexpr ntn::ModelSpec<kSizes> kSpec{\n";
   array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {
@@ -315,6 +316,10 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   });
   array_init(o, "curve_points", m.curve_points, [](const CurvePoint& p) {
     return "{.d = " + lit(p.d) + ", .force = " + lit(p.force) + "}";
+  });
+  array_init(o, "element_loads", m.element_loads, [](const ElementLoadSpec& l) {
+    return "{.element = " + lit(l.element) + ", .time_function = " + lit(l.time_function) +
+           ", .local = " + lits(l.local) + "}";
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +

@@ -1,9 +1,10 @@
 // Stage add_member_loads: each [[member_loads]] table as the consistent nodal loads of the
-// elements its loaded part overlaps. On each element (local axes, length l, xi = s / l) the load
-// q(s), per unit length along the member and linear between q_start at `from` and q_end at `to`,
-// gives f = integral of N^T q ds over the overlap: the linear functions 1 - xi, xi for the axial
-// force, the cubic Hermite functions of the kernel's bending DOFs for the transverse forces and
-// end moments (plane x-y: v, theta_z = dv/dx; plane x-z: w, theta_y = -dw/dx; beam.hpp),
+// elements its loaded part overlaps, and each element's share as an ntn::ElementLoadSpec (the
+// element-force outputs subtract it: K_L T u - f). On each element (local axes, length l, xi = s /
+// l) the load q(s), per unit length along the member and linear between q_start at `from` and q_end
+// at `to`, gives f = integral of N^T q ds over the overlap: the linear functions 1 - xi, xi for the
+// axial force, the cubic Hermite functions of the kernel's bending DOFs for the transverse forces
+// and end moments (plane x-y: v, theta_z = dv/dx; plane x-z: w, theta_y = -dw/dx; beam.hpp),
 //   N1 = 1 - 3 xi^2 + 2 xi^3, N2 = l (xi - 2 xi^2 + xi^3), N3 = 3 xi^2 - 2 xi^3,
 //   N4 = l (xi^3 - xi^2),
 // integrated by 3-point Gauss-Legendre (exact to degree 5: a linear load times a cubic). Timoshenko
@@ -131,6 +132,7 @@ void add_member_loads(Compilation& comp) {
             rotate_to_local(g.rotation, q.data(), loc.data());
             return loc;
           });
+      d.element_loads.push_back({info.first_element + k, fn, fl});
       for (int end = 0; end < 2; ++end) {
         const int node = end == 0 ? el.node_i : el.node_j;
         for (int part = 0; part < 2; ++part) {

@@ -16,12 +16,13 @@ Sizes ModelDescription::sizes() const {
   s.hinges = hinges.size();
   s.curves = curves.size();
   s.curve_points = curve_points.size();
+  s.element_loads = element_loads.size();
   return s;
 }
 
 SpecView ModelDescription::view() const {
-  return {nodes,   elements, time_points, time_functions, loads,   inputs,
-          outputs, hinges,   curves,      curve_points,   settings};
+  return {nodes,   elements, time_points, time_functions, loads,         inputs,
+          outputs, hinges,   curves,      curve_points,   element_loads, settings};
 }
 
 std::string ModelDescription::describe_element(int element) const {

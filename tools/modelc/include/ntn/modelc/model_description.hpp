@@ -93,6 +93,7 @@ struct ModelDescription {
   std::vector<HingeSpec> hinges;
   std::vector<CurveSpec> curves;
   std::vector<CurvePoint> curve_points;
+  std::vector<ElementLoadSpec> element_loads;  // the member loads' parts, element by element
   Settings settings;
 
   std::vector<int> node_ids;  // user id per node index, kGeneratedNode for mesh nodes
