@@ -31,6 +31,7 @@ struct Model {
   std::array<double, kDofs> inv_mass{};
   std::array<double, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
+  double beta = 0;   // s: stiffness-proportional damping beta K_el, in the element pass
   std::array<std::uint8_t, S.nodes> fixed{};            // support bits per node (bit d: DOF d)
   std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
   int num_supported = 0;
@@ -275,6 +276,7 @@ template <Sizes S>
   }
 
   model.alpha = spec.settings.alpha;
+  model.beta = spec.settings.beta;
   // Load slots, in order of first use (nodal loads, then force inputs).
   model.num_slots = 0;
   auto slot_of = [&](int dof) {
