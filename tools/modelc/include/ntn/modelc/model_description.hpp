@@ -2,6 +2,7 @@
 // model file gave (nodes, members, channels) so that tools can report in the user's terms.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -95,7 +96,11 @@ struct ModelDescription {
   double frame_rate = 1000;      // Hz; settings.frame_period = 1 / frame_rate
   double damping_ratio = 0;      // [model.damping] ratio as given (0 when alpha was given)
   double damping_frequency = 0;  // Hz, [model.damping] frequency as given (0 likewise)
-  StableStepReport stable;       // the kernel's stable step report for this model (its method)
+  // Hz, the two frequencies of Rayleigh damping: `frequencies` as given, or the frequencies of
+  // `modes` (damping_modes, 1-based) from the modal analysis; 0 otherwise.
+  std::array<double, 2> damping_frequencies{};
+  std::array<int, 2> damping_modes{};
+  StableStepReport stable;  // the kernel's stable step report for this model (its method)
 
   Sizes sizes() const;
   SpecView view() const;
