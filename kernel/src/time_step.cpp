@@ -69,7 +69,7 @@ StableStepReport stable_time_step(const SpecView& spec) {
       if (r.cfl_element < 0 || cfl < r.dt_cfl) r.dt_cfl = cfl, r.cfl_element = static_cast<int>(i);
     }
   }
-  r.dt_stable = damped_stable_step(r.omega_max, spec.settings.alpha);
+  r.dt_stable = damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta);
   r.dt_elements = r.dt_stable;
   // An element without a finite frequency, or damping that leaves no step: refused, never
   // dropped (a model without elements has omega_max = 0 and dt_stable = 0, no issue).
@@ -258,7 +258,7 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
     }
   };
 
-  const double alpha = spec.settings.alpha;
+  const double alpha = spec.settings.alpha, beta = spec.settings.beta;
   double dt_best = 1e300, dt_springs = 1e300;
   std::array<Block6, kStepChunk> P, Q;  // springs, dashpots
   std::array<Vec6, kStepChunk> E;       // elements (the diagonal E_n)
@@ -326,12 +326,18 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
       Block6 all = P[js];
       all.diagonal() += E[js];
       const double omega2 = top_eigen(all, vk);
-      const double eta = top_eigen(Q[js], vc);
+      const double dashpots = top_eigen(Q[js], vc);
+      double eta = dashpots;  // lambda_max(beta E_n + Q_n): the dashpots alone when beta = 0
+      if (beta != 0) {
+        Block6 damp = Q[js];
+        damp.diagonal() += beta * E[js];
+        eta = top_eigen(damp, vc);
+      }
       if (!finite(springs) || !finite(omega2) || !finite(alpha + eta)) {  // sums of huge terms
         overflow_at(strongest[js][0], strongest[js][1], -1);
         break;
       }
-      dt_springs = std::min(dt_springs, quadratic_step(springs, eta));
+      dt_springs = std::min(dt_springs, quadratic_step(springs, dashpots));
       const double dt = quadratic_step(omega2, alpha + eta);
       if (dt < dt_best) dt_best = dt, best = first + j, top_k = vk, top_c = vc;
     }

@@ -127,11 +127,27 @@ ntn::Scratch<kS> scratch;
 
 // Every kernel entry point, counted: zero allocations and zero frees, including the steps that
 // hold a NaN input and the stable-step eigen solves inside init.
+void expect_no_allocations(double beta_ratio);
+
 TEST(KernelAllocations, NoneInInitStartAnd1e5Steps) {
+  expect_no_allocations(0.0);
+}
+
+// The same with stiffness-proportional damping (beta K_el in the element pass: its own loop),
+// beta = 2 x 0.2 / omega_max (20 % of critical at the elements' highest frequency).
+TEST(KernelAllocations, NoneWithStiffnessProportionalDamping) {
+  expect_no_allocations(0.2);
+}
+
+void expect_no_allocations(double beta_ratio) {
   ASSERT_TRUE(ntn_test::feature_frame(spec));
   // An initial state ([initial], a static preload) on a free node: initial_state() copies it.
   spec.nodes[1].u0 = {1e-4, -2e-4, 0, 0, 1e-5, 0};
   spec.nodes[1].v0 = {0, 0.01, 0, 0, 0, 0};
+  if (beta_ratio > 0) {
+    spec.settings.beta = 2 * beta_ratio / ntn::stable_time_step(ntn::view(spec)).omega_max;
+    spec.settings.dt = 0.9 * ntn::stable_time_step(ntn::view(spec)).dt_stable;
+  }
   constexpr long kSteps = 100'000;
   ntn::InitStatus st;
   ntn::StepStatus first = ntn::StepStatus::kDiverged;

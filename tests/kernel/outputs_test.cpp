@@ -1,8 +1,11 @@
 // Output channels (sample_outputs in step(), DESIGN §8): values at t_n, and support reaction and
-// element end forces of a statically loaded cantilever against equilibrium.
+// element end forces of a statically loaded cantilever against equilibrium (with stiffness-
+// proportional damping, the reaction's damping part).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
@@ -89,6 +92,43 @@ TEST(Outputs, ReactionAndEndForcesSatisfyStatics) {
   EXPECT_NEAR(o[7] / (kP * kL), 1.0, 1e-8);
   EXPECT_NEAR(o[8] / (-kP * kL / 2), 1.0, 1e-8);
   EXPECT_NEAR(o[9] / kT, 1.0, 1e-8);
+}
+
+// With stiffness-proportional damping the reaction is the support's share of F_n, which holds the
+// elements' damping forces beta K v_{n-1/2} as well (kernel/README.md): Newton's law for the whole
+// beam. The elements' forces sum to zero over all nodes (K has the rigid translations in its null
+// space), so at every step of the transient from rest under the tip load, with alpha = 0,
+//   reaction_z = sum over supported DOFs of (F - P) = -sum_all P_z + sum_free m a_z.
+// Rounding tolerance 1e-9 of the largest term. The element force channel Vz at the clamp is the
+// elastic K_L T u alone: it differs from the reaction by the damping force there (checked to be
+// a sizeable part of it, so the comparison can tell the two apart).
+TEST(Outputs, ReactionIncludesTheElementsDampingForces) {
+  build();
+  const double w1 = 3.516 / (kL * kL) * std::sqrt(210e9 * 0.05 * 1e-3 / 12 / (7850 * 5e-3));
+  spec.settings.alpha = 0;
+  spec.settings.beta = 2 * 0.3 / w1;  // 30 % of critical at the first x-z mode
+  spec.settings.dt = 0.9 * ntn::stable_time_step(ntn::view(spec)).dt_stable;
+  {
+    const ntn_test::EigenNoMalloc guard;
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok());
+  }
+  state = {};
+  ASSERT_EQ(ntn::start(model, state, scratch, {}), ntn::StepStatus::kOk);
+  double damping_share = 0;
+  for (int n = 0; n < 20'000; ++n) {
+    ASSERT_EQ(ntn::step(model, state, scratch, {}), ntn::StepStatus::kOk);
+    double inertia = 0, scale = kP;
+    for (int k = 1; k <= kN; ++k) {
+      const std::size_t j = dof(k, ntn::kUz);
+      inertia += model.mass[j] * scratch.a[j];
+      scale = std::max(scale, std::abs(model.mass[j] * scratch.a[j]));
+    }
+    const double reaction = scratch.outputs[4];
+    ASSERT_NEAR(reaction, -kP + inertia, 1e-9 * scale) << "step " << n;
+    damping_share = std::max(damping_share, std::abs(reaction - scratch.outputs[6]) / kP);
+  }
+  std::printf("  largest |reaction - elastic Vz at the clamp| / P = %.3f\n", damping_share);
+  EXPECT_GT(damping_share, 0.05);
 }
 
 // Under a constant ground acceleration a_g (input in g, scaled), once relaxed the structure moves

@@ -1,7 +1,7 @@
 // Stable time step (kernel/include/ntn/time_step.hpp, DESIGN §6): the element eigenvalue bound
 // against closed forms, the damped formula against the amplification matrix of the update
 // (DESIGN §5), the report and dt = "auto", and the tightness of the bound: a free single element
-// is stable at 0.99 x the reported step and blows up at 1.05 x.
+// is stable at 0.99 x the reported step and blows up at 1.05 x, with C = alpha M + beta K too.
 #include <gtest/gtest.h>
 
 #include <ostream>
@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include "ntn/kernel.hpp"
@@ -83,6 +84,32 @@ TEST(DampedStableStep, MatchesTheAmplificationMatrixOfTheUpdate) {
   EXPECT_EQ(ntn::damped_stable_step(0.0, 1.0), 0.0);
 }
 
+// With stiffness-proportional damping C = alpha M + beta K the mode omega has the damping
+// alpha + beta omega^2 per unit mass: the three-argument step is where the same update with that
+// damping loses stability (tolerances as above), for beta alone and with alpha, top-mode ratios
+// up to 1. beta = 0 is the two-argument step to the bit; a negative or NaN beta gives 0.
+TEST(DampedStableStep, StiffnessProportionalMatchesTheAmplificationMatrix) {
+  const double omega = 1e4;
+  for (double xi_a : {0.0, 0.05}) {
+    for (double xi_b : {0.01, 0.1, 0.3, 0.95}) {
+      const double alpha = 2 * xi_a * omega, beta = 2 * xi_b / omega;
+      const double dt = ntn::damped_stable_step(omega, alpha, beta);
+      const double c = alpha + beta * omega * omega;
+      EXPECT_LE(spectral_radius(omega, c, dt * (1 - 1e-6)), 1.0 + 1e-9) << xi_a << " " << xi_b;
+      EXPECT_GT(spectral_radius(omega, c, dt * (1 + 1e-6)), 1.0 + 1e-7) << xi_a << " " << xi_b;
+      EXPECT_LT(dt, ntn::damped_stable_step(omega, alpha));  // beta only lowers the step
+    }
+  }
+  for (double alpha : {0.0, 3.0, 1e4}) {
+    const double a = ntn::damped_stable_step(omega, alpha, 0.0);
+    const double b = ntn::damped_stable_step(omega, alpha);
+    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << alpha;
+  }
+  EXPECT_EQ(ntn::damped_stable_step(omega, 0.0, -1e-6), 0.0);
+  EXPECT_EQ(ntn::damped_stable_step(omega, 0.0, std::nan("")), 0.0);
+  EXPECT_EQ(ntn::damped_stable_step(omega, 0.0, 1e308), 0.0);  // alpha + beta omega^2 overflows
+}
+
 // The report names the governing element (the shortest of three otherwise equal slender
 // elements), the CFL estimate l / c and its element; with alpha the step follows the damped
 // formula.
@@ -108,6 +135,12 @@ TEST(StableTimeStep, ReportNamesTheGoverningElement) {
   r = ntn::stable_time_step(ntn::view(spec));
   EXPECT_DOUBLE_EQ(r.dt_stable, ntn::damped_stable_step(r.omega_max, spec.settings.alpha));
   EXPECT_LT(r.dt_stable, r.dt_cfl);
+  // beta: the element bound with alpha + beta omega_max^2.
+  spec.settings.beta = 0.1 / r.omega_max;
+  const ntn::StableStepReport rb = ntn::stable_time_step(ntn::view(spec));
+  EXPECT_EQ(rb.dt_stable,
+            ntn::damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta));
+  EXPECT_LT(rb.dt_stable, r.dt_stable);
 }
 
 // dt = "auto": the largest period / N, N integer, not above 0.9 dt_stable.
@@ -171,10 +204,13 @@ FreeRun run_free_element(double factor, long steps) {
       r.diverged = true;
       return r;
     }
+    // The elastic force K u_n (Scratch::f holds beta K v_{n-1/2} too when beta > 0).
+    double fe[12];
+    ntn::beam_force(one_model.beams[0], u_n.data(), u_n.data() + 6, fe, fe + 6);
     double e = 0;
     for (std::size_t j = 0; j < 12; ++j) {
       const double v = 0.5 * (v_prev[j] + one_state.v[j]);
-      e += 0.5 * one_model.mass[j] * v * v + 0.5 * one_scratch.f[j] * u_n[j];
+      e += 0.5 * one_model.mass[j] * v * v + 0.5 * fe[j] * u_n[j];
     }
     if (n == 0) r.e0 = e;
     r.e_max = std::max(r.e_max, e);
@@ -189,8 +225,9 @@ struct ElementCase {
   ntn_test::Section section;
   double length;
   Vec3 axis, ref;
-  double xi;  // fraction of critical damping of the highest mode
+  double xi;  // fraction of critical damping of the highest mode from alpha M
   bool rotary_inertia;
+  double xi_beta = 0;  // ... and from beta K (beta = 2 xi_beta / omega_max)
 };
 
 // Names the case in test listings (CTest shows gtest's parameter printout otherwise).
@@ -207,11 +244,12 @@ TEST_P(FreeElement, StableAt099AndDivergesAt105TimesTheReportedStep) {
   one_spec.settings.rotary_inertia = c.rotary_inertia;
   const double omega = ntn::stable_time_step(ntn::view(one_spec)).omega_max;
   one_spec.settings.alpha = 2 * c.xi * omega;
+  one_spec.settings.beta = 2 * c.xi_beta / omega;
 
   const FreeRun ok = run_free_element(0.99, 100'000);
   ASSERT_FALSE(ok.diverged) << "diverged after " << ok.steps << " steps at 0.99 dt_stable";
   ASSERT_EQ(ok.steps, 100'000);
-  if (c.xi == 0) {
+  if (c.xi == 0 && c.xi_beta == 0) {
     EXPECT_LE(ok.e_max, ok.e0 * (1 + 1e-9));
   } else {
     EXPECT_LE(ok.last_max, ok.first_max);
@@ -236,7 +274,19 @@ INSTANTIATE_TEST_SUITE_P(
         ElementCase{"slender_damped", kSlender, 1.0, {1, 0, 0}, {0, 0, 1}, 0.15, false},
         ElementCase{"stocky_damped", kStocky, 0.1, {1, 0, 0}, {0, 0, 1}, 0.15, false},
         ElementCase{
-            "stocky_inclined_damped", kStocky, 0.1, {1, 2, -0.5}, {0.3, -0.2, 1}, 0.5, false}),
+            "stocky_inclined_damped", kStocky, 0.1, {1, 2, -0.5}, {0.3, -0.2, 1}, 0.5, false},
+        // Stiffness-proportional damping: the top mode's ratio alpha / (2 omega) + beta omega / 2
+        // sets the step (exact for one element's top mode).
+        ElementCase{"slender_beta", kSlender, 1.0, {1, 0, 0}, {0, 0, 1}, 0.0, false, 0.15},
+        ElementCase{"stocky_beta", kStocky, 0.1, {1, 0, 0}, {0, 0, 1}, 0.0, false, 0.3},
+        ElementCase{"stocky_inclined_alpha_beta",
+                    kStocky,
+                    0.1,
+                    {1, 2, -0.5},
+                    {0.3, -0.2, 1},
+                    0.1,
+                    false,
+                    0.4}),
     [](const ::testing::TestParamInfo<ElementCase>& i) { return std::string(i.param.name); });
 
 }  // namespace

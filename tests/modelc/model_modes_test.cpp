@@ -199,11 +199,15 @@ TEST(ModelModes, JsonReadsBackAsTheReport) {
                                          "solver",
                                          "total_mass_kg",
                                          "reachable_mass_kg",
+                                         "alpha_per_s",
+                                         "beta_s",
                                          "modes",
                                          "hinges",
                                          "mechanisms",
                                          "notes"};
   EXPECT_EQ(j.keys(), keys);
+  EXPECT_EQ(j["alpha_per_s"].number(), rep.alpha);
+  EXPECT_EQ(j["beta_s"].number(), rep.beta);
   const ntn::modal::ModalResult& r = rep.result;
   EXPECT_EQ(j["dofs"].number(), r.dofs);
   EXPECT_EQ(j["coordinates"].number(), r.coordinates);

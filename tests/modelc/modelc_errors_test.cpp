@@ -40,7 +40,7 @@ const Expected kExpected[] = {
   // Unknown key, in every kind of table, pointing at the key itself.
   {"UnknownKeyRoot", "unknown_key.toml", 2, 1, "colour", "unknown key 'colour' (this table takes: model, materials"},
   {"UnknownKeyModel", "unknown_key.toml", 6, 1, "model.speed", "unknown key 'speed'"},
-  {"UnknownKeyDamping", "unknown_key.toml", 11, 1, "model.damping.zeta", "unknown key 'zeta' (this table takes: alpha, ratio, frequency)"},
+  {"UnknownKeyDamping", "unknown_key.toml", 11, 1, "model.damping.zeta", "unknown key 'zeta' (this table takes: alpha, beta, ratio, frequency, frequencies, modes)"},
   {"UnknownKeyMaterial", "unknown_key.toml", 18, 1, "materials[0].yield", "unknown key 'yield' (this table takes: id, E, G, nu, rho)"},
   {"UnknownKeySection", "unknown_key.toml", 26, 1, "sections[0].Wy", "unknown key 'Wy'"},
   {"UnknownKeyNode", "unknown_key.toml", 31, 1, "nodes[0].label", "unknown key 'label' (this table takes: id, xyz)"},
@@ -102,6 +102,19 @@ const Expected kExpected[] = {
   {"Conflict", "conflict.toml", 9, 6, "materials[0].nu", "cannot be given together with 'G'"},
   {"KappaWithoutTimoshenko", "kappa_without_timoshenko.toml", 17, 11, "sections[0].kappa_y", "only applies with shear = \"timoshenko\""},
   {"FrequencyWithAlpha", "damping_alpha_frequency.toml", 7, 13, "model.damping.frequency", "only applies with 'ratio'"},
+  // Rayleigh damping (C = alpha M + beta K_el).
+  {"DampingBetaNegative", "damping_beta_negative.toml", 6, 8, "model.damping.beta", "must not be negative (got -0.0001)"},
+  {"DampingBetaWithRatio", "damping_beta_ratio.toml", 7, 9, "model.damping.ratio", "cannot be given together with 'beta'"},
+  {"DampingModesWithAlpha", "damping_modes_with_alpha.toml", 7, 9, "model.damping.modes", "only applies with 'ratio'"},
+  {"DampingFrequencyAndFrequencies", "damping_frequency_frequencies.toml", 8, 15, "model.damping.frequencies", "cannot be given together with 'frequency'"},
+  {"DampingFrequenciesEqual", "damping_frequencies_equal.toml", 7, 15, "model.damping.frequencies", "the two frequencies are equal (3 Hz, to 1e-9): Rayleigh damping needs two different ones"},
+  {"DampingFrequenciesNotPositive", "damping_frequencies_nonpositive.toml", 7, 15, "model.damping.frequencies", "must be positive (got [0, 5] Hz)"},
+  {"DampingFrequenciesBeyondDouble", "damping_frequencies_beyond.toml", 7, 15, "model.damping.frequencies", "ratio = 1e+300 at [1e+10, 2e+10] Hz gives alpha = inf 1/s, beta = 1.06103e+289 s: beyond double"},
+  {"DampingModesSame", "damping_modes_same.toml", 7, 9, "model.damping.modes", "the two modes are the same (2): Rayleigh damping needs two different ones"},
+  {"DampingModeZero", "damping_modes_zero.toml", 7, 10, "model.damping.modes[0]", "must be at least 1 (got 0)"},
+  {"DampingModeBeyondTheModel", "damping_modes_beyond.toml", 7, 9, "model.damping.modes", "mode 40 asked for, but the model has 6 modes"},
+  {"DampingModesEqualFrequency", "damping_modes_equal.toml", 8, 9, "model.damping.modes", "modes 2 and 3 have the same frequency (195.962 Hz, to 1e-9)"},
+  {"DampingModeRigidBody", "damping_modes_rigid.toml", 7, 9, "model.damping.modes", "mode 1 has zero frequency (a rigid-body motion)"},
   // Time functions.
   {"TimeFunctionEmpty", "time_function_empty.toml", 38, 10, "time_functions[0].points", "expected an array of [t, value] points (at least one), got an empty array"},
   {"TimeFunctionNotIncreasing", "time_function_order.toml", 38, 35, "time_functions[0].points[2]", "t = 1 s does not come after the previous point's t = 1 s: times must increase strictly"},

@@ -288,6 +288,60 @@ TEST(ModelLoad, DampingRatioAtFrequency) {
   std::string alpha = kHead + kMember;
   alpha.replace(alpha.find("name = \"m\""), 10, "name = \"m\"\n[model.damping]\nalpha = 0.5\n");
   EXPECT_EQ(load_ok(alpha).settings.alpha, 0.5);
+  EXPECT_EQ(load_ok(alpha).settings.beta, 0.0);
+}
+
+// [model.damping] with Rayleigh damping C = alpha M + beta K_el. A mode at omega has the ratio
+// alpha / (2 omega) + beta omega / 2 (config/README.md):
+//  - alpha and beta as given (either alone: the other 0);
+//  - ratio with frequencies = [f1, f2]: that ratio at both (1e-15: the formula's rounding);
+//  - ratio with modes = [i, j]: the frequencies of the model's modes i and j (the compiler's
+//    modal analysis; tests/modal/modal_damping_test.cpp checks them against ntn::modal and the
+//    kernel's free decay), the ratio there.
+std::string with_damping(const std::string& table) {
+  std::string t = kHead + kMember;
+  t.replace(t.find("name = \"m\""), 10, "name = \"m\"\n[model.damping]\n" + table);
+  return t;
+}
+
+TEST(ModelLoad, DampingAlphaAndBeta) {
+  const auto both = load_ok(with_damping("alpha = 0.5\nbeta = 2.0e-5\n"));
+  EXPECT_EQ(both.settings.alpha, 0.5);
+  EXPECT_EQ(both.settings.beta, 2.0e-5);
+  const auto beta = load_ok(with_damping("beta = 2.0e-5\n"));
+  EXPECT_EQ(beta.settings.alpha, 0.0);
+  EXPECT_EQ(beta.settings.beta, 2.0e-5);
+  // beta lowers the stable step: the kernel's bound with alpha + beta omega_max^2.
+  const auto none = load_ok(kHead + kMember);
+  EXPECT_LT(beta.stable.dt_stable, none.stable.dt_stable);
+  EXPECT_EQ(beta.stable.dt_stable, ntn::damped_stable_step(none.stable.omega_max, 0.0, 2.0e-5));
+}
+
+TEST(ModelLoad, DampingRatioAtTwoFrequencies) {
+  const auto d = load_ok(with_damping("ratio = 0.03\nfrequencies = [2.0, 15.0]\n"));
+  const auto ratio = [&d](double hz) {
+    const double w = 2.0 * std::numbers::pi * hz;
+    return d.settings.alpha / (2.0 * w) + d.settings.beta * w / 2.0;
+  };
+  EXPECT_NEAR(ratio(2.0), 0.03, 1e-15);
+  EXPECT_NEAR(ratio(15.0), 0.03, 1e-15);
+  EXPECT_LT(ratio(6.0), 0.03);   // below between them
+  EXPECT_GT(ratio(40.0), 0.03);  // above outside
+  EXPECT_EQ(d.damping_frequencies[0], 2.0);
+  EXPECT_EQ(d.damping_frequencies[1], 15.0);
+  EXPECT_EQ(d.damping_ratio, 0.03);
+}
+
+TEST(ModelLoad, DampingRatioAtTwoModes) {
+  const auto d = load_ok(with_damping("ratio = 0.05\nmodes = [1, 3]\n"));
+  EXPECT_EQ(d.damping_modes[0], 1);
+  EXPECT_EQ(d.damping_modes[1], 3);
+  ASSERT_GT(d.damping_frequencies[0], 0.0);
+  EXPECT_LT(d.damping_frequencies[0], d.damping_frequencies[1]);
+  for (const double hz : d.damping_frequencies) {
+    const double w = 2.0 * std::numbers::pi * hz;
+    EXPECT_NEAR(d.settings.alpha / (2.0 * w) + d.settings.beta * w / 2.0, 0.05, 1e-15);
+  }
 }
 
 // Timoshenko: shear areas kappa A, default kappa 5/6; Euler-Bernoulli leaves them 0.
@@ -486,6 +540,17 @@ TEST(EmitHeader, RefusesNonFiniteAndBadNames) {
   EXPECT_FALSE(ntn::modelc::is_cpp_identifier("_Big"));
   EXPECT_FALSE(ntn::modelc::is_cpp_identifier("a__b"));
   EXPECT_FALSE(ntn::modelc::is_cpp_identifier(""));
+}
+
+// The damping line: alpha and beta, and the ratio at the two frequencies Rayleigh damping was
+// set at (to the printed three digits: 3 %).
+TEST(ModelInfo, ReportsRayleighDamping) {
+  const std::string t =
+      ntn::modelc::info_text(load_ok(with_damping("ratio = 0.03\nfrequencies = [2.0, 15.0]\n")));
+  for (const std::string& s : {std::string("C = alpha M + beta K_el, alpha = "),
+                               std::string(" s: 3 % at 2 Hz, 3 % at 15 Hz")}) {
+    EXPECT_NE(t.find(s), std::string::npos) << s << "\n" << t;
+  }
 }
 
 TEST(ModelInfo, ReportsFigures) {

@@ -124,6 +124,7 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   expect_bits(a.dt, b.dt, "dt", 0);
   expect_bits(a.frame_period, b.frame_period, "frame_period", 0);
   expect_bits(a.alpha, b.alpha, "alpha", 0);
+  expect_bits(a.beta, b.beta, "beta", 0);
   for (std::size_t k = 0; k < 3; ++k)
     expect_bits(a.gravity[k], b.gravity[k], "gravity", k);
   EXPECT_EQ(a.gravity_function, b.gravity_function);

@@ -282,11 +282,14 @@ double spectral_radius(const Eigen::MatrixXd& A, const Eigen::MatrixXd& D, doubl
 }
 
 template <ntn::Sizes S>
-void damped_check(const char* name, ntn::ModelSpec<S>& s) {
+void damped_check(const char* name, ntn::ModelSpec<S>& s, double xi_beta = 0) {
   const ntn_test::Section sec = ntn_test::rectangle(0.08, 0.12);
   const double kt = 0.1 * ntn_test::kSteel.E * sec.A, kr = 0.4 * ntn_test::kSteel.E * sec.Iy;
   s.settings.hinge_method = ntn::HingeMethod::kNtnExact;
   s.settings.alpha = 20;
+  // beta K_el with the ratio xi_beta at the elements' highest frequency.
+  s.settings.beta = 0;
+  s.settings.beta = 2 * xi_beta / ntn::stable_time_step(ntn::view(s)).omega_max;
   for (ntn::HingeSpec& h : s.hinges) {
     for (std::size_t k = 0; k < 6; ++k) {
       h.behaviour[k] = ntn::HingeBehaviour::kLinear;
@@ -303,7 +306,8 @@ void damped_check(const char* name, ntn::ModelSpec<S>& s) {
   const ntn::SpecView v = ntn::view(s);
   const Eigen::VectorXd m = ntn_test::lumped_mass(v);
   Eigen::MatrixXd K = ntn_test::global_stiffness(v) + ntn_test::hinge_spring_stiffness(v);
-  Eigen::MatrixXd C = s.settings.alpha * Eigen::MatrixXd(m.asDiagonal());
+  Eigen::MatrixXd C = s.settings.alpha * Eigen::MatrixXd(m.asDiagonal()) +
+                      s.settings.beta * ntn_test::global_stiffness(v);
   for (const ntn::HingeSpec& h : s.hinges) {
     const Eigen::MatrixXd B = ntn_test::hinge_b(v, h);
     for (int k = 0; k < 6; ++k)
@@ -350,6 +354,24 @@ TEST(HingeTimeStep, DampedSpringStepIsConservative) {
       ntn_test::rotate_frame(ntn_test::kIdentity3,
                              ntn_test::rotation({1, 0, 0}, 30 * ntn_test::kDegree)));
   damped_check("two hinges on a joint node", shared);
+}
+
+// Stiffness-proportional damping beta K_el as well (xi 0.3 at the elements' top frequency): the
+// node bound's eta_n = alpha + lambda_max(beta E_n + Q_n) must stay below the assembled system's
+// true limit (same truth and tolerances as above, C = alpha M + beta K_el + sum c b b^T).
+TEST(HingeTimeStep, StiffnessProportionalDampedSpringStepIsConservative) {
+  two_cantilevers(eccentric, 0.2);
+  eccentric.hinges[0] =
+      ntn_test::hinge(1, 2, ntn_test::kIdentity3, ntn_test::kAllRigid, {0, 0, 0.2});
+  damped_check("eccentric hinge, beta", eccentric, 0.3);
+  two_cantilevers(shared, 0.0);
+  shared.nodes[4] = {1, 0, 0, 0, {20, 20, 20, 0.2, 0.2, 0.2}};
+  shared.hinges[0] = ntn_test::hinge(1, 4, ntn_test::kIdentity3);
+  shared.hinges[1] = ntn_test::hinge(
+      2, 4,
+      ntn_test::rotate_frame(ntn_test::kIdentity3,
+                             ntn_test::rotation({1, 0, 0}, 30 * ntn_test::kDegree)));
+  damped_check("two hinges on a joint node, beta", shared, 0.3);
 }
 
 }  // namespace

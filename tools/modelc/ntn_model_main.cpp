@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       ->check(ntn::cli::Integer(1, std::numeric_limits<int>::max()))
       ->capture_default_str();
   modes->add_flag("--json", modes_json,
-                  "print JSON (schema ntn-model-modes/1) instead of the table");
+                  "print JSON (schema ntn-model-modes/2) instead of the table");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

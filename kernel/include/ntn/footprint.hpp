@@ -57,6 +57,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<double>(dofs);                        // inv_mass
   l.array<double>(dofs);                        // damping
   l.scalar<double>();                           // alpha
+  l.scalar<double>();                           // beta
   l.array<double>(dofs);                        // u0
   l.array<double>(dofs);                        // v0
   l.array<std::uint8_t>(s.nodes);               // fixed

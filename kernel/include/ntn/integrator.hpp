@@ -87,10 +87,33 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
   }
 }
 
-// F_n = sum over elements of T^T K_L T u_n, scattered in element order (S 2).
+// F_n = sum over elements of T^T K_L T u_n, scattered in element order (S 2). With stiffness-
+// proportional damping (beta > 0, C = alpha M + beta K_el) the elements' dashpots join in the
+// same pass: F_n = sum T^T K_L T (u_n + beta v_{n-1/2}), the velocity lagged as the mass-
+// proportional part's (S 3). So the reactions and the NTN constraint forces, which come from F_n,
+// include the elements' damping forces; the element-force output channels (K_L T u_n) do not.
+// beta = 0 runs the elastic loop alone, unchanged (the same bits).
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   w.f.fill(0.0);
+  if (m.beta != 0.0) {
+    const double beta = m.beta;
+    for (const BeamData& b : m.beams) {
+      double ui[6], uj[6], fi[6], fj[6];
+      const auto i = static_cast<std::size_t>(kDofsPerNode * b.node_i);
+      const auto j = static_cast<std::size_t>(kDofsPerNode * b.node_j);
+      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+        ui[d] = s.u[i + d] + beta * s.v[i + d];
+        uj[d] = s.u[j + d] + beta * s.v[j + d];
+      }
+      beam_force(b, ui, uj, fi, fj);
+      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+        w.f[i + d] += fi[d];
+        w.f[j + d] += fj[d];
+      }
+    }
+    return;
+  }
   for (const BeamData& b : m.beams) {
     double fi[6], fj[6];
     const auto i = static_cast<std::size_t>(kDofsPerNode * b.node_i);
@@ -277,7 +300,7 @@ template <Sizes S>
   const bool accepted = detail::accept_inputs(m, s, in);  // inputs: hold bad values (§8)
   const double t = static_cast<double>(s.tick) * m.dt;
   detail::apply_loads(m, s, w, t);     // loads P_n: M g, -M iota a_g, nodal loads, inputs (§5)
-  detail::element_forces(m, s, w);     // element forces F_n = sum T^T K_L T u_n (S 2, §4)
+  detail::element_forces(m, s, w);     // element forces F_n = sum T^T K_L T u_n (+ beta v) (§4)
   detail::hinge_springs(m, s, w);      // hinge springs: F_n += B^T f_L (§7)
   detail::residual_stage(m, s, w);     // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
   detail::ntn_coupling(m, s, w);       // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)

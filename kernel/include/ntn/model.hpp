@@ -31,6 +31,7 @@ struct Model {
   std::array<double, kDofs> inv_mass{};
   std::array<double, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
+  double beta = 0;   // s: stiffness-proportional damping beta K_el, in the element pass
   // The run's initial state u_0, v_0 (NodeSpec::u0, v0; zero by default): initial_state() puts
   // it in a State before start().
   std::array<double, kDofs> u0{};
@@ -287,6 +288,7 @@ template <Sizes S>
   }
 
   model.alpha = spec.settings.alpha;
+  model.beta = spec.settings.beta;
   // Load slots, in order of first use (nodal loads, then force inputs).
   model.num_slots = 0;
   auto slot_of = [&](int dof) {

@@ -170,7 +170,8 @@ struct OutputSpec {
 struct Settings {
   double dt = 0;                    // s, resolved by the model compiler ("auto" -> number)
   double frame_period = 1e-3;       // s, the I/O frame that dt divides into substeps
-  double alpha = 0;                 // 1/s, mass-proportional damping C = alpha M
+  double alpha = 0;                 // 1/s, mass-proportional damping: C = alpha M + beta K_el
+  double beta = 0;                  // s, stiffness-proportional damping (K_el: the elements')
   std::array<double, 3> gravity{};  // m/s^2, applied as M g on translations
   int gravity_function = kConstant;
   bool rotary_inertia = false;  // add rho I l / 2 to the bending rotation masses (DESIGN §4)

@@ -36,6 +36,21 @@ inline double damped_stable_step(double omega, double alpha) {
   return 2.0 / (omega * (std::sqrt(1.0 + xi * xi) + xi));
 }
 
+// With C = alpha M + beta K_el as well: a mode of circular frequency omega has the modal damping
+// 2 xi omega = alpha + beta omega^2, and the condition 4 M - 2 dt C - dt^2 K > 0 (below) reads
+// (4 - 2 dt alpha) > (dt^2 + 2 dt beta) omega^2 mode by mode, hardest at the top mode: so
+// dt^2 omega^2 + 2 dt (alpha + beta omega^2) < 4 with omega an upper bound of omega_max (exact for
+// one element's top mode, whose damping ratio is alpha / (2 omega) + beta omega / 2). beta = 0
+// gives the step above to the bit. 0 for a negative or NaN beta, or an eta beyond double.
+inline double damped_stable_step(double omega, double alpha, double beta) {
+  if (!(beta >= 0)) return 0;
+  if (beta == 0) return damped_stable_step(omega, alpha);
+  if (!(omega > 0) || !(alpha >= 0)) return 0;
+  const double eta = alpha + beta * (omega * omega);
+  if (!(eta <= std::numeric_limits<double>::max())) return 0;
+  return damped_stable_step(omega, eta);
+}
+
 // Why a stable step is 0 (StableStepReport::issue).
 enum class StepIssue : std::uint8_t {
   kNone,
@@ -86,18 +101,22 @@ StableStepReport stable_time_step(const SpecView& spec);
 // E_n = diag_j(sum_{e at n} omega_e^2 m_e,j / m_n,j) (a mass-weighted mean of the omega_e^2 at
 // node n, at most Omega^2 = max_e omega_e^2)
 //     u^T (K_el + K_s) u <= sum_n y_n^T (E_n + P_n) y_n,
-//     u^T C u <= sum_n y_n^T (alpha I + Q_n) y_n.
+//     u^T C u <= sum_n y_n^T (alpha I + beta E_n + Q_n) y_n     (C = alpha M + beta K_el + C_s).
 // Central difference with the damping lagged to v_{n-1/2} (S 3, the dashpots too) keeps
 // F = 1/2 v^T (M - dt/2 C - dt^2/4 K) v + 1/2 u_bar^T K u_bar non-increasing
 // (F_{n+1/2} - F_{n-1/2} = -dt/4 (v+ + v-)^T C (v+ + v-), u_bar = (u_n + u_{n+1}) / 2), so
 // 4 M - 2 dt C - dt^2 K > 0 is sufficient for stability with any symmetric C >= 0, K >= 0. It
 // holds when, at every node n with a spring,
 //     dt^2 omega_n^2 + 2 dt eta_n < 4,
-//     omega_n^2 = lambda_max(E_n + P_n),   eta_n = alpha + lambda_max(Q_n),
+//     omega_n^2 = lambda_max(E_n + P_n),   eta_n = alpha + lambda_max(beta E_n + Q_n),
 // i.e. dt < dt_n = (2 / omega_n) (sqrt(1 + xi_n^2) - xi_n), xi_n = eta_n / (2 omega_n), and
 // below the elements' own step at the others: dt_stable = min(dt_elements, min_n dt_n). A
 // strict bound on the assembled system, with or without NTN coupling (constraints only lower
 // omega_max), and never above a spring's own two-node step (one of its two nodes gets g n >= w).
+// (lambda_max(A + B) <= lambda_max(A) + lambda_max(B) makes the node's two eigenvalues together
+// a bound of lambda_max(dt^2 (E_n + P_n) + 2 dt (alpha I + beta E_n + Q_n)). The springs' own
+// dashpots are the hinges' c, never scaled by beta: beta multiplies the elements' K_el alone,
+// hence beta E_n, not beta (E_n + P_n).)
 
 // The largest dt with dt^2 omega2 + 2 dt eta <= 4 (1e300 when both are zero; 0 when either is
 // NaN or inf).

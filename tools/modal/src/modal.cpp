@@ -547,8 +547,10 @@ ModalResult modal_analysis(const SpecView& spec, const ModalOptions& options) {
   for (int i = 0; i < want; ++i) {
     const double w = r.omega(i);
     r.period(i) = w > 0 ? 2.0 * std::numbers::pi / w : std::numeric_limits<double>::infinity();
-    r.damping_ratio(i) =
-        w > 0 ? spec.settings.alpha / (2.0 * w) : std::numeric_limits<double>::infinity();
+    // C = alpha M + beta K_el: the ratio alpha / (2 omega) + beta omega / 2 of an undamped mode
+    // (exact for the elements' stiffness alone; hinge springs have their own dashpots, not here).
+    r.damping_ratio(i) = w > 0 ? spec.settings.alpha / (2.0 * w) + spec.settings.beta * w / 2.0
+                               : std::numeric_limits<double>::infinity();
     // Sign: the first entry (DOF order) of at least a tenth of the largest magnitude is positive.
     // (The largest entry itself is ambiguous in symmetric structures, where two entries of equal
     // magnitude and opposite sign differ by rounding only.)

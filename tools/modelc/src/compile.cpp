@@ -23,9 +23,12 @@ void start_description(Compilation& comp, const std::string& file) {
   d.dt_requested = p.model.dt;
   d.damping_ratio = p.model.damping_ratio;
   d.damping_frequency = p.model.damping_frequency;
+  d.damping_frequencies = p.model.damping_frequencies;
+  d.damping_modes = p.model.damping_modes;
   Settings& s = d.settings;
   s.frame_period = 1.0 / p.model.frame_rate;
   s.alpha = p.model.alpha;
+  s.beta = p.model.beta;
   s.gravity = p.model.gravity;
   s.rotary_inertia = p.model.rotary_inertia;
   s.allow_unstable = p.model.allow_unstable;
@@ -103,7 +106,8 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   for (const Stage stage :
        {check_rigid_cycles, check_element_numbers, assemble_mass, check_nodes_have_mass,
         check_force_numbers, set_hinge_stiffness, check_curve_branches, check_kernel_accepts_hinges,
-        check_effective_mass, check_hinge_spring_numbers, choose_time_step, static_preload}) {
+        check_effective_mass, check_hinge_spring_numbers, set_damping_from_modes, choose_time_step,
+        static_preload}) {
     stage(comp);
     if (sink.failed()) return std::nullopt;
   }

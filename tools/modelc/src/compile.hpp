@@ -33,6 +33,8 @@
 //   check_kernel_accepts_hinges  hinge_stiffness.cpp  ntn::make_hinge_data takes every hinge
 //   check_effective_mass   check_mass.cpp       massless springs (errors), mechanisms (notes)
 //   check_hinge_spring_numbers   check_numbers.cpp    k / m and c / m of hinge springs
+//   set_damping_from_modes damping.cpp          [model.damping] modes: alpha, beta from the
+//                                               model's own modes (modal analysis)
 //   choose_time_step       time_step.cpp        stable step, dt, the frame rule
 //   static_preload         initial_state.cpp    gravity = "static": K u = P, u_0 += u
 #pragma once
@@ -137,6 +139,7 @@ void check_curve_branches(Compilation& comp);
 void check_kernel_accepts_hinges(Compilation& comp);
 void check_effective_mass(Compilation& comp);
 void check_hinge_spring_numbers(Compilation& comp);
+void set_damping_from_modes(Compilation& comp);
 void choose_time_step(Compilation& comp);
 void static_preload(Compilation& comp);
 

@@ -323,8 +323,8 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +
-       ", .alpha = " + lit(s.alpha) + ", .gravity = " + lits(s.gravity) +
-       ", .gravity_function = " + lit(s.gravity_function) +
+       ", .alpha = " + lit(s.alpha) + ", .beta = " + lit(s.beta) +
+       ", .gravity = " + lits(s.gravity) + ", .gravity_function = " + lit(s.gravity_function) +
        ", .rotary_inertia = " + lit(s.rotary_inertia) +
        ", .allow_unstable = " + lit(s.allow_unstable) +
        ",\n                  .hinge_method = " + hinge_method(s.hinge_method) +

@@ -148,14 +148,32 @@ std::string info_text(const ModelDescription& m) {
                " kg, z " + f("%.6g", mt.free[2]) + " kg");
   line("", "rotational (sum of lumped): rx " + f("%.4g", mt.all[3]) + ", ry " +
                f("%.4g", mt.all[4]) + ", rz " + f("%.4g", mt.all[5]) + " kg m^2");
-  if (s.alpha > 0) {
-    // Fraction of critical damping of C = alpha M in a mode at f: alpha / (4 pi f).
-    const double at = m.damping_frequency > 0 ? m.damping_frequency : 1.0;
-    line("damping", "C = alpha M, alpha = " + f("%.6g", s.alpha) +
-                        " 1/s: " + f("%.3g", 100.0 * s.alpha / (4.0 * std::numbers::pi * at)) +
-                        " % at " + f("%g", at) + " Hz, " +
-                        f("%.3g", 100.0 * s.alpha / (4.0 * std::numbers::pi * 10.0 * at)) +
-                        " % at " + f("%g", 10.0 * at) + " Hz");
+  if (s.alpha > 0 || s.beta > 0) {
+    // Fraction of critical damping of C = alpha M + beta K_el in a mode at f (omega = 2 pi f):
+    // alpha / (2 omega) + beta omega / 2 (ntn-model modes gives it for each mode).
+    const auto ratio = [&s](double hz) {
+      const double w = 2.0 * std::numbers::pi * hz;
+      return s.alpha / (2.0 * w) + s.beta * w / 2.0;
+    };
+    std::vector<double> at;
+    if (m.damping_frequencies[0] > 0) {
+      at = {m.damping_frequencies[0], m.damping_frequencies[1]};
+    } else {
+      const double f0 = m.damping_frequency > 0 ? m.damping_frequency : 1.0;
+      at = {f0, 10.0 * f0};
+    }
+    std::string text = s.beta > 0 ? "C = alpha M + beta K_el, alpha = " + f("%.6g", s.alpha) +
+                                        " 1/s, beta = " + f("%.6g", s.beta) + " s:"
+                                  : "C = alpha M, alpha = " + f("%.6g", s.alpha) + " 1/s:";
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      text += std::string(k ? "," : "") + " " + f("%.3g", 100.0 * ratio(at[k])) + " % at " +
+              f("%g", at[k]) + " Hz";
+    }
+    if (m.damping_modes[0] > 0) {
+      text += " (modes " + std::to_string(m.damping_modes[0]) + " and " +
+              std::to_string(m.damping_modes[1]) + ")";
+    }
+    line("damping", text);
   } else {
     line("damping", "none");
   }

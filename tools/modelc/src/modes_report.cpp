@@ -67,6 +67,8 @@ ModesReport modes_report(const ModelDescription& model, int requested) {
   rep.model_name = model.name;
   rep.model_file = model.source_file;
   rep.requested = requested;
+  rep.alpha = model.settings.alpha;
+  rep.beta = model.settings.beta;
   modal::ModalOptions o;
   o.modes = requested;
   rep.result = modal::modal_analysis(model.view(), o);
@@ -104,7 +106,13 @@ std::string modes_text(const ModesReport& rep) {
   if (r.modes() < rep.requested)
     s += " (" + std::to_string(rep.requested) + " asked for: the eigenproblem has " +
          std::to_string(r.reduced) + ")";
-  s += "\n" + modal::mode_table(r);
+  s += "\n";
+  if (rep.alpha > 0 || rep.beta > 0) {
+    s += "damping C = alpha M + beta K_el: alpha = " + g(rep.alpha) +
+         " 1/s, beta = " + g(rep.beta) +
+         " s (each mode's ratio alpha / (2 omega) + beta omega / 2)\n";
+  }
+  s += modal::mode_table(r);
   if (!rep.hinges.empty()) {
     s += "hinges (directions in hinge axes, as the modes use them):\n";
     for (const HingeDirections& h : rep.hinges)
@@ -135,6 +143,8 @@ std::string modes_json(const ModesReport& rep) {
        xyz([&r](int d) { return r.total_mass[static_cast<std::size_t>(d)]; }) + ",\n";
   s += "  \"reachable_mass_kg\": " +
        xyz([&r](int d) { return r.reachable_mass[static_cast<std::size_t>(d)]; }) + ",\n";
+  s += "  \"alpha_per_s\": " + json::number(rep.alpha) + ",\n";
+  s += "  \"beta_s\": " + json::number(rep.beta) + ",\n";
   s += "  \"modes\": [";
   double cum[3] = {0, 0, 0};
   for (int i = 0; i < r.modes(); ++i) {

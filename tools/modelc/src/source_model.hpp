@@ -188,8 +188,11 @@ struct ModelTable {
   std::array<double, 3> gravity{};
   Where gravity_at;
   std::optional<IdAt> gravity_function;
-  double alpha = 0;
+  double alpha = 0, beta = 0;  // [model.damping]: C = alpha M + beta K_el
   double damping_ratio = 0, damping_frequency = 0;
+  std::array<double, 2> damping_frequencies{};  // Hz, `frequencies` (0: not given)
+  std::array<int, 2> damping_modes{};           // 1-based, `modes` (0: not given)
+  Where damping_modes_at;
   HingeMethod hinge_method = HingeMethod::kNtnExact;
   ClampRule clamp = ClampRule::kMomentum;
   std::optional<double> penalty_stiffness, penalty_rotational_stiffness;

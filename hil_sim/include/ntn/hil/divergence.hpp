@@ -81,6 +81,9 @@ template <Sizes S>
 double response_energy_bound(const Model<S>& m) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   constexpr std::size_t kDofs = Model<S>::kDofs;
+  // Stiffness-proportional damping (beta K_el) overdamps the high modes: not the C = alpha M of
+  // the argument.
+  if (m.beta != 0) return kInf;
   // alpha: the same damping / mass ratio at every DOF that has mass.
   double alpha = -1;
   for (std::size_t j = 0; j < kDofs; ++j) {

@@ -75,7 +75,8 @@ struct ModalResult {
   Eigen::MatrixXd effective_mass;      // modes x 3: Gamma^2, kg
   std::array<double, 3> total_mass{};  // kg: lumped mass of the DOFs no support holds
   std::array<double, 3> reachable_mass{};  // kg: effective masses summed over all modes
-  Eigen::VectorXd damping_ratio;  // alpha / (2 omega): the model's mass-proportional damping
+  Eigen::VectorXd damping_ratio;  // alpha / (2 omega) + beta omega / 2: the model's Rayleigh
+                                  // damping C = alpha M + beta K_el (hinge dashpots left out)
 
   std::vector<Mechanism> mechanisms;
   std::vector<std::string> notes;

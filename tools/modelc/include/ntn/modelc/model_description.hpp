@@ -127,7 +127,11 @@ struct ModelDescription {
   double frame_rate = 1000;      // Hz; settings.frame_period = 1 / frame_rate
   double damping_ratio = 0;      // [model.damping] ratio as given (0 when alpha was given)
   double damping_frequency = 0;  // Hz, [model.damping] frequency as given (0 likewise)
-  StableStepReport stable;       // the kernel's stable step report for this model (its method)
+  // Hz, the two frequencies of Rayleigh damping: `frequencies` as given, or the frequencies of
+  // `modes` (damping_modes, 1-based) from the modal analysis; 0 otherwise.
+  std::array<double, 2> damping_frequencies{};
+  std::array<int, 2> damping_modes{};
+  StableStepReport stable;  // the kernel's stable step report for this model (its method)
 
   // [initial] (NodeSpec::u0, v0 hold the result): the static preload under gravity and the
   // constant loads, and the nodes given initial values.

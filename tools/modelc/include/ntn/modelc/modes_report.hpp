@@ -15,7 +15,7 @@
 namespace ntn::modelc {
 
 // The JSON's "schema" value; a change of the JSON's keys or meanings changes the number.
-inline constexpr const char* kModesSchema = "ntn-model-modes/1";
+inline constexpr const char* kModesSchema = "ntn-model-modes/2";
 
 // How the modal analysis treated a hinge direction (hinge axes), from ntn::modal::linearize_hinges.
 enum class HingeTreatment : std::uint8_t {
@@ -35,8 +35,9 @@ struct HingeDirections {
 struct ModesReport {
   std::string model_name;
   std::string model_file;
-  int requested = 0;          // -n
-  modal::ModalResult result;  // result.modes() <= requested (fewer when the model has fewer)
+  int requested = 0;           // -n
+  double alpha = 0, beta = 0;  // the model's damping C = alpha M + beta K_el (1/s, s)
+  modal::ModalResult result;   // result.modes() <= requested (fewer when the model has fewer)
   std::vector<HingeDirections> hinges;       // one per model hinge, in the model's order
   std::vector<std::string> mechanism_nodes;  // describe_node of each result.mechanisms entry
 };
