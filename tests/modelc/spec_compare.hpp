@@ -32,6 +32,7 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   ASSERT_EQ(z.curves, S.curves);
   ASSERT_EQ(z.curve_points, S.curve_points);
   ASSERT_EQ(z.element_loads, S.element_loads);
+  ASSERT_EQ(z.hystereses, S.hystereses);
   for (std::size_t i = 0; i < h.nodes.size(); ++i) {
     const NodeSpec &a = h.nodes[i], &b = d.nodes[i];
     expect_bits(a.x, b.x, "node x", i), expect_bits(a.y, b.y, "node y", i);

@@ -67,6 +67,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<TimeFunctionSpec>(s.time_functions);  // time_functions
   l.array<LoadSpec>(s.loads);                   // loads
   l.array<ElementLoadSpec>(s.element_loads);    // element_loads
+  l.array<HysteresisData>(s.hystereses);        // hystereses
   l.array<std::int32_t>(s.loads + s.inputs);    // slot_dof
   l.array<std::int32_t>(s.loads);               // load_slot
   l.array<std::int32_t>(s.inputs);              // input_slot
@@ -109,13 +110,15 @@ constexpr std::size_t model_footprint(const Sizes& s) {
 constexpr std::size_t state_footprint(const Sizes& s) {
   const std::size_t dofs = kDofsPerNode * s.nodes;
   detail::Layout l;
-  l.array<double>(dofs);      // u
-  l.array<double>(dofs);      // v
-  l.array<double>(s.inputs);  // held_inputs
-  l.scalar<std::int64_t>();   // tick
-  l.scalar<std::uint64_t>();  // inputs_held
-  l.scalar<std::uint64_t>();  // inputs_out_of_range
-  l.scalar<std::uint32_t>();  // faults
+  l.array<double>(dofs);          // u
+  l.array<double>(dofs);          // v
+  l.array<double>(s.inputs);      // held_inputs
+  l.scalar<std::int64_t>();       // tick
+  l.scalar<std::uint64_t>();      // inputs_held
+  l.scalar<std::uint64_t>();      // inputs_out_of_range
+  l.scalar<std::uint32_t>();      // faults
+  l.array<double>(s.hystereses);  // plastic
+  l.array<double>(s.hystereses);  // dissipated
   return l.size();
 }
 

@@ -113,6 +113,8 @@ struct HingeData {
   std::uint8_t springs = 0;   // bit d: direction d carries a spring force (linear, curve, penalty)
   std::uint8_t rigid = 0;     // bit d: a coupled direction, held by the NTN coupling (not penalty)
   std::uint8_t branches = 0;  // bit d: direction d is a curve with a rigid branch (a stop)
+  std::uint8_t plastic = 0;   // bit d: direction d is hysteretic (kPlastic)
+  std::array<std::int32_t, kDofsPerNode> history{};  // kPlastic: its slot in State::plastic
 };
 
 // Relative displacement in the hinge frame (DESIGN §7):
@@ -169,13 +171,18 @@ inline void hinge_scatter(const HingeData& h, const double* f_local, double* f1,
 
 // Spring and dashpot force on node 1 in the hinge frame, for the directions in `springs`:
 // f = k d + c d_dot (linear, penalty), f = F(d) (curve: its spring part; on a rigid branch the
-// force at the branch start). d_dot from the half-step velocities (explicit, like C v_{n-1/2}).
+// force at the branch start), f = k (d - d_p) + c d_dot (plastic, d_p its plastic deformation in
+// `plastic`, hysteresis.hpp). d_dot from the half-step velocities (explicit, like C v_{n-1/2}).
 inline void hinge_spring_force(const HingeData& h, std::span<const CurvePoint> points,
-                               const double* d, const double* d_dot, double* f) {
+                               std::span<const double> plastic, const double* d,
+                               const double* d_dot, double* f) {
   for (std::size_t k = 0; k < kDofsPerNode; ++k) {
     f[k] = 0;
     if (!((h.springs >> k) & 1U)) continue;
-    if (h.behaviour[k] == HingeBehaviour::kCurve) {
+    if ((h.plastic >> k) & 1U) {
+      const double dp = plastic[static_cast<std::size_t>(h.history[k])];
+      f[k] = h.stiffness[k] * (d[k] - dp) + h.dashpot[k] * d_dot[k];
+    } else if (h.behaviour[k] == HingeBehaviour::kCurve) {
       double x = d[k];
       if (x < h.branch_lower[k]) x = h.branch_lower[k];
       if (x > h.branch_upper[k]) x = h.branch_upper[k];
@@ -240,6 +247,14 @@ bool resolve_hinge(const HingeSpec& spec, const Settings& settings, std::size_t 
         h.springs |= bit;
         break;
       }
+      case HingeBehaviour::kPlastic:  // its law is checked against the model's (check_references)
+        h.stiffness[k] = spec.stiffness[k];
+        h.dashpot[k] = spec.dashpot[k];
+        if (!(h.stiffness[k] > 0) || !(h.dashpot[k] >= 0) || spec.hysteresis[k] < 0) return false;
+        h.history[k] = spec.hysteresis[k];
+        h.springs |= bit;
+        h.plastic |= bit;
+        break;
     }
   }
   return true;

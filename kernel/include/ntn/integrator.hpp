@@ -10,6 +10,7 @@
 #include "ntn/beam.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
+#include "ntn/hysteresis.hpp"
 #include "ntn/loads.hpp"
 #include "ntn/model.hpp"
 #include "ntn/residual.hpp"
@@ -136,17 +137,32 @@ void hinge_spring_local(const Model<S>& m, const State<S>& s, const HingeData& h
   double d[6], d_dot[6];
   hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
   hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
-  hinge_spring_force(h, m.curve_points, d, d_dot, f);
+  hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
 }
 
-// Hinge springs and dashpots (linear, curve, and rigid directions under `penalty`) added to F_n
-// as B^T f_L (DESIGN §7).
+// Hinge springs and dashpots (linear, curve, plastic, and rigid directions under `penalty`) added
+// to F_n as B^T f_L (DESIGN §7). The plastic directions' history is brought to d_n first (the
+// return mapping, hysteresis.hpp): this stage is the one place that writes it.
 template <Sizes S>
-void hinge_springs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   if constexpr (S.hinges > 0) {
     for (int i = 0; i < m.num_spring_hinges; ++i) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
+      if constexpr (S.hystereses > 0) {
+        if (h.plastic != 0) {
+          double d[6];
+          hinge_relative(
+              h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+              h.node2 == kGround ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)],
+              d);
+          for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+            if (!((h.plastic >> k) & 1U)) continue;
+            const auto slot = static_cast<std::size_t>(h.history[k]);
+            hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot]);
+          }
+        }
+      }
       double f[6];
       hinge_spring_local(m, s, h, f);
       const bool ground = h.node2 == kGround;
@@ -205,6 +221,16 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         break;
       case OutputKind::kHingeDisplacement:
         if constexpr (S.hinges > 0) value = hinge_displacement(m, s, o.hinge, o.dof);
+        break;
+      case OutputKind::kHingePlastic:
+      case OutputKind::kHingeDissipated:
+        if constexpr (S.hinges > 0 && S.hystereses > 0) {
+          const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
+          if ((h.plastic >> o.dof) & 1U) {
+            const auto slot = static_cast<std::size_t>(h.history[static_cast<std::size_t>(o.dof)]);
+            value = o.kind == OutputKind::kHingePlastic ? s.plastic[slot] : s.dissipated[slot];
+          }
+        }
         break;
       case OutputKind::kAbsoluteAcceleration:
         value = o.dof < 3 ? w.a[j] + w.ground[static_cast<std::size_t>(o.dof)] : w.a[j];
@@ -268,6 +294,8 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.tick = 0;
   s.inputs_held = s.inputs_out_of_range = 0;
   s.faults = 0;
+  s.plastic.fill(0.0);  // no plastic history at the start of a run
+  s.dissipated.fill(0.0);
 }
 
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with

@@ -12,6 +12,7 @@
 #include "ntn/constraint_forest.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
+#include "ntn/hysteresis.hpp"
 #include "ntn/model_spec.hpp"
 #include "ntn/status.hpp"
 #include "ntn/time_step.hpp"
@@ -44,6 +45,7 @@ struct Model {
   std::array<TimeFunctionSpec, S.time_functions> time_functions{};
   std::array<LoadSpec, S.loads> loads{};
   std::array<ElementLoadSpec, S.element_loads> element_loads{};  // for the element-force outputs
+  std::array<HysteresisData, S.hystereses> hystereses{};         // kPlastic directions, by slot
   // The DOFs that carry a nodal load or a force input ("load slots"), each once: only there does
   // P_n differ from M g (gravity and base excitation), which the residual pass computes on the fly.
   std::array<std::int32_t, S.loads + S.inputs> slot_dof{};  // slot -> its DOF
@@ -160,10 +162,18 @@ template <Sizes S>
       return {InitError::kBadReference, static_cast<int>(i)};
   }
   if (!function_ok(spec.settings.gravity_function)) return {InitError::kBadReference, -1};
+  std::array<std::uint8_t, S.hystereses> slot_used{};  // each history slot has one direction
   for (std::size_t i = 0; i < S.hinges; ++i) {
     HingeData h;
     if (!make_hinge_data(spec.hinges[i], spec.settings, S.nodes, spec.curves, spec.curve_points, h))
       return {InitError::kBadHinge, static_cast<int>(i)};
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (!((h.plastic >> k) & 1U)) continue;
+      const auto slot = static_cast<std::size_t>(h.history[k]);
+      if (slot >= S.hystereses || !hysteresis_valid(spec.hystereses[slot]) || slot_used[slot] != 0)
+        return {InitError::kBadHinge, static_cast<int>(i)};
+      slot_used[slot] = 1;
+    }
   }
   for (std::size_t i = 0; i < S.inputs; ++i) {
     const InputSpec& in = spec.inputs[i];
@@ -187,6 +197,8 @@ template <Sizes S>
         break;
       case OutputKind::kHingeForce:
       case OutputKind::kHingeDisplacement:
+      case OutputKind::kHingePlastic:
+      case OutputKind::kHingeDissipated:
         ok = ok && o.hinge >= 0 && std::cmp_less(o.hinge, S.hinges);
         break;
       default:
@@ -312,6 +324,13 @@ template <Sizes S>
   model.time_functions = spec.time_functions;
   model.loads = spec.loads;
   model.element_loads = spec.element_loads;
+  for (const HingeSpec& hs : spec.hinges) {  // each slot's law with its direction's elastic k
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (hs.behaviour[k] != HingeBehaviour::kPlastic) continue;
+      const auto slot = static_cast<std::size_t>(hs.hysteresis[k]);
+      model.hystereses[slot] = make_hysteresis(spec.hystereses[slot], hs.stiffness[k]);
+    }
+  }
   model.inputs = spec.inputs;
   model.outputs = spec.outputs;
   model.gravity = spec.settings.gravity;

@@ -26,6 +26,7 @@ struct Sizes {
   std::size_t curves = 0;  // force-deformation curves of `curve` hinge directions
   std::size_t curve_points = 0;   // all curve points, concatenated
   std::size_t element_loads = 0;  // distributed loads on elements (the member loads' parts)
+  std::size_t hystereses = 0;     // hysteretic hinge directions (kPlastic), each with its history
 };
 
 struct NodeSpec {
@@ -95,6 +96,8 @@ enum class OutputKind : std::uint8_t {
   kHingeForce,            // hinge `hinge`, local direction `dof`: force on node 1 in the hinge
                           // frame (constraint force if rigid, spring force otherwise), N or N m
   kHingeDisplacement,     // hinge `hinge`, local direction `dof`: relative displacement d_L
+  kHingePlastic,          // hinge `hinge`, local direction `dof` (kPlastic): plastic deformation
+  kHingeDissipated,       // the same: hysteretic energy dissipated so far, J
 };
 
 // NTN hinges (DESIGN §7). Node 1 is the member end ("slave"), node 2 the joint ("master") or
@@ -103,11 +106,14 @@ enum class OutputKind : std::uint8_t {
 inline constexpr int kGround = -1;
 
 enum class HingeBehaviour : std::uint8_t {
-  kRigid,   // no relative motion (NTN coupling, or a penalty spring with the `penalty` method)
-  kFree,    // no force
-  kLinear,  // spring `stiffness` and optional dashpot `dashpot`
-  kCurve,   // piecewise-linear force(deformation) `curve`; segments at least as stiff as the
-            // limit stiffness are rigid branches (a gap or a stop)
+  kRigid,    // no relative motion (NTN coupling, or a penalty spring with the `penalty` method)
+  kFree,     // no force
+  kLinear,   // spring `stiffness` and optional dashpot `dashpot`
+  kCurve,    // piecewise-linear force(deformation) `curve`; segments at least as stiff as the
+             // limit stiffness are rigid branches (a gap or a stop)
+  kPlastic,  // bilinear elasto-plastic with kinematic hardening: elastic `stiffness`, yield and
+             // hardening in `hysteresis` (a HysteresisSpec), optional `dashpot`; its plastic
+             // deformation and dissipated energy live in State (hysteresis.hpp)
 };
 
 // Each method is a struct in its own header (ntn_exact.hpp, ntn_paper.hpp, penalty.hpp); only
@@ -132,6 +138,19 @@ struct HingeSpec {
   std::array<double, kDofsPerNode> stiffness{};            // N/m or N m/rad (kLinear)
   std::array<double, kDofsPerNode> dashpot{};              // N s/m or N m s/rad (kLinear)
   std::array<int, kDofsPerNode> curve{};                   // index into curves (kCurve)
+  std::array<int, kDofsPerNode>
+      hysteresis{};  // index into hystereses (kPlastic), one per direction
+};
+
+// A hysteretic hinge direction's law (kPlastic): yield force or moment in the positive and the
+// negative sense (both > 0, N or N m) and the hardening ratio b in [0, 1): the tangent after
+// yield is b k (kinematic hardening: the elastic range, of width yield_pos + yield_neg, moves
+// with the back force). Each entry belongs to one direction; its index is the direction's slot
+// in State::plastic and State::dissipated.
+struct HysteresisSpec {
+  double yield_pos = 0;
+  double yield_neg = 0;
+  double hardening = 0;
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's
@@ -213,6 +232,7 @@ struct ModelSpec {
   std::array<CurveSpec, S.curves> curves{};
   std::array<CurvePoint, S.curve_points> curve_points{};
   std::array<ElementLoadSpec, S.element_loads> element_loads{};
+  std::array<HysteresisSpec, S.hystereses> hystereses{};
   Settings settings{};
 };
 
@@ -230,14 +250,16 @@ struct SpecView {
   std::span<const CurveSpec> curves;
   std::span<const CurvePoint> curve_points;
   std::span<const ElementLoadSpec> element_loads;
+  std::span<const HysteresisSpec> hystereses;
   Settings settings;
 };
 
 template <Sizes S>
 constexpr SpecView view(const ModelSpec<S>& spec) {
-  return {spec.nodes,  spec.elements,     spec.time_points,   spec.time_functions,
-          spec.loads,  spec.inputs,       spec.outputs,       spec.hinges,
-          spec.curves, spec.curve_points, spec.element_loads, spec.settings};
+  return {spec.nodes,   spec.elements,     spec.time_points,   spec.time_functions,
+          spec.loads,   spec.inputs,       spec.outputs,       spec.hinges,
+          spec.curves,  spec.curve_points, spec.element_loads, spec.hystereses,
+          spec.settings};
 }
 
 }  // namespace ntn

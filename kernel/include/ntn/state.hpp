@@ -33,6 +33,10 @@ struct State {
   std::uint64_t inputs_held = 0;               // non-finite inputs replaced by the held value
   std::uint64_t inputs_out_of_range = 0;       // inputs outside [min, max], held likewise
   std::uint32_t faults = 0;                    // Fault bits, sticky
+  // The history of the hysteretic hinge directions (kPlastic, hysteresis.hpp), by slot
+  // (HingeSpec::hysteresis): plastic deformation d_p (m or rad) and energy dissipated (J).
+  std::array<double, S.hystereses> plastic{};
+  std::array<double, S.hystereses> dissipated{};
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b

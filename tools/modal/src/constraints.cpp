@@ -74,7 +74,7 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
   out.hinges.resize(spec.hinges.size());
   Settings settings = spec.settings;
   if (!penalty_as_springs) settings.hinge_method = HingeMethod::kNtnExact;
-  bool dashpots = false;
+  bool dashpots = false, plastic = false;
   for (std::size_t h = 0; h < spec.hinges.size(); ++h) {
     const HingeSpec& hs = spec.hinges[h];
     HingeData check;
@@ -105,10 +105,19 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
           linearize_curve(spec, h, k, ntn::branch_slope_limit(settings, k), lh, out.notes);
           break;
         }
+        case HingeBehaviour::kPlastic:  // below yield: its elastic stiffness
+          lh.stiffness[k] = hs.stiffness[k];
+          if (hs.dashpot[k] > 0) dashpots = true;
+          plastic = true;
+          break;
       }
     }
   }
   if (dashpots) out.notes.push_back("hinge dashpots left out: the modes are undamped");
+  if (plastic) {
+    out.notes.push_back(
+        "plastic hinge directions at their elastic stiffness (the modes below yield)");
+  }
   return out;
 }
 

@@ -92,8 +92,21 @@ void add_channels(Compilation& comp) {
           continue;
         }
         os.hinge = it->second;
+        const bool history =
+            o.node_kind == OutputKind::kHingePlastic || o.node_kind == OutputKind::kHingeDissipated;
+        if (history &&
+            d.hinges[static_cast<std::size_t>(os.hinge)]
+                    .behaviour[static_cast<std::size_t>(o.dof)] != HingeBehaviour::kPlastic) {
+          L.error(o.dof_at, "direction " + std::string(kDofNames[static_cast<std::size_t>(o.dof)]) +
+                                " of " + d.describe_hinge(os.hinge) +
+                                " is not plastic: it has no plastic deformation or dissipated "
+                                "energy (give it { plastic = k, yield = F })");
+          continue;
+        }
         if (o.node_kind == OutputKind::kHingeForce) {
           units = o.dof < 3 ? "N" : "N m";
+        } else if (o.node_kind == OutputKind::kHingeDissipated) {
+          units = "J";
         } else {
           units = o.dof < 3 ? "m" : "rad";
         }

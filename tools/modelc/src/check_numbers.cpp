@@ -195,9 +195,10 @@ void check_hinge_spring_numbers(Compilation& comp) {
       const HingeBehaviour b = d.hinges[hi].behaviour[k];
       const std::string unit = k < 3 ? " N/m" : " N m/rad";
       const Factor inv_mass{"1/m1 + 1/m2 (along the direction)", w, 1, comp.dir_at[hi][k], " 1/kg"};
-      const Factor stiff{b == HingeBehaviour::kRigid   ? "the penalty stiffness"
-                         : b == HingeBehaviour::kCurve ? "the curve's steepest soft slope"
-                                                       : "linear",
+      const Factor stiff{b == HingeBehaviour::kRigid     ? "the penalty stiffness"
+                         : b == HingeBehaviour::kCurve   ? "the curve's steepest soft slope"
+                         : b == HingeBehaviour::kPlastic ? "plastic (elastic stiffness)"
+                                                         : "linear",
                          hd.stiffness[k], 1, comp.dir_at[hi][k], unit};
       if (!check_derived(L, hd.stiffness[k] * w, "frequency^2 k (1/m1 + 1/m2)" + of,
                          {stiff, inv_mass}, false))

@@ -181,6 +181,10 @@ const char* output_kind(OutputKind k) {
       return "ntn::OutputKind::kHingeForce";
     case OutputKind::kHingeDisplacement:
       return "ntn::OutputKind::kHingeDisplacement";
+    case OutputKind::kHingePlastic:
+      return "ntn::OutputKind::kHingePlastic";
+    case OutputKind::kHingeDissipated:
+      return "ntn::OutputKind::kHingeDissipated";
   }
   throw std::invalid_argument("emit_header: unknown output kind");
 }
@@ -195,6 +199,8 @@ const char* behaviour(HingeBehaviour b) {
       return "ntn::HingeBehaviour::kLinear";
     case HingeBehaviour::kCurve:
       return "ntn::HingeBehaviour::kCurve";
+    case HingeBehaviour::kPlastic:
+      return "ntn::HingeBehaviour::kPlastic";
   }
   throw std::invalid_argument("emit_header: unknown hinge behaviour");
 }
@@ -266,7 +272,7 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
        ", .inputs = " + lit(z.inputs) + ", .outputs = " + lit(z.outputs) +
        ", .hinges = " + lit(z.hinges) + ", .curves = " + lit(z.curves) +
        ", .curve_points = " + lit(z.curve_points) + ", .element_loads = " + lit(z.element_loads) +
-       "};\n\n";
+       ", .hystereses = " + lit(z.hystereses) + "};\n\n";
 
   o += "inline constexpr ntn::ModelSpec<kSizes> kSpec{\n";
   array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {
@@ -309,7 +315,8 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
     return "{.node1 = " + lit(h.node1) + ", .node2 = " + lit(h.node2) +
            ", .frame = " + lits(h.frame) + ", .eccentricity = " + lits(h.eccentricity) +
            ", .behaviour = " + behaviours(h.behaviour) + ", .stiffness = " + lits(h.stiffness) +
-           ", .dashpot = " + lits(h.dashpot) + ", .curve = " + lits(h.curve) + "}";
+           ", .dashpot = " + lits(h.dashpot) + ", .curve = " + lits(h.curve) +
+           ", .hysteresis = " + lits(h.hysteresis) + "}";
   });
   array_init(o, "curves", m.curves, [](const CurveSpec& c) {
     return "{.first = " + lit(c.first) + ", .count = " + lit(c.count) + "}";
@@ -320,6 +327,10 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "element_loads", m.element_loads, [](const ElementLoadSpec& l) {
     return "{.element = " + lit(l.element) + ", .time_function = " + lit(l.time_function) +
            ", .local = " + lits(l.local) + "}";
+  });
+  array_init(o, "hystereses", m.hystereses, [](const HysteresisSpec& h) {
+    return "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
+           ", .hardening = " + lit(h.hardening) + "}";
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +

@@ -154,6 +154,7 @@ MassCheck hinge_mass_check(const SpecView& spec, std::span<const double> mass) {
                 spring_rows.push_back(r), spring_is_penalty.push_back(false);
               break;
             case HingeBehaviour::kCurve:
+            case HingeBehaviour::kPlastic:
               spring_rows.push_back(r), spring_is_penalty.push_back(false);
               break;
           }

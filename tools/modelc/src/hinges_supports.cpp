@@ -24,6 +24,11 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& dirs) {
     const BehaviourIn& b = dirs[k];
     hs.behaviour[k] = b.kind;
     if (b.kind == HingeBehaviour::kLinear) hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
+    if (b.kind == HingeBehaviour::kPlastic) {  // its law gets a history slot of its own
+      hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
+      hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
+      comp.d.hystereses.push_back(b.law);
+    }
     if (b.kind == HingeBehaviour::kCurve) {
       hs.curve[k] = ref(comp.ids.curves, *b.curve, "curve");
       ok = ok && hs.curve[k] >= 0;

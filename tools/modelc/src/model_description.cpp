@@ -17,12 +17,13 @@ Sizes ModelDescription::sizes() const {
   s.curves = curves.size();
   s.curve_points = curve_points.size();
   s.element_loads = element_loads.size();
+  s.hystereses = hystereses.size();
   return s;
 }
 
 SpecView ModelDescription::view() const {
-  return {nodes,   elements, time_points, time_functions, loads,         inputs,
-          outputs, hinges,   curves,      curve_points,   element_loads, settings};
+  return {nodes,  elements, time_points,  time_functions, loads,      inputs,  outputs,
+          hinges, curves,   curve_points, element_loads,  hystereses, settings};
 }
 
 std::string ModelDescription::describe_element(int element) const {

@@ -9,12 +9,14 @@
 
 namespace ntn::modelc::compile {
 
-// One hinge direction: "rigid", "free", { linear = k, dashpot = c } or { curve = "id" }.
+// One hinge direction: "rigid", "free", { linear = k, dashpot = c }, { curve = "id" } or
+// { plastic = k, yield = F, yield_negative = F, hardening = b, dashpot = c }.
 std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const std::string& key) {
   BehaviourIn b;
   b.at = place(n.source(), key);
   const std::string what =
-      "must be \"rigid\", \"free\", { linear = k, dashpot = c } or { curve = \"id\" }";
+      "must be \"rigid\", \"free\", { linear = k, dashpot = c }, { curve = \"id\" } or "
+      "{ plastic = k, yield = F }";
   if (const auto* s = n.as_string()) {
     if (s->get() == "rigid" || s->get() == "free") {
       b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
@@ -28,9 +30,44 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     L.error(n.source(), key, what + ", got " + type_name(n));
     return std::nullopt;
   }
-  Table tb(L, *t, key, {"linear", "dashpot", "curve"});
+  Table tb(L, *t, key,
+           {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening"});
   tb.check_unknown();
-  if (tb.conflict("linear", "curve")) return std::nullopt;
+  if (tb.conflict("linear", "curve") || tb.conflict("linear", "plastic") ||
+      tb.conflict("curve", "plastic"))
+    return std::nullopt;
+  if (!tb.has("plastic")) {
+    for (std::string_view k : {"yield", "yield_negative", "hardening"}) {
+      if (tb.has(k)) {
+        L.error(tb.where(k), "only applies with 'plastic'");
+        return std::nullopt;
+      }
+    }
+  }
+  if (tb.has("plastic")) {
+    // Bilinear elasto-plastic with kinematic hardening (ntn/hysteresis.hpp).
+    const auto k = tb.positive("plastic", Need::kRequired);
+    const auto fy = tb.positive("yield", Need::kRequired);
+    const auto fn = tb.positive("yield_negative", Need::kOptional);
+    const auto hard = tb.number("hardening", Need::kOptional);
+    const auto c = tb.non_negative("dashpot", Need::kOptional);
+    bool ok = k && fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening")) &&
+              (c || !tb.has("dashpot"));
+    if (hard && !(*hard >= 0 && *hard < 1)) {
+      L.error(tb.where("hardening"),
+              "must be at least 0 and less than 1: the tangent after yield is hardening x k (got " +
+                  num(*hard) + ")");
+      ok = false;
+    }
+    if (!ok) return std::nullopt;
+    b.kind = HingeBehaviour::kPlastic;
+    b.k = *k;
+    b.c = c.value_or(0.0);
+    b.law.yield_pos = *fy;
+    b.law.yield_neg = fn.value_or(*fy);
+    b.law.hardening = hard.value_or(0.0);
+    return b;
+  }
   if (tb.has("curve")) {
     if (tb.has("dashpot")) {
       L.error(tb.where("dashpot"), "only applies with 'linear'");

@@ -626,10 +626,17 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
 
   for_each_table(L, root, "outputs", [&](const toml::table& tt, const std::string& path) {
     Output o;
-    const std::vector<std::string_view> kinds = {
-        "displacement",          "velocity",    "acceleration",
-        "element_force",         "drift",       "reaction",
-        "absolute_acceleration", "hinge_force", "hinge_displacement"};
+    const std::vector<std::string_view> kinds = {"displacement",
+                                                 "velocity",
+                                                 "acceleration",
+                                                 "element_force",
+                                                 "drift",
+                                                 "reaction",
+                                                 "absolute_acceleration",
+                                                 "hinge_force",
+                                                 "hinge_displacement",
+                                                 "hinge_plastic_deformation",
+                                                 "hinge_dissipated_energy"};
     Table head(L, tt, path, {});
     auto name = read_id(L, head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
@@ -678,11 +685,14 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
       Table t(L, tt, path, {"name", "kind", "hinge", "direction", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kHinge;
-      o.node_kind = *kind == 7 ? OutputKind::kHingeForce : OutputKind::kHingeDisplacement;
+      o.node_kind = *kind == 7   ? OutputKind::kHingeForce
+                    : *kind == 8 ? OutputKind::kHingeDisplacement
+                    : *kind == 9 ? OutputKind::kHingePlastic
+                                 : OutputKind::kHingeDissipated;
       auto hinge = read_id(L, t, "hinge");
       auto dir = t.choice("direction", Need::kRequired, kDofNames);
       if (hinge) o.hinge = *hinge;
-      if (dir) o.dof = *dir;
+      if (dir) o.dof = *dir, o.dof_at = t.where("direction");
       ok = ok && hinge && dir;
     } else {
       Table t(L, tt, path, {"name", "kind", "direction", "alarm", "alarm_hysteresis"});

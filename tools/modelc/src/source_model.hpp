@@ -60,8 +60,9 @@ struct UserNode {
 // One local direction of a hinge or release as the file gives it.
 struct BehaviourIn {
   HingeBehaviour kind = HingeBehaviour::kRigid;
-  double k = 0, c = 0;        // kLinear
+  double k = 0, c = 0;        // kLinear, kPlastic
   std::optional<IdAt> curve;  // kCurve
+  HysteresisSpec law;         // kPlastic: yields and hardening
   Where at;                   // the value that set it (for curve errors)
 };
 using Behaviours = std::array<BehaviourIn, kDofsPerNode>;

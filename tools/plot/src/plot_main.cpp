@@ -114,7 +114,9 @@ std::vector<std::string> outputs_of_kind(const std::string& model_file, const st
       {"reaction", K::kReaction},
       {"absolute_acceleration", K::kAbsoluteAcceleration},
       {"hinge_force", K::kHingeForce},
-      {"hinge_displacement", K::kHingeDisplacement}};
+      {"hinge_displacement", K::kHingeDisplacement},
+      {"hinge_plastic_deformation", K::kHingePlastic},
+      {"hinge_dissipated_energy", K::kHingeDissipated}};
   const auto it = std::find_if(std::begin(kKinds), std::end(kKinds),
                                [&](const auto& k) { return kind == k.first; });
   if (it == std::end(kKinds)) {

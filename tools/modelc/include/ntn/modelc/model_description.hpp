@@ -94,6 +94,7 @@ struct ModelDescription {
   std::vector<CurveSpec> curves;
   std::vector<CurvePoint> curve_points;
   std::vector<ElementLoadSpec> element_loads;  // the member loads' parts, element by element
+  std::vector<HysteresisSpec> hystereses;      // the plastic hinge directions' laws, by slot
   Settings settings;
 
   std::vector<int> node_ids;  // user id per node index, kGeneratedNode for mesh nodes
