@@ -1,0 +1,184 @@
+// The model compiler on plastic hinge directions (issue 15): { plastic = k, yield = F,
+// yield_negative = F, hardening = b, dashpot = c } in releases and explicit hinges, each with a
+// history slot of its own (ntn::HysteresisSpec), the new output kinds, the modal analysis and
+// stable step at the elastic stiffness, and every error with its place.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ntn/modal/modal.hpp"
+#include "ntn/modelc/load_model.hpp"
+
+namespace {
+
+using ntn::HingeBehaviour;
+using ntn::modelc::format_all;
+using ntn::modelc::load_model_from_string;
+
+// A cantilever column (3 m, 3 elements) whose base is a plastic hinge to the ground (an
+// explicit hinge from node 1, fixed in nothing, to the ground) and whose top has a beam stub
+// with a plastic release about y. %BASE% and %STUB% are the two plastic directions' tables.
+std::string model(const std::string& base, const std::string& stub, const std::string& more = "") {
+  std::string t = R"([model]
+name = "m"
+
+[[materials]]
+id = "S"
+E = 210e9
+nu = 0.3
+rho = 7850
+
+[[sections]]
+id = "H"
+A = 1e-2
+Iy = 1e-4
+Iz = 5e-5
+J = 1e-6
+
+[[nodes]]
+id = 1
+xyz = [0, 0, 0]
+
+[[nodes]]
+id = 2
+xyz = [0, 0, 3]
+
+[[nodes]]
+id = 3
+xyz = [2, 0, 3]
+
+[[members]]
+id = "C"
+nodes = [1, 2]
+material = "S"
+section = "H"
+divisions = 3
+
+[[members]]
+id = "B"
+nodes = [2, 3]
+material = "S"
+section = "H"
+release_start = { ry = %STUB% }
+
+[[hinges]]
+id = "base"
+nodes = [1, "ground"]
+ry = %BASE%
+)";
+  t.replace(t.find("%STUB%"), 6, stub);
+  t.replace(t.find("%BASE%"), 6, base);
+  return t + more;
+}
+
+TEST(ModelcPlastic, DirectionsGetTheirLawsAndHistorySlots) {
+  const auto r = load_model_from_string(
+      model("{ plastic = 1e9, yield = 2e5, hardening = 0.05 }",
+            "{ plastic = 5e8, yield = 1e5, yield_negative = 8e4, dashpot = 10 }",
+            R"(
+[[outputs]]
+name = "base_dp"
+kind = "hinge_plastic_deformation"
+hinge = "base"
+direction = "ry"
+
+[[outputs]]
+name = "stub_energy"
+kind = "hinge_dissipated_energy"
+hinge = "B.start"
+direction = "ry"
+)"),
+      "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& d = *r.model;
+  ASSERT_EQ(d.hystereses.size(), 2U);
+  ASSERT_EQ(d.sizes().hystereses, 2U);
+  const ntn::HingeSpec& base = d.hinges[0];  // explicit hinges first
+  const ntn::HingeSpec& stub = d.hinges[1];
+  EXPECT_EQ(base.behaviour[4], HingeBehaviour::kPlastic);
+  EXPECT_EQ(base.stiffness[4], 1e9);
+  EXPECT_EQ(base.hysteresis[4], 0);
+  EXPECT_EQ(d.hystereses[0].yield_pos, 2e5);
+  EXPECT_EQ(d.hystereses[0].yield_neg, 2e5);  // symmetric unless yield_negative is given
+  EXPECT_EQ(d.hystereses[0].hardening, 0.05);
+  EXPECT_EQ(stub.behaviour[4], HingeBehaviour::kPlastic);
+  EXPECT_EQ(stub.stiffness[4], 5e8);
+  EXPECT_EQ(stub.dashpot[4], 10.0);
+  EXPECT_EQ(stub.hysteresis[4], 1);
+  EXPECT_EQ(d.hystereses[1].yield_neg, 8e4);
+  EXPECT_EQ(d.hystereses[1].hardening, 0.0);
+  EXPECT_EQ(d.outputs[0].kind, ntn::OutputKind::kHingePlastic);
+  EXPECT_EQ(d.outputs[1].kind, ntn::OutputKind::kHingeDissipated);
+  EXPECT_EQ(d.output_units[0], "rad");
+  EXPECT_EQ(d.output_units[1], "J");
+  // The stable step takes the elastic stiffness, the largest tangent a bilinear law reaches
+  // (hardening < 1): the same step as the same model with linear directions of that k.
+  const auto lin =
+      load_model_from_string(model("{ linear = 1e9 }", "{ linear = 5e8, dashpot = 10 }"), "m.toml");
+  ASSERT_TRUE(lin.ok()) << format_all(lin.errors);
+  EXPECT_EQ(d.stable.dt_stable, lin.model->stable.dt_stable);
+  // Modal analysis below yield: the elastic stiffness, the same modes, and a note saying so.
+  ntn::modal::ModalOptions o;
+  o.modes = 3;
+  const auto mp = ntn::modal::modal_analysis(d.view(), o);
+  const auto ml = ntn::modal::modal_analysis(lin.model->view(), o);
+  ASSERT_TRUE(mp.ok() && ml.ok()) << mp.error << ml.error;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(mp.frequency(i), ml.frequency(i));
+  bool noted = false;
+  for (const std::string& n : mp.notes)
+    noted = noted || n.find("plastic hinge directions at their elastic stiffness") == 0;
+  EXPECT_TRUE(noted);
+}
+
+struct BadCase {
+  const char* name;
+  std::string base, stub, more;
+  std::string error;  // the one error's text after "m.toml:"
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
+class ModelcPlasticBad : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(ModelcPlasticBad, IsRefusedAtItsKey) {
+  const BadCase& c = GetParam();
+  const auto r = load_model_from_string(model(c.base, c.stub, c.more), "m.toml");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(format_all(r.errors), "m.toml:" + c.error + "\n");
+}
+
+const std::string kOk = "{ plastic = 1e9, yield = 2e5 }";
+
+INSTANTIATE_TEST_SUITE_P(
+    Errors, ModelcPlasticBad,
+    ::testing::Values(
+        BadCase{"ZeroStiffness", "{ plastic = 0, yield = 2e5 }", kOk, "",
+                "46:18: error: key 'hinges[0].ry.plastic': must be positive (got 0)"},
+        BadCase{"ZeroYield", "{ plastic = 1e9, yield = 0 }", kOk, "",
+                "46:31: error: key 'hinges[0].ry.yield': must be positive (got 0)"},
+        BadCase{"MissingYield", "{ plastic = 1e9 }", kOk, "",
+                "46:6: error: key 'hinges[0].ry.yield': missing required key 'yield'"},
+        BadCase{"NegativeYieldNegative", kOk, "{ plastic = 1e9, yield = 2e5, yield_negative = -1 }",
+                "",
+                "41:71: error: key 'members[1].release_start.ry.yield_negative': must be "
+                "positive (got -1)"},
+        BadCase{"HardeningOne", "{ plastic = 1e9, yield = 2e5, hardening = 1.0 }", kOk, "",
+                "46:48: error: key 'hinges[0].ry.hardening': must be at least 0 and less than 1: "
+                "the tangent after yield is hardening x k (got 1)"},
+        BadCase{"YieldWithoutPlastic", "{ linear = 1e9, yield = 2e5 }", kOk, "",
+                "46:30: error: key 'hinges[0].ry.yield': only applies with 'plastic'"},
+        BadCase{"LinearAndPlastic", "{ linear = 1e9, plastic = 1e9, yield = 2e5 }", kOk, "",
+                "46:32: error: key 'hinges[0].ry.plastic': cannot be given together with "
+                "'linear'"},
+        BadCase{"HistoryOfANonPlasticDirection", kOk, kOk,
+                "\n[[outputs]]\nname = \"x\"\nkind = \"hinge_plastic_deformation\"\nhinge = "
+                "\"base\"\ndirection = \"rx\"\n",
+                "52:13: error: key 'outputs[0].direction': direction rx of hinge base is not "
+                "plastic: it has no plastic deformation or dissipated energy (give it { plastic "
+                "= k, yield = F })"}),
+    [](const ::testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+}  // namespace
