@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "ntn/hysteresis.hpp"
 #include "ntn/modal/modal.hpp"
 #include "ntn/modelc/load_model.hpp"
 
@@ -131,6 +132,35 @@ direction = "ry"
   EXPECT_TRUE(noted);
 }
 
+// Acceptance limits io, ls, cp: into the law, and the levels they grade (performance_level:
+// 0 no plastic deformation, 1 within IO, 2 within LS, 3 within CP, 4 beyond).
+TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
+  const auto r = load_model_from_string(
+      model("{ plastic = 1e9, yield = 2e5, io = 0.005, ls = 0.02, cp = 0.03 }",
+            "{ plastic = 5e8, yield = 1e5 }",
+            "\n[[outputs]]\nname = \"lvl\"\nkind = \"hinge_performance_level\"\nhinge = "
+            "\"base\"\ndirection = \"ry\"\n"),
+      "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& law = r.model->hystereses[0];
+  EXPECT_EQ(law.limits, (std::array<double, 3>{0.005, 0.02, 0.03}));
+  EXPECT_EQ(r.model->hystereses[1].limits, (std::array<double, 3>{}));
+  EXPECT_EQ(r.model->outputs[0].kind, ntn::OutputKind::kHingeLevel);
+  EXPECT_EQ(r.model->output_units[0], "-");
+  EXPECT_TRUE(ntn::hysteresis_valid(law));
+  const std::array<double, 3> lim = law.limits;
+  EXPECT_EQ(ntn::performance_level(lim, 0.0), 0);
+  EXPECT_EQ(ntn::performance_level(lim, 1e-9), 1);
+  EXPECT_EQ(ntn::performance_level(lim, 0.005), 1);  // at a limit: still within it
+  EXPECT_EQ(ntn::performance_level(lim, 0.0051), 2);
+  EXPECT_EQ(ntn::performance_level(lim, 0.025), 3);
+  EXPECT_EQ(ntn::performance_level(lim, 0.04), 4);
+  EXPECT_EQ(ntn::performance_level({}, 0.04), 1);  // no limits: yielded or not
+  ntn::HysteresisSpec bad = law;
+  bad.limits = {0.02, 0.005, 0.03};
+  EXPECT_FALSE(ntn::hysteresis_valid(bad));  // the kernel refuses what the compiler refuses
+}
+
 struct BadCase {
   const char* name;
   std::string base, stub, more;
@@ -178,7 +208,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "\"base\"\ndirection = \"rx\"\n",
                 "52:13: error: key 'outputs[0].direction': direction rx of hinge base is not "
                 "plastic: it has no plastic deformation or dissipated energy (give it { plastic "
-                "= k, yield = F })"}),
+                "= k, yield = F })"},
+        BadCase{"LimitsIncomplete", "{ plastic = 1e9, yield = 2e5, io = 0.01, cp = 0.03 }", kOk, "",
+                "46:6: error: key 'hinges[0].ry.ls': missing: give all three acceptance "
+                "limits io, ls and cp, or none"},
+        BadCase{"LimitsDecrease",
+                "{ plastic = 1e9, yield = 2e5, io = 0.01, ls = 0.005, cp = 0.03 }", kOk, "",
+                "46:52: error: key 'hinges[0].ry.ls': ls = 0.005 is below io = 0.01: the "
+                "limits must not decrease (io <= ls <= cp)"}),
     [](const ::testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 }  // namespace

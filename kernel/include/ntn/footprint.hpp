@@ -119,6 +119,7 @@ constexpr std::size_t state_footprint(const Sizes& s) {
   l.scalar<std::uint32_t>();      // faults
   l.array<double>(s.hystereses);  // plastic
   l.array<double>(s.hystereses);  // dissipated
+  l.array<double>(s.hystereses);  // plastic_peak
   return l.size();
 }
 

@@ -6,23 +6,43 @@
 // history in State (State::plastic, State::dissipated): a checkpoint restores them.
 #pragma once
 
+#include <array>
+
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
 
 // What the step needs of one hysteretic direction (Model::hystereses).
 struct HysteresisData {
-  double k = 0;          // N/m or N m/rad, elastic stiffness
-  double yield_pos = 0;  // N or N m
-  double yield_neg = 0;  // N or N m, as a magnitude
-  double H = 0;          // kinematic hardening modulus b k / (1 - b)
-  double inv_kH = 0;     // 1 / (k + H)
+  double k = 0;                    // N/m or N m/rad, elastic stiffness
+  double yield_pos = 0;            // N or N m
+  double yield_neg = 0;            // N or N m, as a magnitude
+  double H = 0;                    // kinematic hardening modulus b k / (1 - b)
+  double inv_kH = 0;               // 1 / (k + H)
+  std::array<double, 3> limits{};  // io, ls, cp on the peak |d_p| (0, 0, 0: none)
 };
 
-// A law the kernel takes: yields > 0 and finite, hardening in [0, 1).
+// A law the kernel takes: yields > 0 and finite, hardening in [0, 1), acceptance limits none or
+// 0 < io <= ls <= cp (finite).
 constexpr bool hysteresis_valid(const HysteresisSpec& s) {
+  const auto& l = s.limits;
+  const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
+  const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && l[2] < 1e300;
   return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
-         s.hardening >= 0 && s.hardening < 1;
+         s.hardening >= 0 && s.hardening < 1 && (none || ordered);
+}
+
+// Performance level of a direction whose largest plastic deformation so far is `peak`: 0 below
+// yield (no plastic deformation), 1 within IO (peak <= io), 2 within LS, 3 within CP, 4 beyond
+// CP; without limits 0 or 1 (yielded).
+constexpr int performance_level(const std::array<double, 3>& limits, double peak) {
+  if (!(peak > 0)) return 0;
+  int level = 1;
+  if (limits[0] > 0) {
+    for (const double lim : limits)
+      level += peak > lim ? 1 : 0;
+  }
+  return level;
 }
 
 inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
@@ -32,6 +52,7 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
   h.yield_neg = s.yield_neg;
   h.H = s.hardening * k / (1.0 - s.hardening);
   h.inv_kH = 1.0 / (k + h.H);
+  h.limits = s.limits;
   return h;
 }
 
@@ -39,7 +60,9 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
 // force k (d - d_p) leaves the elastic range by x, d_p moves by x / (k + H), which puts the force
 // back on its edge (exact for the bilinear law). `dissipated` grows by the plastic work along the
 // edge, integral of (H d_p + yield) dd_p from the old d_p to the new one (exact on that path).
-inline void hysteresis_update(const HysteresisData& h, double d, double& dp, double& dissipated) {
+// `peak` keeps the largest |d_p|.
+inline void hysteresis_update(const HysteresisData& h, double d, double& dp, double& dissipated,
+                              double& peak) {
   const double xi = h.k * (d - dp) - h.H * dp;  // the trial force relative to the back force
   double edge = 0, delta = 0;
   if (xi > h.yield_pos) {
@@ -54,6 +77,8 @@ inline void hysteresis_update(const HysteresisData& h, double d, double& dp, dou
   const double dp_new = dp + delta;
   dissipated += (h.H * (0.5 * (dp + dp_new)) + edge) * delta;
   dp = dp_new;
+  const double size = dp_new < 0 ? -dp_new : dp_new;
+  if (size > peak) peak = size;
 }
 
 }  // namespace ntn

@@ -159,7 +159,8 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
           for (std::size_t k = 0; k < kDofsPerNode; ++k) {
             if (!((h.plastic >> k) & 1U)) continue;
             const auto slot = static_cast<std::size_t>(h.history[k]);
-            hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot]);
+            hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
+                              s.plastic_peak[slot]);
           }
         }
       }
@@ -224,11 +225,16 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         break;
       case OutputKind::kHingePlastic:
       case OutputKind::kHingeDissipated:
+      case OutputKind::kHingeLevel:
         if constexpr (S.hinges > 0 && S.hystereses > 0) {
           const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
           if ((h.plastic >> o.dof) & 1U) {
             const auto slot = static_cast<std::size_t>(h.history[static_cast<std::size_t>(o.dof)]);
-            value = o.kind == OutputKind::kHingePlastic ? s.plastic[slot] : s.dissipated[slot];
+            value = o.kind == OutputKind::kHingePlastic ? s.plastic[slot]
+                    : o.kind == OutputKind::kHingeDissipated
+                        ? s.dissipated[slot]
+                        : static_cast<double>(
+                              performance_level(m.hystereses[slot].limits, s.plastic_peak[slot]));
           }
         }
         break;
@@ -296,6 +302,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.faults = 0;
   s.plastic.fill(0.0);  // no plastic history at the start of a run
   s.dissipated.fill(0.0);
+  s.plastic_peak.fill(0.0);
 }
 
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with

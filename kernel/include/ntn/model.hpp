@@ -199,6 +199,7 @@ template <Sizes S>
       case OutputKind::kHingeDisplacement:
       case OutputKind::kHingePlastic:
       case OutputKind::kHingeDissipated:
+      case OutputKind::kHingeLevel:
         ok = ok && o.hinge >= 0 && std::cmp_less(o.hinge, S.hinges);
         break;
       default:

@@ -98,6 +98,7 @@ enum class OutputKind : std::uint8_t {
   kHingeDisplacement,     // hinge `hinge`, local direction `dof`: relative displacement d_L
   kHingePlastic,          // hinge `hinge`, local direction `dof` (kPlastic): plastic deformation
   kHingeDissipated,       // the same: hysteretic energy dissipated so far, J
+  kHingeLevel,            // the same: performance level reached, 0..4 (performance_level())
 };
 
 // NTN hinges (DESIGN §7). Node 1 is the member end ("slave"), node 2 the joint ("master") or
@@ -147,10 +148,14 @@ struct HingeSpec {
 // yield is b k (kinematic hardening: the elastic range, of width yield_pos + yield_neg, moves
 // with the back force). Each entry belongs to one direction; its index is the direction's slot
 // in State::plastic and State::dissipated.
+// `limits`: the acceptance criteria on the peak plastic deformation |d_p| (ASCE 41 / FEMA 356:
+// immediate occupancy, life safety, collapse prevention), all three or none (zeros);
+// performance_level() (hysteresis.hpp) grades a direction by them.
 struct HysteresisSpec {
   double yield_pos = 0;
   double yield_neg = 0;
   double hardening = 0;
+  std::array<double, 3> limits{};  // m or rad: io, ls, cp; 0, 0, 0: none
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's

@@ -37,6 +37,7 @@ struct State {
   // (HingeSpec::hysteresis): plastic deformation d_p (m or rad) and energy dissipated (J).
   std::array<double, S.hystereses> plastic{};
   std::array<double, S.hystereses> dissipated{};
+  std::array<double, S.hystereses> plastic_peak{};  // the largest |d_p| so far
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b

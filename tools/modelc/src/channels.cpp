@@ -92,8 +92,9 @@ void add_channels(Compilation& comp) {
           continue;
         }
         os.hinge = it->second;
-        const bool history =
-            o.node_kind == OutputKind::kHingePlastic || o.node_kind == OutputKind::kHingeDissipated;
+        const bool history = o.node_kind == OutputKind::kHingePlastic ||
+                             o.node_kind == OutputKind::kHingeDissipated ||
+                             o.node_kind == OutputKind::kHingeLevel;
         if (history &&
             d.hinges[static_cast<std::size_t>(os.hinge)]
                     .behaviour[static_cast<std::size_t>(o.dof)] != HingeBehaviour::kPlastic) {
@@ -107,6 +108,8 @@ void add_channels(Compilation& comp) {
           units = o.dof < 3 ? "N" : "N m";
         } else if (o.node_kind == OutputKind::kHingeDissipated) {
           units = "J";
+        } else if (o.node_kind == OutputKind::kHingeLevel) {
+          units = "-";
         } else {
           units = o.dof < 3 ? "m" : "rad";
         }

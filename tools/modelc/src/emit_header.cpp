@@ -185,6 +185,8 @@ const char* output_kind(OutputKind k) {
       return "ntn::OutputKind::kHingePlastic";
     case OutputKind::kHingeDissipated:
       return "ntn::OutputKind::kHingeDissipated";
+    case OutputKind::kHingeLevel:
+      return "ntn::OutputKind::kHingeLevel";
   }
   throw std::invalid_argument("emit_header: unknown output kind");
 }
@@ -330,7 +332,7 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   });
   array_init(o, "hystereses", m.hystereses, [](const HysteresisSpec& h) {
     return "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
-           ", .hardening = " + lit(h.hardening) + "}";
+           ", .hardening = " + lit(h.hardening) + ", .limits = " + lits(h.limits) + "}";
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +

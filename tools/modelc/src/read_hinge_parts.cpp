@@ -1,6 +1,7 @@
 #include "read_hinge_parts.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -31,13 +32,14 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     return std::nullopt;
   }
   Table tb(L, *t, key,
-           {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening"});
+           {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening", "io",
+            "ls", "cp"});
   tb.check_unknown();
   if (tb.conflict("linear", "curve") || tb.conflict("linear", "plastic") ||
       tb.conflict("curve", "plastic"))
     return std::nullopt;
   if (!tb.has("plastic")) {
-    for (std::string_view k : {"yield", "yield_negative", "hardening"}) {
+    for (std::string_view k : {"yield", "yield_negative", "hardening", "io", "ls", "cp"}) {
       if (tb.has(k)) {
         L.error(tb.where(k), "only applies with 'plastic'");
         return std::nullopt;
@@ -59,7 +61,40 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
                   num(*hard) + ")");
       ok = false;
     }
+    // Acceptance criteria on the peak plastic deformation: all three or none, io <= ls <= cp.
+    const char* const kLimit[3] = {"io", "ls", "cp"};
+    const int given = static_cast<int>(tb.has("io")) + static_cast<int>(tb.has("ls")) +
+                      static_cast<int>(tb.has("cp"));
+    std::array<double, 3> limits{};
+    if (given > 0 && given < 3) {
+      for (const char* l : kLimit) {
+        if (!tb.has(l)) {
+          L.error(t->source(), tb.key(l),
+                  "missing: give all three acceptance limits io, ls and cp, or none");
+          ok = false;
+        }
+      }
+    } else if (given == 3) {
+      for (std::size_t i = 0; i < 3; ++i) {
+        const auto v = tb.positive(kLimit[i], Need::kRequired);
+        if (!v) {
+          ok = false;
+        } else {
+          limits[i] = *v;
+        }
+      }
+      for (std::size_t i = 1; i < 3 && ok; ++i) {
+        if (limits[i] < limits[i - 1]) {
+          L.error(tb.where(kLimit[i]), std::string(kLimit[i]) + " = " + num(limits[i]) +
+                                           " is below " + kLimit[i - 1] + " = " +
+                                           num(limits[i - 1]) +
+                                           ": the limits must not decrease (io <= ls <= cp)");
+          ok = false;
+        }
+      }
+    }
     if (!ok) return std::nullopt;
+    b.law.limits = limits;
     b.kind = HingeBehaviour::kPlastic;
     b.k = *k;
     b.c = c.value_or(0.0);

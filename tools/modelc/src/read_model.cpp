@@ -636,7 +636,8 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
                                                  "hinge_force",
                                                  "hinge_displacement",
                                                  "hinge_plastic_deformation",
-                                                 "hinge_dissipated_energy"};
+                                                 "hinge_dissipated_energy",
+                                                 "hinge_performance_level"};
     Table head(L, tt, path, {});
     auto name = read_id(L, head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
@@ -685,10 +686,11 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
       Table t(L, tt, path, {"name", "kind", "hinge", "direction", "alarm", "alarm_hysteresis"});
       t.check_unknown();
       o.kind = OutKind::kHinge;
-      o.node_kind = *kind == 7   ? OutputKind::kHingeForce
-                    : *kind == 8 ? OutputKind::kHingeDisplacement
-                    : *kind == 9 ? OutputKind::kHingePlastic
-                                 : OutputKind::kHingeDissipated;
+      o.node_kind = *kind == 7    ? OutputKind::kHingeForce
+                    : *kind == 8  ? OutputKind::kHingeDisplacement
+                    : *kind == 9  ? OutputKind::kHingePlastic
+                    : *kind == 10 ? OutputKind::kHingeDissipated
+                                  : OutputKind::kHingeLevel;
       auto hinge = read_id(L, t, "hinge");
       auto dir = t.choice("direction", Need::kRequired, kDofNames);
       if (hinge) o.hinge = *hinge;

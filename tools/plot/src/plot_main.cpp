@@ -116,7 +116,8 @@ std::vector<std::string> outputs_of_kind(const std::string& model_file, const st
       {"hinge_force", K::kHingeForce},
       {"hinge_displacement", K::kHingeDisplacement},
       {"hinge_plastic_deformation", K::kHingePlastic},
-      {"hinge_dissipated_energy", K::kHingeDissipated}};
+      {"hinge_dissipated_energy", K::kHingeDissipated},
+      {"hinge_performance_level", K::kHingeLevel}};
   const auto it = std::find_if(std::begin(kKinds), std::end(kKinds),
                                [&](const auto& k) { return kind == k.first; });
   if (it == std::end(kKinds)) {
