@@ -30,6 +30,7 @@
 #include "ntn/hil/sampling.hpp"
 #include "ntn/hil/schedule.hpp"
 #include "ntn/hil/udp.hpp"
+#include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
 #include "record.hpp"
 #include NTN_MODEL_HEADER
@@ -740,6 +741,22 @@ int hil_main(int argc, char** argv) {
                   std::string(mdl::kOutputNames[c]).c_str(), sink.peak[c],
                   std::string(mdl::kOutputUnits[c]).c_str(),
                   static_cast<double>(sink.peak_frame[c]) * period);
+    }
+    // The plastic hinge directions that yielded (issue 15): from the state the run ended in
+    // (after a divergence: the last good frame's).
+    if (const int np = ntn::hil::plastic_directions(g_model); np > 0) {
+      const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
+      std::printf("  plastic  %zu of %d plastic hinge directions yielded\n", yielded.size(), np);
+      static const char* const kDir[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+      for (const auto& y : yielded) {
+        const auto& law = mdl::kSpec.hystereses[static_cast<std::size_t>(
+            mdl::kSpec.hinges[static_cast<std::size_t>(y.hinge)]
+                .hysteresis[static_cast<std::size_t>(y.direction)])];
+        std::printf("    %s %s: peak plastic %.4g, residual %.4g (%s), dissipated %.4g J, %s\n",
+                    std::string(mdl::kHingeNames[static_cast<std::size_t>(y.hinge)]).c_str(),
+                    kDir[y.direction], y.peak, y.residual, y.direction >= 3 ? "rad" : "m",
+                    y.dissipated, ntn::hil::level_name(y.level, law.limits[0] > 0));
+      }
     }
     if (result.kinetic_limit < std::numeric_limits<double>::infinity()) {
       std::printf(

@@ -29,6 +29,7 @@
 #include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/hil/sampling.hpp"
+#include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
 #include "record.hpp"
 #include NTN_MODEL_HEADER
@@ -71,10 +72,12 @@ struct RunSink {
   bool flags = false;
   double period = 1e-3;
   std::array<Peak, kS.outputs> peaks{};
+  std::array<double, kS.outputs> last{};  // the channels at the last step (residual drifts)
   std::int64_t steps = 0;
   void after_step(const ntn::State<kS>&, const ntn::Scratch<kS>& w) {
     ++steps;
     hash->add_step(w);
+    last = w.outputs;
     for (std::size_t c = 0; c < peaks.size(); ++c) {
       const double v = std::abs(w.outputs[c]);
       if (v > peaks[c].value) peaks[c] = {v, w.time};
@@ -330,6 +333,29 @@ int main(int argc, char** argv) {
                     p.time);
       }
     }
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      if (mdl::kSpec.outputs[c].kind != ntn::OutputKind::kDrift) continue;
+      std::printf("  residual drift   %-16s %s %% at the end (t = %.3f s)\n",
+                  std::string(mdl::kOutputNames[c]).c_str(),
+                  fmt("%.5g", 100 * sink.last[c]).c_str(), simulated);
+    }
+    if (const int np = ntn::hil::plastic_directions(g_model); np > 0) {
+      const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
+      std::printf("  plastic     %zu of %d plastic hinge directions yielded\n", yielded.size(), np);
+      static const char* const kDir[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+      for (const auto& y : yielded) {
+        const bool rot = y.direction >= 3;
+        const auto& law = mdl::kSpec.hystereses[static_cast<std::size_t>(
+            mdl::kSpec.hinges[static_cast<std::size_t>(y.hinge)]
+                .hysteresis[static_cast<std::size_t>(y.direction)])];
+        std::printf("    %-16s %s  peak %s %s, residual %s %s, dissipated %s J, %s\n",
+                    std::string(mdl::kHingeNames[static_cast<std::size_t>(y.hinge)]).c_str(),
+                    kDir[y.direction], fmt("%.4g", y.peak).c_str(), rot ? "rad" : "m",
+                    fmt("%.4g", y.residual).c_str(), rot ? "rad" : "m",
+                    fmt("%.4g", y.dissipated).c_str(),
+                    ntn::hil::level_name(y.level, law.limits[0] > 0));
+      }
+    }
     if (result.input_held_frames > 0)
       std::printf(
           "  inputs held %llu frames had an input the gate refused (last good value held)\n",
@@ -360,7 +386,23 @@ int main(int argc, char** argv) {
          << "\": {\"abs\": " << fmt("%.17g", peaks[c].value)
          << ", \"time\": " << fmt("%.9g", peaks[c].time) << "}";
     }
-    js << "\n  }\n}\n";
+    js << "\n  },\n  \"end\": {";
+    for (std::size_t c = 0; c < kS.outputs; ++c) {
+      js << (c ? ",\n" : "\n") << "    \"" << mdl::kOutputNames[c]
+         << "\": " << fmt("%.17g", sink.last[c]);
+    }
+    js << "\n  },\n  \"yielded\": [";
+    const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
+    for (std::size_t i = 0; i < yielded.size(); ++i) {
+      const auto& y = yielded[i];
+      js << (i ? ",\n" : "\n") << "    {\"hinge\": \""
+         << mdl::kHingeNames[static_cast<std::size_t>(y.hinge)]
+         << "\", \"direction\": " << y.direction << ", \"peak\": " << fmt("%.17g", y.peak)
+         << ", \"residual\": " << fmt("%.17g", y.residual)
+         << ", \"dissipated_J\": " << fmt("%.17g", y.dissipated) << ", \"level\": " << y.level
+         << "}";
+    }
+    js << "\n  ]\n}\n";
     if (auto e = ntn::cli::close_output(js, "--summary-json", json_path)) {
       std::fprintf(stderr, "error: %s\n", e->c_str());
       return 2;

@@ -1,0 +1,64 @@
+// The plastic hinge directions that yielded in a run (issue 15), for the run and loop summaries:
+// from the final State (its history: plastic deformation now and at its peak, energy dissipated)
+// and the model's acceptance limits (the performance level, ntn::performance_level).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ntn/hysteresis.hpp"
+#include "ntn/model.hpp"
+#include "ntn/state.hpp"
+
+namespace ntn::hil {
+
+struct YieldedDirection {
+  int hinge = 0;
+  int direction = 0;      // local 0..5 (ux .. rz)
+  double peak = 0;        // m or rad, the largest |d_p|
+  double residual = 0;    // m or rad, d_p at the end (the permanent deformation)
+  double dissipated = 0;  // J
+  int level = 0;          // 0..4 (performance_level)
+};
+
+// Every plastic direction whose plastic deformation is not zero, in hinge then direction order.
+template <Sizes S>
+std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<S>& s) {
+  std::vector<YieldedDirection> out;
+  if constexpr (S.hinges > 0 && S.hystereses > 0) {
+    for (std::size_t h = 0; h < S.hinges; ++h) {
+      const HingeData& hd = m.hinges[h];
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if (!((hd.plastic >> k) & 1U)) continue;
+        const auto slot = static_cast<std::size_t>(hd.history[k]);
+        if (!(s.plastic_peak[slot] > 0)) continue;
+        out.push_back({static_cast<int>(h), static_cast<int>(k), s.plastic_peak[slot],
+                       s.plastic[slot], s.dissipated[slot],
+                       performance_level(m.hystereses[slot].limits, s.plastic_peak[slot])});
+      }
+    }
+  }
+  return out;
+}
+
+// "elastic", "IO", "LS", "CP", "beyond CP" (no limits: "yielded" for level 1).
+inline const char* level_name(int level, bool has_limits) {
+  static const char* const kNames[5] = {"elastic", "IO", "LS", "CP", "beyond CP"};
+  if (level == 1 && !has_limits) return "yielded";
+  return level >= 0 && level <= 4 ? kNames[level] : "?";
+}
+
+template <Sizes S>
+int plastic_directions(const Model<S>& m) {
+  int n = 0;
+  if constexpr (S.hinges > 0) {
+    for (const HingeData& h : m.hinges) {
+      for (std::size_t k = 0; k < kDofsPerNode; ++k)
+        n += (h.plastic >> k) & 1U;
+    }
+  }
+  return n;
+}
+
+}  // namespace ntn::hil
