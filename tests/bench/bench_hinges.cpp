@@ -142,6 +142,7 @@ template <Sizes S>
 void reset(State<S>& s) {
   s.u.fill(0.0), s.v.fill(0.0), s.held_inputs.fill(0.0);
   s.tick = 0, s.inputs_held = 0, s.faults = 0;
+  s.plastic.fill(0.0), s.dissipated.fill(0.0), s.plastic_peak.fill(0.0);
 }
 
 // From rest, `steps` steps; false if a step diverged.
@@ -205,6 +206,12 @@ void bm_step(benchmark::State& bs) {
     max_u = std::max(max_u, std::fabs(x));
   bs.counters["max_abs_u"] = max_u;
   bs.counters["repeat_identical"] = identical ? 1 : 0;
+  if constexpr (S.hystereses > 0) {  // plastic directions that have yielded by the end
+    double yielded = 0;
+    for (double p : s.plastic_peak)
+      yielded += p > 0 ? 1 : 0;
+    bs.counters["yielded"] = yielded;
+  }
 }
 
 // ---- Summary after the run: ratios from the medians (or the single runs). -------------------
@@ -258,7 +265,7 @@ void print_summary(const SummaryReporter& rep) {
     std::printf("  %-22s %9.2f us/step  dt %6.1f us  %8.3f s CPU per simulated s\n", "merged",
                 merged->cpu_per_step * 1e6, merged->dt * 1e6, merged->cpu_per_sim_s);
   }
-  for (const char* kind : {"pinned", "mixed"}) {
+  for (const char* kind : {"pinned", "mixed", "semirigid", "plastic"}) {
     for (Variant v : {Variant::kExact, Variant::kPaper, Variant::kPenalty}) {
       const std::string label = std::string(kind) + "/" + name_of(v);
       const Figures* f = rep.find("step/" + label + "/");
@@ -272,6 +279,13 @@ void print_summary(const SummaryReporter& rep) {
       if (f->max_abs_u > kUnbounded) std::printf("  UNSTABLE: |u| reached %.1e", f->max_abs_u);
       std::printf("\n");
     }
+  }
+  const Figures* semi = rep.find("step/semirigid/ntn_exact/");
+  const Figures* plastic = rep.find("step/plastic/ntn_exact/");
+  if (semi != nullptr && plastic != nullptr && semi->cpu_per_step > 0) {
+    const double r = plastic->cpu_per_step / semi->cpu_per_step;
+    std::printf("  plastic / linear hinge directions per step: %.2f (target <= 1.3: %s)\n", r,
+                r <= 1.3 ? "met" : "missed");
   }
   const Figures* exact = rep.find("step/pinned/ntn_exact/");
   const Figures* penalty = rep.find("step/pinned/penalty/");
@@ -668,6 +682,8 @@ int main(int argc, char** argv) {
   register_step<Joints::kMixed, Variant::kExact>("mixed");
   register_step<Joints::kMixed, Variant::kPaper>("mixed");
   register_step<Joints::kMixed, Variant::kPenalty>("mixed");
+  register_step<Joints::kSemiRigid, Variant::kExact>("semirigid");
+  register_step<Joints::kPlastic, Variant::kExact>("plastic");
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   SummaryReporter reporter;

@@ -50,11 +50,14 @@ constexpr Sizes sizes_of(Grid g) {
 
 // How the beams meet the columns.
 enum class Joints : std::uint8_t {
-  kMerged,  // beam ends share the column's node: fully fixed connections, no hinges
-  kPinned,  // each beam end has its own node and an NTN hinge to the column's node, in the
-            // beam's local axes: rigid in ux, uy, uz, rx (torsion), free in ry, rz
-  kMixed,   // as kPinned, but ry is a `curve` with a +-0.1 mrad gap between rigid stops and rz a
-            // `linear` spring with a dashpot: every hinge kind in one model
+  kMerged,     // beam ends share the column's node: fully fixed connections, no hinges
+  kPinned,     // each beam end has its own node and an NTN hinge to the column's node, in the
+               // beam's local axes: rigid in ux, uy, uz, rx (torsion), free in ry, rz
+  kMixed,      // as kPinned, but ry is a `curve` with a +-0.1 mrad gap between rigid stops and rz a
+               // `linear` spring with a dashpot: every hinge kind in one model
+  kSemiRigid,  // as kPinned, but ry and rz are `linear` rotational springs kSemiRigidSpring
+  kPlastic,    // as kSemiRigid, but ry and rz are `plastic` (same k, yield kPlasticYield): the
+               // beam ends yield under the benchmark load (issue 15, "Speed")
 };
 
 constexpr int hinge_count(Grid g, Joints j) {
@@ -66,6 +69,7 @@ constexpr Sizes sizes_of(Grid g, Joints j) {
   s.hinges = static_cast<std::size_t>(hinge_count(g, j));
   s.nodes += s.hinges;  // one node of its own per hinged beam end
   if (j == Joints::kMixed) s.curves = 1, s.curve_points = 4;
+  if (j == Joints::kPlastic) s.hystereses = 2 * s.hinges;  // ry and rz of every hinge
   return s;
 }
 
@@ -94,6 +98,14 @@ inline constexpr double kStopSlope = 1e10;          // N m/rad
 inline constexpr double kLimitRotStiffness = 1e10;  // N m/rad, curve slopes >= this are rigid
 inline constexpr double kMixedSpring = 1e6;         // N m/rad
 inline constexpr double kMixedDashpot = 1e3;        // N m s/rad
+
+// Joints::kSemiRigid and kPlastic: ry and rz rotational springs of about 0.6 x the IPE 400's
+// 4 E I / l (3.2e7 N m/rad), soft enough not to lower the stable step. The plastic ones yield at
+// 30 kN m (hardening 2 %), below the ~60 kN m that gravity alone puts on a semi-rigid beam end
+// (q l^2 / 12 with q ~ 35 kN/m, l = 6 m, shared with the span): they yield from the first steps.
+inline constexpr double kSemiRigidSpring = 2e7;  // N m/rad
+inline constexpr double kPlasticYield = 3e4;     // N m
+inline constexpr double kPlasticHardening = 0.02;
 
 // Placement of T into static storage (no heap), value-initialized at first use. Large models do
 // not fit the stack and should not sit in the executable's data section as constant initializers.
@@ -177,6 +189,21 @@ void build_frame(ModelSpec<sizes_of(G, J)>& spec) {
         h.behaviour[kRy] = HingeBehaviour::kCurve, h.curve[kRy] = 0;
         h.behaviour[kRz] = HingeBehaviour::kLinear;
         h.stiffness[kRz] = kMixedSpring, h.dashpot[kRz] = kMixedDashpot;
+      }
+      if constexpr (J == Joints::kSemiRigid || J == Joints::kPlastic) {
+        constexpr HingeBehaviour kB =
+            J == Joints::kPlastic ? HingeBehaviour::kPlastic : HingeBehaviour::kLinear;
+        h.behaviour[kRy] = h.behaviour[kRz] = kB;
+        h.stiffness[kRy] = h.stiffness[kRz] = kSemiRigidSpring;
+        if constexpr (J == Joints::kPlastic) {
+          const int slot = 2 * (next_hinge - 1);
+          h.hysteresis[kRy] = slot, h.hysteresis[kRz] = slot + 1;
+          for (int k = 0; k < 2; ++k) {
+            spec.hystereses[static_cast<std::size_t>(slot + k)] = {.yield_pos = kPlasticYield,
+                                                                   .yield_neg = kPlasticYield,
+                                                                   .hardening = kPlasticHardening};
+          }
+        }
       }
     }
     return end;
