@@ -8,8 +8,8 @@
 // 3. a hinged cantilever whose plastic hinge never yields gives the bits of the same model with
 //    linear directions;
 // 4. asymmetric yields: the force stays in [q - yield_neg, q + yield_pos] every step, and the
-// loop's
-//    plateaus are the two yields (b = 0).
+//    loop's plateaus are the two yields (b = 0); in a forced vibration, the energy balance holds
+//    every step.
 // The oscillator (support/plastic_models.hpp): a 1000 kg mass on a hinge of k = 1e6 N/m, F_y =
 // 1e4 N (u_y = 1 cm), omega = 31.6 rad/s, T = 0.199 s, plus a soft element (E A / L = 1 N/m = 1e-6
 // k in parallel, 1e-6 m of mass) that the kernel needs. Each test states its tolerance and why.
