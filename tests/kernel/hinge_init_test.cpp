@@ -2,11 +2,14 @@
 // connections (two hinges between the same pair, a triangle, a tree reaching the ground twice)
 // is refused as kRigidCycle, and a hinge with a bad frame, curve, node or stiffness as kBadHinge,
 // each with `where` naming the offending hinge; the valid neighbours of each case are accepted.
+// A `plastic` direction's law (issue 15: yields > 0 and finite, hardening in [0, 1), one slot per
+// direction, in range) is checked the same way.
 #include <gtest/gtest.h>
 
 #include <ostream>
 
 #include <initializer_list>
+#include <limits>
 
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
@@ -22,8 +25,13 @@ using B = ntn::HingeBehaviour;
 // from n2 to the clamped n3, beam 2 from n4 to the clamped n5 (along y). Nodes 1, 2 and 4
 // coincide. Valid hinges: h0 pins n2 to n1 (free about y), h1 joins n4 to n1 rigidly, h2 (the
 // slot the cases edit) joins n4 to n2 with every direction free (no rigid connection).
-constexpr ntn::Sizes kS{
-    .nodes = 6, .elements = 3, .outputs = 1, .hinges = 3, .curves = 2, .curve_points = 6};
+constexpr ntn::Sizes kS{.nodes = 6,
+                        .elements = 3,
+                        .outputs = 1,
+                        .hinges = 3,
+                        .curves = 2,
+                        .curve_points = 6,
+                        .hystereses = 3};
 ntn::ModelSpec<kS> spec;
 ntn::Model<kS> model;
 
@@ -216,6 +224,76 @@ TEST(HingeInit, OtherBadHingesAreRefused) {
   spec.outputs[0].kind = ntn::OutputKind::kHingeDisplacement;
   spec.outputs[0].dof = 6;
   expect_error(ntn::InitError::kBadOutput, {0}, "hinge channel direction out of range");
+}
+
+// `plastic` directions (issue 15): hinge 2 (free, n4 to n2) gets rx in slot 0 and ry in slot 1,
+// laws valid at their edges (hardening 0 and just below 1, tiny and large yields), then one thing
+// made bad at a time: a yield not > 0 or not finite, a hardening outside [0, 1), a slot out of
+// range or negative, a slot taken by two directions (of one hinge, or of two: the second one
+// named), a plastic direction without a positive elastic stiffness or with a negative dashpot.
+void plastic_base() {
+  base();
+  ntn::HingeSpec& h = spec.hinges[2];
+  for (const int d : {ntn::kRx, ntn::kRy}) {
+    const auto k = static_cast<std::size_t>(d);
+    h.behaviour[k] = B::kPlastic;
+    h.stiffness[k] = 1e4;
+    h.dashpot[k] = 1.0;
+    h.hysteresis[k] = d - ntn::kRx;
+  }
+  spec.hystereses[0] = {1e-12, 5e3, 0.0};
+  spec.hystereses[1] = {2e3, 1e250, 0.999999};
+  // slot 2 unused: its (all-zero, invalid) law is never read
+}
+
+TEST(HingeInit, PlasticLawsAreChecked) {
+  plastic_base();
+  {
+    const ntn::InitStatus st = init();
+    EXPECT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  }
+  struct Law {
+    ntn::HysteresisSpec law;
+    const char* what;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Law& c :
+       {Law{{0.0, 5e3, 0.0}, "yield 0"}, Law{{-1.0, 5e3, 0.0}, "negative yield"},
+        Law{{1e3, 0.0, 0.0}, "yield_negative 0"}, Law{{1e3, -5e3, 0.0}, "negative yield_negative"},
+        Law{{nan, 5e3, 0.0}, "NaN yield"}, Law{{1e3, inf, 0.0}, "infinite yield_negative"},
+        Law{{1e3, 5e3, 1.0}, "hardening 1"}, Law{{1e3, 5e3, -0.01}, "negative hardening"},
+        Law{{1e3, 5e3, nan}, "NaN hardening"}}) {
+    plastic_base();
+    spec.hystereses[1] = c.law;
+    expect_error(ntn::InitError::kBadHinge, {2}, c.what);
+  }
+  plastic_base();
+  spec.hinges[2].hysteresis[ntn::kRy] = 3;
+  expect_error(ntn::InitError::kBadHinge, {2}, "slot out of range");
+  plastic_base();
+  spec.hinges[2].hysteresis[ntn::kRy] = -1;
+  expect_error(ntn::InitError::kBadHinge, {2}, "negative slot");
+  plastic_base();
+  spec.hinges[2].hysteresis[ntn::kRy] = 0;
+  expect_error(ntn::InitError::kBadHinge, {2}, "one slot, two directions of a hinge");
+  plastic_base();
+  spec.hinges[0].behaviour[ntn::kRy] = B::kPlastic;  // the pin's free direction
+  spec.hinges[0].stiffness[ntn::kRy] = 1e4;
+  spec.hinges[0].hysteresis[ntn::kRy] = 1;
+  expect_error(ntn::InitError::kBadHinge, {2}, "one slot, directions of two hinges");
+  spec.hinges[0].hysteresis[ntn::kRy] = 2;  // its own slot, with a valid law: accepted
+  spec.hystereses[2] = {1e3, 1e3, 0.5};
+  {
+    const ntn::InitStatus st = init();
+    EXPECT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  }
+  plastic_base();
+  spec.hinges[2].stiffness[ntn::kRx] = 0;
+  expect_error(ntn::InitError::kBadHinge, {2}, "plastic without elastic stiffness");
+  plastic_base();
+  spec.hinges[2].dashpot[ntn::kRx] = -1;
+  expect_error(ntn::InitError::kBadHinge, {2}, "plastic with a negative dashpot");
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 //   other (a row of B, B u, B^T f: virtual work f_L . d_L = f . x);
 // - check_axes against R R^T - I and det R worked out by hand for a one-entry perturbation;
 // - curve_branches and curve_force on curves whose segments' slopes are chosen here;
-// - hinge_inverse_mass against b^T M^-1 b summed densely.
+// - hinge_inverse_mass against b^T M^-1 b summed densely;
+// - hysteresis_update (hysteresis.hpp) along a deformation path worked out by hand.
 // Each test states its tolerance and why.
 #include <gtest/gtest.h>
 
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "ntn/hinge.hpp"
+#include "ntn/hysteresis.hpp"
 #include "support/assemble.hpp"
 #include "support/hinges.hpp"
 
@@ -327,6 +329,45 @@ TEST(HingeGeometry, InverseMassIsBTransposeMInverseB) {
   zero[1] = 0;
   EXPECT_EQ(ntn::hinge_inverse_mass(a, 0, zero.data(), zero.data() + 6),
             1.0 / mass[0] + 1.0 / mass[6]);
+}
+
+// The return mapping along a path worked out by hand: k = 100, yield 10 (positive) and 5
+// (negative), b = 0.2, so H = b k / (1 - b) = 25 and k + H = 125.
+//   d = 0.05: trial k d = 5 inside [-5, 10]: elastic, d_p = 0.
+//   d = 0.2: trial 20 exceeds 10 by 10: d_p = 10 / 125 = 0.08, f = k (d - d_p) = 12 = H d_p + 10
+//     (on the edge); plastic work = integral_0^0.08 (10 + 25 x) dx = 0.8 + 0.08 = 0.88.
+//   d = 0.1: trial relative to q: 100 (0.1 - 0.08) - 25 0.08 = 0: elastic.
+//   d = 0: trial -8 - 2 = -10 is 5 below -5: d_p = 0.08 - 5 / 125 = 0.04, f = -4 = H d_p - 5;
+//     work = integral_0.08^0.04 (25 x - 5) dx = 0.14 (positive: force and flow both negative).
+//   d = 0.04: trial 0 - 1 = -1: elastic (a reversal inside the range).
+// 1e-15 relative to numbers of order 1: a handful of roundings.
+TEST(Hysteresis, ReturnMappingFollowsAHandComputedPath) {
+  const ntn::HysteresisData h = ntn::make_hysteresis({10.0, 5.0, 0.2}, 100.0);
+  EXPECT_NEAR(h.H, 25.0, 1e-14);
+  double dp = 0, w = 0, peak = 0;
+  struct Step {
+    double d, dp, f, work;
+  };
+  for (const Step& s :
+       {Step{0.05, 0.0, 5.0, 0.0}, Step{0.2, 0.08, 12.0, 0.88}, Step{0.1, 0.08, 2.0, 0.88},
+        Step{0.0, 0.04, -4.0, 1.02}, Step{0.04, 0.04, 0.0, 1.02}}) {
+    ntn::hysteresis_update(h, s.d, dp, w, peak);
+    EXPECT_NEAR(dp, s.dp, 1e-15) << "d = " << s.d;
+    EXPECT_NEAR(100.0 * (s.d - dp), s.f, 1e-13) << "d = " << s.d;
+    EXPECT_NEAR(w, s.work, 1e-15) << "d = " << s.d;
+  }
+  EXPECT_NEAR(peak, 0.08, 1e-15);  // the largest |d_p| on the path
+  // Perfectly plastic (b = 0): the force is clipped to the yields, the work is yield x flow.
+  const ntn::HysteresisData p = ntn::make_hysteresis({10.0, 5.0, 0.0}, 100.0);
+  dp = 0, w = 0, peak = 0;
+  ntn::hysteresis_update(p, 0.3, dp, w, peak);  // trial 30: d_p = 0.2, f = 10, work 10 x 0.2
+  EXPECT_NEAR(dp, 0.2, 1e-15);
+  EXPECT_NEAR(w, 2.0, 1e-14);
+  ntn::hysteresis_update(p, -0.1, dp, w,
+                         peak);  // trial -30: d_p = 0.2 - 0.25, f = -5, work 5 x 0.25
+  EXPECT_NEAR(dp, -0.05, 1e-15);
+  EXPECT_NEAR(w, 3.25, 1e-14);
+  EXPECT_NEAR(peak, 0.2, 1e-15);  // |d_p| went 0.2, then 0.05
 }
 
 }  // namespace

@@ -1,0 +1,153 @@
+// Kernel rules with a yielding run (issue 15): `plastic` hinge directions keep their history in
+// State (State::plastic, State::dissipated), so
+// - init, start and the steps of a run that yields allocate nothing (every malloc and operator
+//   new counted, tests/support/alloc_counter.cpp, with Eigen's no-malloc guard on);
+// - two runs are bit-identical (memcmp of u, v, the history and the outputs);
+// - a copy of State taken while a direction is yielding (its d_p changed in the step before and
+//   changes in the step after) and resumed with a fresh Scratch gives the bits of the
+//   uninterrupted run.
+// The model: the hinged cantilever of support/plastic_models.hpp, its hinge plastic about y and z
+// (kinematic hardening 0.05 and 0, asymmetric yields, dashpots), under a tip pulse and a noisy
+// ground acceleration and tip force (inputs), with Rayleigh damping.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+
+#include "ntn/kernel.hpp"
+#include "support/alloc_counter.hpp"
+#include "support/builders.hpp"
+#include "support/frames.hpp"
+#include "support/hinges.hpp"
+#include "support/init_model.hpp"
+#include "support/no_heap.hpp"
+#include "support/plastic_models.hpp"
+
+namespace {
+
+using ntn_test::dof;
+using K = ntn::OutputKind;
+
+constexpr ntn::Sizes kS = ntn_test::hinged_cantilever_sizes(
+    {.time_functions = 1, .time_points = 3, .loads = 2, .inputs = 2, .outputs = 6});
+constexpr long kSteps = 20'000;
+using Inputs = std::array<double, kS.inputs>;
+
+ntn::ModelSpec<kS> spec;
+ntn::Model<kS> model_a, model_b;
+ntn::InitWorkspace<kS> init_work;  // static: init() is inside the allocation count
+ntn::State<kS> a, b, checkpoint;
+ntn::Scratch<kS> wa, wb;
+
+void build() {
+  ntn_test::hinged_cantilever(spec, ntn::HingeBehaviour::kPlastic, 2e6);
+  spec.hinges[0].dashpot[ntn::kRy] = 50;
+  spec.hinges[0].dashpot[ntn::kRz] = 20;
+  spec.hystereses[0] = {6e3, 4e3, 0.05};
+  spec.hystereses[1] = {3e3, 5e3, 0.0};
+  spec.time_points = ntn_test::triangle_pulse(0.01);
+  spec.time_functions[0] = {0, 3};
+  spec.loads[0] = {4, ntn::kUz, 2e4, 0};
+  spec.loads[1] = {4, ntn::kUy, -1.5e4, 0};
+  spec.inputs[0] = {ntn::InputKind::kGroundAcceleration, 0, ntn::kUy, 9.80665, -5, 5};
+  spec.inputs[1] = {ntn::InputKind::kNodalForce, 4, ntn::kUz, 1e4, -5, 5};
+  int c = 0;
+  for (const int d : {ntn::kRy, ntn::kRz}) {
+    for (const K kind : {K::kHingeForce, K::kHingePlastic, K::kHingeDissipated})
+      spec.outputs[static_cast<std::size_t>(c++)] = ntn_test::hinge_channel(kind, 0, d);
+  }
+  spec.settings.alpha = 0.5;
+  spec.settings.beta = 1e-6;
+  spec.settings.dt = 0.9 * ntn_test::hinged_stable_step(spec).dt_stable;
+}
+
+Inputs inputs_at(long n) {
+  return {2 * ntn_test::input_sample(0, n), 2 * ntn_test::input_sample(1, n)};
+}
+
+void run(const ntn::Model<kS>& m, ntn::State<kS>& s, ntn::Scratch<kS>& w, long from, long to) {
+  for (long n = from; n < to; ++n) {
+    if (ntn::step(m, s, w, inputs_at(n)) != ntn::StepStatus::kOk) {
+      ADD_FAILURE() << "step " << n;
+      break;
+    }
+  }
+}
+
+void expect_identical(const ntn::State<kS>& x, const ntn::State<kS>& y) {
+  EXPECT_EQ(std::memcmp(x.u.data(), y.u.data(), sizeof(x.u)), 0);
+  EXPECT_EQ(std::memcmp(x.v.data(), y.v.data(), sizeof(x.v)), 0);
+  EXPECT_EQ(std::memcmp(x.plastic.data(), y.plastic.data(), sizeof(x.plastic)), 0);
+  EXPECT_EQ(std::memcmp(x.dissipated.data(), y.dissipated.data(), sizeof(x.dissipated)), 0);
+  EXPECT_EQ(x.tick, y.tick);
+}
+
+TEST(PlasticRules, NoHeapAllocationInAYieldingRun) {
+  build();
+  ntn::InitStatus st;
+  ntn::StepStatus first = ntn::StepStatus::kDiverged;
+  ntn_test::AllocationCounts c;
+  {
+    const ntn_test::AllocationScope scope;
+    const ntn_test::EigenNoMalloc guard;
+    st = ntn::init(spec, model_a, init_work);
+    a = {};
+    first = ntn::start(model_a, a, wa, inputs_at(-1));
+    run(model_a, a, wa, 0, kSteps);
+    c = scope.counts();
+  }
+  ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  EXPECT_EQ(first, ntn::StepStatus::kOk);
+  std::printf("  dt %.3e s, %ld steps: d_p %.3e / %.3e rad, dissipated %.1f / %.1f J (ry / rz)\n",
+              model_a.dt, kSteps, a.plastic[0], a.plastic[1], a.dissipated[0], a.dissipated[1]);
+  EXPECT_GT(a.dissipated[0], 0.0) << "ry yields";
+  EXPECT_GT(a.dissipated[1], 0.0) << "rz yields";
+  EXPECT_EQ(c.allocations, 0U);
+  EXPECT_EQ(c.deallocations, 0U);
+}
+
+TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdentical) {
+  build();
+  {
+    const ntn_test::EigenNoMalloc guard;
+    ASSERT_TRUE(ntn_test::init_model(spec, model_a).ok());
+    ASSERT_TRUE(ntn_test::init_model(spec, model_b).ok());
+  }
+  // Run a to the first step at or after kSteps / 4 where a direction yields in two consecutive
+  // steps, checkpoint between the two, then finish; b runs uninterrupted.
+  long at = -1;
+  {
+    const ntn_test::EigenNoMalloc guard;
+    a = {}, b = {};
+    ASSERT_EQ(ntn::start(model_a, a, wa, inputs_at(-1)), ntn::StepStatus::kOk);
+    ASSERT_EQ(ntn::start(model_b, b, wb, inputs_at(-1)), ntn::StepStatus::kOk);
+    run(model_a, a, wa, 0, kSteps / 4);
+    bool yielded_before = false;
+    for (long n = kSteps / 4; n < kSteps; ++n) {
+      const auto before = a.plastic;
+      run(model_a, a, wa, n, n + 1);
+      const bool yields = a.plastic != before;
+      if (at < 0 && yields && yielded_before) at = n;  // steps n - 1 and n both yielded
+      if (at < 0 && yields) checkpoint = a;            // candidate: after step n
+      yielded_before = yields;
+    }
+    run(model_b, b, wb, 0, kSteps);
+  }
+  ASSERT_GE(at, 0) << "no direction yields in two consecutive steps";
+  std::printf("  checkpoint after step %ld, mid-yield (d_p %.6e, %.6e rad)\n", at - 1,
+              checkpoint.plastic[0], checkpoint.plastic[1]);
+  expect_identical(a, b);
+  EXPECT_EQ(std::memcmp(wa.outputs.data(), wb.outputs.data(), sizeof(wa.outputs)), 0);
+  // Resume from the State alone, with a fresh Scratch; its tick says which step is next.
+  EXPECT_EQ(checkpoint.tick, static_cast<std::int64_t>(at));
+  b = checkpoint, wb = {};
+  {
+    const ntn_test::EigenNoMalloc guard;
+    run(model_b, b, wb, at, kSteps);
+  }
+  expect_identical(a, b);
+  EXPECT_EQ(std::memcmp(wa.outputs.data(), wb.outputs.data(), sizeof(wa.outputs)), 0);
+  EXPECT_GT(a.dissipated[0] + a.dissipated[1], checkpoint.dissipated[0] + checkpoint.dissipated[1]);
+}
+
+}  // namespace
