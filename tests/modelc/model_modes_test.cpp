@@ -266,6 +266,7 @@ TEST(ModelModes, HingeDirectionsFollowTheModel) {
           EXPECT_EQ(t, "free") << where;
           break;
         case ntn::HingeBehaviour::kLinear:
+        case ntn::HingeBehaviour::kPlastic:  // below yield: its elastic stiffness
           if (m.hinges[h].stiffness[k] > 0) {
             EXPECT_EQ(t, "spring") << where;
             EXPECT_EQ(dir["stiffness"].number(), m.hinges[h].stiffness[k]) << where;

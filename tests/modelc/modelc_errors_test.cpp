@@ -162,7 +162,7 @@ const Expected kExpected[] = {
   {"BehaviourNegativeLinear", "hinge_values.toml", 68, 17, "hinges[0].ry.linear", "must not be negative (got -1)"},
   {"BehaviourMissingLinear", "hinge_values.toml", 69, 6, "hinges[0].rz.linear", "missing required key 'linear' (or give curve = \"id\")"},
   {"HingeNodeNotGround", "hinge_values.toml", 73, 13, "hinges[1].nodes[1]", "must be a node id or \"ground\" (got \"earth\")"},
-  {"BehaviourUnknownKey", "hinge_values.toml", 74, 22, "hinges[1].ux.spring", "unknown key 'spring' (this table takes: linear, dashpot, curve, plastic, yield, yield_negative, hardening)"},
+  {"BehaviourUnknownKey", "hinge_values.toml", 74, 22, "hinges[1].ux.spring", "unknown key 'spring' (this table takes: linear, dashpot, curve, plastic, yield, yield_negative, hardening, io, ls, cp)"},
   {"HingeNodesCount", "hinge_values.toml", 78, 9, "hinges[2].nodes", "expected [node 1, node 2] (node 2 may be \"ground\"), got 1 value"},
   {"HingeFrameBad", "hinge_values.toml", 79, 9, "hinges[2].frame", "must be \"global\" or { member = \"id\" } (or give axes), got \"local\""},
   {"HingeFrameAndAxes", "hinge_values.toml", 85, 8, "hinges[3].axes", "cannot be given together with 'frame'"},
