@@ -4,6 +4,7 @@
 // label strings.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -189,5 +190,82 @@ TEST(PlotCli, Frame3dHingeForces) {
   EXPECT_TRUE(png_size(dir / "ag.png"));
 }
 #endif
+
+}  // namespace
+
+namespace {
+
+// A plastic hinge direction's loops (issue 15): the force over the deformation, the law's
+// bilinear envelope and its IO, LS, CP limits marked, from a model with such a hinge (a column
+// whose base is a plastic hinge to the ground, ry).
+TEST(PlotCli, HysteresisLoopsWithEnvelopeAndLimits) {
+  TempDir dir;
+  write_file(dir / "m.toml", R"([model]
+name = "m"
+[[materials]]
+id = "S"
+E = 210e9
+nu = 0.3
+rho = 7850
+[[sections]]
+id = "H"
+A = 1e-2
+Iy = 1e-4
+Iz = 5e-5
+J = 1e-6
+[[nodes]]
+id = 1
+xyz = [0, 0, 0]
+[[nodes]]
+id = 2
+xyz = [0, 0, 3]
+[[members]]
+id = "C"
+nodes = [1, 2]
+material = "S"
+section = "H"
+[[hinges]]
+id = "base"
+nodes = [1, "ground"]
+ry = { plastic = 1e8, yield = 1e5, hardening = 0.05, io = 0.002, ls = 0.005, cp = 0.008 }
+)");
+  // Two cycles of a bilinear loop, +-6 mrad, yield rotation 1 mrad.
+  std::string csv = "time[s],base_ry[rad],base_My[N m]\n";
+  double dp = 0;
+  for (int i = 0; i <= 400; ++i) {
+    const double t = 0.01 * i;
+    const double d = 0.006 * std::sin(2 * 3.141592653589793 * t / 2.0);
+    const double H = 0.05 * 1e8 / 0.95;
+    const double xi = 1e8 * (d - dp) - H * dp;
+    if (xi > 1e5) dp += (xi - 1e5) / (1e8 + H);
+    if (xi < -1e5) dp += (xi + 1e5) / (1e8 + H);
+    char row[96];
+    std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g\n", t, d, 1e8 * (d - dp));
+    csv += row;
+  }
+  write_file(dir / "run.csv", csv);
+  const auto r = run(kCli + " hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
+                         (dir / "m.toml") + " --hinge base --direction ry --out " + (dir / "loops"),
+                     dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto svg = parse_svg(dir / "loops.svg");
+  ASSERT_EQ(svg.error, "");
+  for (const char* text : {"base_ry [rad]", "base_My [N m]", "base_My over base_ry",
+                           "envelope (bilinear, b = 0.05)", "IO", "LS", "CP"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+  ASSERT_TRUE(png_size(dir / "loops.png"));
+  // The envelope runs past the CP limit (8 mrad of plastic rotation, beyond the loops' +-6 mrad),
+  // so every limit is drawn: no note of a marker left out.
+  EXPECT_EQ(r.err.find("not drawn"), std::string::npos) << r.err;
+
+  expect_bad_input(dir,
+                   "hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
+                       (dir / "m.toml") + " --hinge base --direction rx",
+                   "--direction: rx of hinge base is not plastic");
+  expect_bad_input(dir,
+                   "hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
+                       (dir / "m.toml") + " --hinge nope --direction ry",
+                   "has no hinge 'nope'");
+}
 
 }  // namespace

@@ -202,6 +202,94 @@ pl::Figure history(const Common& o, const HistoryArgs& a) {
   return fig;
 }
 
+struct HysteresisArgs {
+  std::string deformation, force;  // the CSV's channels for x and y
+  std::string model, hinge, direction;
+  std::string from, to;  // s
+};
+
+// A plastic hinge direction's force-deformation loops (issue 15): the force channel over the
+// deformation channel; with --model, --hinge and --direction, the law's monotonic envelope
+// (bilinear: k up to the yield, then b k) and the acceptance limits IO, LS, CP marked at the
+// deformations where the envelope reaches those plastic deformations.
+pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
+  const pl::Table t = pl::read_table(o.file, "s");
+  const std::size_t cx = t.index(a.deformation), cy = t.index(a.force);
+  const double t_from = a.from.empty() ? t.x.front() : number(a.from, "--from");
+  const double t_to = a.to.empty() ? t.x.back() : number(a.to, "--to");
+  const auto r0 =
+      static_cast<std::size_t>(std::lower_bound(t.x.begin(), t.x.end(), t_from) - t.x.begin());
+  const auto r1 =
+      static_cast<std::size_t>(std::upper_bound(t.x.begin(), t.x.end(), t_to) - t.x.begin());
+  if (r1 < r0 + 2) bad("--from/--to: fewer than 2 rows of " + o.file + " in the window");
+  auto slice = [&](std::size_t c) {
+    return std::vector<double>(t.columns[c].begin() + static_cast<std::ptrdiff_t>(r0),
+                               t.columns[c].begin() + static_cast<std::ptrdiff_t>(r1));
+  };
+  pl::Figure fig;
+  fig.title = o.title;
+  fig.height = 800;
+  fig.width = 1000;
+  pl::Panel& p = fig.panels.emplace_back();
+  p.x_label = with_unit(t.names[cx], t.units[cx]);
+  p.y_label = with_unit(t.names[cy], t.units[cy]);
+  p.series.push_back({t.names[cy] + " over " + t.names[cx], slice(cx), slice(cy)});
+  if (a.model.empty()) return fig;
+  if (a.hinge.empty() || a.direction.empty()) bad("--model needs --hinge and --direction");
+  const ntn::modelc::LoadResult r = ntn::modelc::load_model(a.model);
+  if (!r.ok()) bad(ntn::modelc::format_all(r.errors) + "--model: the model does not load");
+  const ntn::modelc::ModelDescription& m = *r.model;
+  int h = -1;
+  for (std::size_t i = 0; i < m.hinge_info.size(); ++i) {
+    if (m.hinge_info[i].name == a.hinge) h = static_cast<int>(i);
+  }
+  if (h < 0) bad("--hinge: " + a.model + " has no hinge '" + a.hinge + "'");
+  static const char* const kDir[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  const auto* it = std::find(std::begin(kDir), std::end(kDir), a.direction);
+  if (it == std::end(kDir)) bad("--direction: one of ux, uy, uz, rx, ry, rz");
+  const auto k = static_cast<std::size_t>(it - std::begin(kDir));
+  const ntn::HingeSpec& hs = m.hinges[static_cast<std::size_t>(h)];
+  if (hs.behaviour[k] != ntn::HingeBehaviour::kPlastic)
+    bad("--direction: " + a.direction + " of hinge " + a.hinge + " is not plastic");
+  const ntn::HysteresisSpec& law = m.hystereses[static_cast<std::size_t>(hs.hysteresis[k])];
+  const double kel = hs.stiffness[k];
+  const double H = law.hardening * kel / (1.0 - law.hardening);
+  // The envelope d(d_p) = d_p + (F_y + H d_p) / k on each side, drawn over the loops' extent.
+  const auto [lo, hi] = std::minmax_element(p.series[0].x.begin(), p.series[0].x.end());
+  const double span = std::max(std::abs(*lo), std::abs(*hi));
+  pl::Series env{"envelope (bilinear, b = " + fmt("%g", law.hardening) + ")", {}, {}};
+  for (int side : {-1, 1}) {
+    const double fy = side > 0 ? law.yield_pos : law.yield_neg;
+    const double dy = fy / kel;
+    std::vector<double> xs{0.0, side * dy}, ys{0.0, side * fy};
+    // As far as the loops go, and past the CP limit, so that every limit is on the plot.
+    double far = std::max(span, 1.5 * dy);
+    if (law.limits[0] > 0)
+      far = std::max(far, 1.1 * (law.limits[2] + (fy + H * law.limits[2]) / kel));
+    if (far > dy) {
+      xs.push_back(side * far);
+      ys.push_back(side * (fy + law.hardening * kel * (far - dy)));
+    }
+    if (side < 0) {
+      env.x.insert(env.x.end(), xs.rbegin(), xs.rend());
+      env.y.insert(env.y.end(), ys.rbegin(), ys.rend());
+    } else {
+      env.x.insert(env.x.end(), xs.begin() + 1, xs.end());
+      env.y.insert(env.y.end(), ys.begin() + 1, ys.end());
+    }
+    if (law.limits[0] > 0) {
+      static const char* const kLevel[3] = {"IO", "LS", "CP"};
+      for (std::size_t l = 0; l < 3; ++l) {
+        const double dp = law.limits[l];
+        const double d = dp + (fy + H * dp) / kel;
+        p.markers.push_back({side * d, kLevel[l]});
+      }
+    }
+  }
+  p.series.push_back(env);
+  return fig;
+}
+
 struct PsdArgs {
   std::string columns;
   std::string marks;  // "1.60,mode 2=1.739"
@@ -270,9 +358,10 @@ pl::Figure psd(const Common& o, const PsdArgs& a) {
 int main(int argc, char** argv) {
   CLI::App app{"PNG and SVG plots of histories and spectra (gnuplot)"};
   app.require_subcommand(1);
-  Common ho, po;
+  Common ho, po, yo;
   HistoryArgs ha;
   PsdArgs pa;
+  HysteresisArgs ya;
   CLI::App* h = app.add_subcommand(
       "history", "one panel per channel (or group) of a run's CSV (time[s],name[unit],...) or AT2");
   add_common(h, ho);
@@ -293,6 +382,16 @@ int main(int argc, char** argv) {
   s->add_option("--fmax", pa.fmax, "highest frequency drawn, Hz")->check(ntn::cli::Finite());
   s->add_flag("--linear", pa.linear, "linear y axis (default: log)");
   s->add_flag("--logx", pa.log_x, "log frequency axis");
+  CLI::App* y = app.add_subcommand(
+      "hysteresis", "a hinge direction's force over its deformation (two channels of a run's CSV)");
+  add_common(y, yo);
+  y->add_option("-x,--deformation", ya.deformation, "deformation channel (x)")->required();
+  y->add_option("-y,--force", ya.force, "force channel (y)")->required();
+  y->add_option("--model", ya.model, "model file (.toml): draw the plastic law's envelope");
+  y->add_option("--hinge", ya.hinge, "the hinge (its name in the model)")->needs("--model");
+  y->add_option("--direction", ya.direction, "its direction (ux ... rz)")->needs("--model");
+  y->add_option("--from", ya.from, "start time in s")->check(ntn::cli::Finite());
+  y->add_option("--to", ya.to, "end time in s")->check(ntn::cli::Finite());
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -302,8 +401,9 @@ int main(int argc, char** argv) {
 
   try {
     const bool is_history = h->parsed();
-    const Common& o = is_history ? ho : po;
-    pl::Figure fig = is_history ? history(ho, ha) : psd(po, pa);
+    const bool is_loops = y->parsed();
+    const Common& o = is_history ? ho : is_loops ? yo : po;
+    pl::Figure fig = is_history ? history(ho, ha) : is_loops ? hysteresis(yo, ya) : psd(po, pa);
     const pl::Rendered r = draw(fig, o);
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "gnuplot: %s\n", w.c_str());
