@@ -24,6 +24,7 @@
 #include "cli.hpp"  // tools/io
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/csv_sink.hpp"
+#include "ntn/hil/energy.hpp"
 #include "ntn/hil/gate.hpp"
 #include "ntn/hil/loop.hpp"
 #include "ntn/hil/output_hash.hpp"
@@ -74,8 +75,11 @@ struct RunSink {
   std::array<Peak, kS.outputs> peaks{};
   std::array<double, kS.outputs> last{};  // the channels at the last step (residual drifts)
   std::int64_t steps = 0;
-  void after_step(const ntn::State<kS>&, const ntn::Scratch<kS>& w) {
+  ntn::hil::EnergyBalance<kS> energy;  // the run's work-energy identity (hil/energy.hpp)
+  void after_start(const ntn::State<kS>& s, const ntn::Scratch<kS>&) { energy.begin(g_model, s); }
+  void after_step(const ntn::State<kS>& s, const ntn::Scratch<kS>& w) {
     ++steps;
+    energy.after_step(g_model, s, w);
     hash->add_step(w);
     last = w.outputs;
     for (std::size_t c = 0; c < peaks.size(); ++c) {
@@ -248,7 +252,7 @@ int main(int argc, char** argv) {
   }
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(mdl::kSpec.inputs));
   ntn::hil::RecordSource source(records, gate, period, dt);
-  RunSink sink{&hash, &csv, flags, period};
+  RunSink sink{&hash, &csv, flags, period, {}, {}, 0, {}};
   ntn::hil::VirtualClock clock;
   ntn::hil::FrameTimes times;  // not kept: no latency on the virtual clock
 
@@ -339,6 +343,17 @@ int main(int argc, char** argv) {
                   std::string(mdl::kOutputNames[c]).c_str(),
                   fmt("%.5g", 100 * sink.last[c]).c_str(), simulated);
     }
+    {
+      const auto& e = sink.energy;
+      const double hyst = ntn::hil::hysteretic_energy(g_state);
+      std::printf(
+          "  energy      external work %s J = kinetic %s J + internal %s J (hysteretic %s J) "
+          "+ damping %s J; balance residual %.2g of the input\n",
+          fmt("%.6g", e.external()).c_str(), fmt("%.4g", e.kinetic() - e.kinetic0()).c_str(),
+          fmt("%.6g", e.internal()).c_str(), fmt("%.6g", hyst).c_str(),
+          fmt("%.6g", e.damping()).c_str(),
+          e.input_scale() > 0 ? std::fabs(e.residual()) / e.input_scale() : 0.0);
+    }
     if (const int np = ntn::hil::plastic_directions(g_model); np > 0) {
       const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
       std::printf("  plastic     %zu of %d plastic hinge directions yielded\n", yielded.size(), np);
@@ -391,7 +406,13 @@ int main(int argc, char** argv) {
       js << (c ? ",\n" : "\n") << "    \"" << mdl::kOutputNames[c]
          << "\": " << fmt("%.17g", sink.last[c]);
     }
-    js << "\n  },\n  \"yielded\": [";
+    const auto& bal = sink.energy;
+    js << "\n  },\n  \"energy_J\": {\"external\": " << fmt("%.17g", bal.external())
+       << ", \"kinetic_change\": " << fmt("%.17g", bal.kinetic() - bal.kinetic0())
+       << ", \"internal\": " << fmt("%.17g", bal.internal())
+       << ", \"hysteretic\": " << fmt("%.17g", ntn::hil::hysteretic_energy(g_state))
+       << ", \"damping\": " << fmt("%.17g", bal.damping())
+       << ", \"residual\": " << fmt("%.17g", bal.residual()) << "},\n  \"yielded\": [";
     const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
     for (std::size_t i = 0; i < yielded.size(); ++i) {
       const auto& y = yielded[i];

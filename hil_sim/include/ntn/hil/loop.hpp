@@ -119,7 +119,9 @@ std::int64_t source_epoch_ns(const Source& source) {
 // Outputs of frame k are the channels at t_k = k period (after the frame's first substep).
 // With InputSampling::kStep the source also has `void step_inputs(std::int64_t n,
 // std::span<double> v)`, kernel step n's inputs (n = k substeps + i for substep i of frame k).
-// A sink may also have `void after_step(const State<S>&, const Scratch<S>&)`, called after every
+// A sink may also have `void after_start(const State<S>&, const Scratch<S>&)`, called once after
+// ntn::start (the energy balance takes v_{-1/2} there), and
+// `void after_step(const State<S>&, const Scratch<S>&)`, called after every
 // kernel step (soak tests measure energy and constraints there).
 // `checkpoint`, when given, holds the state at the end of the last good frame (at the start
 // before frame 0); after a divergence `state` is set back to it, so the run can be inspected or
@@ -138,6 +140,9 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
   source.frame_inputs(0, current, in_flags);
   initial_state(model, state);  // the model's u_0, v_0 (static preload, [initial]; zero by default)
   (void)start(model, state, scratch, current);
+  if constexpr (requires { sink.after_start(state, scratch); }) {
+    sink.after_start(state, scratch);
+  }
   if (checkpoint != nullptr) *checkpoint = state;
   previous = current;
   const auto period_ns = static_cast<std::int64_t>(config.period * 1e9 + 0.5);
