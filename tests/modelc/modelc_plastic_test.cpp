@@ -161,6 +161,24 @@ TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
   EXPECT_FALSE(ntn::hysteresis_valid(bad));  // the kernel refuses what the compiler refuses
 }
 
+// A plastic direction far stiffer than the members it joins sets the stable step: a note at the
+// direction says so and by how much (the model still loads); a moderate one gives no note.
+TEST(ModelcPlastic, AStiffPlasticDirectionThatSetsTheStepIsNoted) {
+  const auto stiff = load_model_from_string(
+      model("{ plastic = 1e13, yield = 2e5 }", "{ plastic = 5e8, yield = 1e5 }"), "m.toml");
+  ASSERT_TRUE(stiff.ok()) << format_all(stiff.errors);
+  const std::string notes = format_all(stiff.notes);
+  EXPECT_NE(notes.find("m.toml:46:6: note: key 'hinges[0].ry': the elastic stiffness of this "
+                       "plastic direction (k = 1e+13 N m/rad) sets the stable step"),
+            std::string::npos)
+      << notes;
+  EXPECT_LE(stiff.model->stable.dt_stable, 0.5 * stiff.model->stable.dt_elements);
+  const auto soft = load_model_from_string(
+      model("{ plastic = 1e7, yield = 2e5 }", "{ plastic = 1e7, yield = 1e5 }"), "m.toml");
+  ASSERT_TRUE(soft.ok()) << format_all(soft.errors);
+  EXPECT_EQ(format_all(soft.notes).find("sets the stable step"), std::string::npos);
+}
+
 struct BadCase {
   const char* name;
   std::string base, stub, more;

@@ -22,6 +22,24 @@ void choose_time_step(Compilation& comp) {
   Settings& s = comp.d.settings;
   const std::vector<double>& mass = comp.mass;
   d.stable = stable_time_step(d.view(), mass);
+  // A plastic hinge direction stands for a connection that is rigid until it yields, so its
+  // elastic k is often chosen far stiffer than needed; when it sets the step well below the
+  // elements' own (half or less), say so at the direction (a note: the model runs).
+  if (const StableStepReport& st = d.stable;
+      st.governing_hinge >= 0 && st.dt_stable > 0 && st.dt_stable <= 0.5 * st.dt_elements) {
+    const auto h = static_cast<std::size_t>(st.governing_hinge);
+    const auto k = static_cast<std::size_t>(st.hinge_direction);
+    if (d.hinges[h].behaviour[k] == HingeBehaviour::kPlastic) {
+      L.note(
+          comp.dir_at[h][k],
+          "the elastic stiffness of this plastic direction (k = " + num(d.hinges[h].stiffness[k]) +
+              (k < 3 ? " N/m" : " N m/rad") + ") sets the stable step " + num(st.dt_stable) +
+              " s, " + num(st.dt_elements / st.dt_stable) + " x below the elements' own " +
+              num(st.dt_elements) +
+              " s: a smaller k, still well above the stiffness of the members it joins, runs "
+              "faster with the same plastic behaviour");
+    }
+  }
   auto governing = [&](const StableStepReport& r) {
     if (r.governing_hinge >= 0) {
       return d.describe_hinge(r.governing_hinge) + ", direction " +
