@@ -9,6 +9,7 @@
 #include "ntn/hysteresis.hpp"
 #include "ntn/modal/modal.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "ntn/modelc/model_report.hpp"
 
 namespace {
 
@@ -156,6 +157,12 @@ TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
   EXPECT_EQ(ntn::performance_level(lim, 0.025), 3);
   EXPECT_EQ(ntn::performance_level(lim, 0.04), 4);
   EXPECT_EQ(ntn::performance_level({}, 0.04), 1);  // no limits: yielded or not
+  // ntn-model info counts them: the yields' range, how many have limits.
+  EXPECT_NE(ntn::modelc::info_text(*r.model).find(
+                "plastic      2 plastic directions (bilinear, kinematic hardening), yield "
+                "1e+05 to 2e+05 N or N m, 1 with IO/LS/CP limits"),
+            std::string::npos)
+      << ntn::modelc::info_text(*r.model);
   ntn::HysteresisSpec bad = law;
   bad.limits = {0.02, 0.005, 0.03};
   EXPECT_FALSE(ntn::hysteresis_valid(bad));  // the kernel refuses what the compiler refuses

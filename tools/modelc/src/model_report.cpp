@@ -1,5 +1,6 @@
 #include "ntn/modelc/model_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -213,6 +214,21 @@ std::string info_text(const ModelDescription& m) {
                   : std::string()) +
              "; " + std::to_string(z.curves) + " curves (" + std::to_string(z.curve_points) +
              " points)");
+    if (!m.hystereses.empty()) {
+      double lo = 1e300, hi = 0;
+      int limits = 0;
+      for (const HysteresisSpec& h : m.hystereses) {
+        lo = std::min({lo, h.yield_pos, h.yield_neg});
+        hi = std::max({hi, h.yield_pos, h.yield_neg});
+        limits += h.limits[0] > 0 ? 1 : 0;
+      }
+      line("plastic", std::to_string(m.hystereses.size()) +
+                          " plastic directions (bilinear, kinematic hardening), yield " +
+                          f("%.4g", lo) + (hi > lo ? " to " + f("%.4g", hi) : std::string()) +
+                          " N or N m, " + std::to_string(limits) +
+                          " with IO/LS/CP limits; at their elastic stiffness in the stable step "
+                          "and the modes");
+    }
     line("method", std::string(method_name(s.hinge_method)) + ", clamp " +
                        (s.clamp == ClampRule::kMomentum ? "momentum" : "paper (S 33)"));
     const char* def = " (default: 1e4 x largest EA/l)";
