@@ -747,15 +747,12 @@ int hil_main(int argc, char** argv) {
     if (const int np = ntn::hil::plastic_directions(g_model); np > 0) {
       const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
       std::printf("  plastic  %zu of %d plastic hinge directions yielded\n", yielded.size(), np);
-      static const char* const kDir[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
       for (const auto& y : yielded) {
-        const auto& law = mdl::kSpec.hystereses[static_cast<std::size_t>(
-            mdl::kSpec.hinges[static_cast<std::size_t>(y.hinge)]
-                .hysteresis[static_cast<std::size_t>(y.direction)])];
         std::printf("    %s %s: peak plastic %.4g, residual %.4g (%s), dissipated %.4g J, %s\n",
                     std::string(mdl::kHingeNames[static_cast<std::size_t>(y.hinge)]).c_str(),
-                    kDir[y.direction], y.peak, y.residual, y.direction >= 3 ? "rad" : "m",
-                    y.dissipated, ntn::hil::level_name(y.level, law.limits[0] > 0));
+                    ntn::hil::direction_name(y.direction), y.peak, y.residual,
+                    y.direction >= 3 ? "rad" : "m", y.dissipated,
+                    ntn::hil::level_name(y.level, y.has_limits));
       }
     }
     if (result.kinetic_limit < std::numeric_limits<double>::infinity()) {

@@ -357,18 +357,13 @@ int main(int argc, char** argv) {
     if (const int np = ntn::hil::plastic_directions(g_model); np > 0) {
       const auto yielded = ntn::hil::yielded_directions(g_model, g_state);
       std::printf("  plastic     %zu of %d plastic hinge directions yielded\n", yielded.size(), np);
-      static const char* const kDir[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
       for (const auto& y : yielded) {
         const bool rot = y.direction >= 3;
-        const auto& law = mdl::kSpec.hystereses[static_cast<std::size_t>(
-            mdl::kSpec.hinges[static_cast<std::size_t>(y.hinge)]
-                .hysteresis[static_cast<std::size_t>(y.direction)])];
         std::printf("    %-16s %s  peak %s %s, residual %s %s, dissipated %s J, %s\n",
                     std::string(mdl::kHingeNames[static_cast<std::size_t>(y.hinge)]).c_str(),
-                    kDir[y.direction], fmt("%.4g", y.peak).c_str(), rot ? "rad" : "m",
-                    fmt("%.4g", y.residual).c_str(), rot ? "rad" : "m",
-                    fmt("%.4g", y.dissipated).c_str(),
-                    ntn::hil::level_name(y.level, law.limits[0] > 0));
+                    ntn::hil::direction_name(y.direction), fmt("%.4g", y.peak).c_str(),
+                    rot ? "rad" : "m", fmt("%.4g", y.residual).c_str(), rot ? "rad" : "m",
+                    fmt("%.4g", y.dissipated).c_str(), ntn::hil::level_name(y.level, y.has_limits));
       }
     }
     if (result.input_held_frames > 0)

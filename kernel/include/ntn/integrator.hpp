@@ -127,16 +127,22 @@ void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   }
 }
 
-// Spring and dashpot force f_L of one hinge (force on node 1, hinge frame): from d_L = B u and
-// its rate from v_{n-1/2} (DESIGN §7).
+// A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
 template <Sizes S>
-void hinge_spring_local(const Model<S>& m, const State<S>& s, const HingeData& h, double* f) {
+void hinge_deformation(const State<S>& s, const HingeData& h, double* d, double* d_dot) {
   const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
   const bool ground = h.node2 == kGround;
   const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
-  double d[6], d_dot[6];
   hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
   hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
+}
+
+// Spring and dashpot force f_L of one hinge (force on node 1, hinge frame), with the plastic
+// directions' history as it stands.
+template <Sizes S>
+void hinge_spring_local(const Model<S>& m, const State<S>& s, const HingeData& h, double* f) {
+  double d[6], d_dot[6];
+  hinge_deformation(s, h, d, d_dot);
   hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
 }
 
@@ -149,23 +155,17 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     for (int i = 0; i < m.num_spring_hinges; ++i) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
+      double d[6], d_dot[6], f[6];
+      hinge_deformation(s, h, d, d_dot);
       if constexpr (S.hystereses > 0) {
-        if (h.plastic != 0) {
-          double d[6];
-          hinge_relative(
-              h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
-              h.node2 == kGround ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)],
-              d);
-          for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-            if (!((h.plastic >> k) & 1U)) continue;
-            const auto slot = static_cast<std::size_t>(h.history[k]);
-            hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
-                              s.plastic_peak[slot]);
-          }
+        for (std::size_t k = 0; h.plastic != 0 && k < kDofsPerNode; ++k) {
+          if (!((h.plastic >> k) & 1U)) continue;
+          const auto slot = static_cast<std::size_t>(h.history[k]);
+          hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
+                            s.plastic_peak[slot]);
         }
       }
-      double f[6];
-      hinge_spring_local(m, s, h, f);
+      hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
       const bool ground = h.node2 == kGround;
       hinge_scatter(h, f, &w.f[static_cast<std::size_t>(kDofsPerNode * h.node1)],
                     ground ? nullptr : &w.f[static_cast<std::size_t>(kDofsPerNode * h.node2)]);

@@ -15,12 +15,19 @@ namespace ntn::hil {
 
 struct YieldedDirection {
   int hinge = 0;
-  int direction = 0;      // local 0..5 (ux .. rz)
-  double peak = 0;        // m or rad, the largest |d_p|
-  double residual = 0;    // m or rad, d_p at the end (the permanent deformation)
-  double dissipated = 0;  // J
-  int level = 0;          // 0..4 (performance_level)
+  int direction = 0;        // local 0..5 (ux .. rz)
+  double peak = 0;          // m or rad, the largest |d_p|
+  double residual = 0;      // m or rad, d_p at the end (the permanent deformation)
+  double dissipated = 0;    // J
+  int level = 0;            // 0..4 (performance_level)
+  bool has_limits = false;  // the law has IO, LS, CP limits
 };
+
+// "ux" ... "rz": a hinge direction's name.
+inline const char* direction_name(int direction) {
+  static const char* const kNames[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  return direction >= 0 && direction < 6 ? kNames[direction] : "?";
+}
 
 // Every plastic direction whose plastic deformation is not zero, in hinge then direction order.
 template <Sizes S>
@@ -35,7 +42,8 @@ std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<
         if (!(s.plastic_peak[slot] > 0)) continue;
         out.push_back({static_cast<int>(h), static_cast<int>(k), s.plastic_peak[slot],
                        s.plastic[slot], s.dissipated[slot],
-                       performance_level(m.hystereses[slot].limits, s.plastic_peak[slot])});
+                       performance_level(m.hystereses[slot].limits, s.plastic_peak[slot]),
+                       m.hystereses[slot].limits[0] > 0});
       }
     }
   }
