@@ -6,7 +6,7 @@
 // - check_axes against R R^T - I and det R worked out by hand for a one-entry perturbation;
 // - curve_branches and curve_force on curves whose segments' slopes are chosen here;
 // - hinge_inverse_mass against b^T M^-1 b summed densely;
-// - hysteresis_update (hysteresis.hpp) along a deformation path worked out by hand.
+// - bilinear_update (hysteresis.hpp) along a deformation path worked out by hand.
 // Each test states its tolerance and why.
 #include <gtest/gtest.h>
 
@@ -351,7 +351,7 @@ TEST(Hysteresis, ReturnMappingFollowsAHandComputedPath) {
   for (const Step& s :
        {Step{0.05, 0.0, 5.0, 0.0}, Step{0.2, 0.08, 12.0, 0.88}, Step{0.1, 0.08, 2.0, 0.88},
         Step{0.0, 0.04, -4.0, 1.02}, Step{0.04, 0.04, 0.0, 1.02}}) {
-    ntn::hysteresis_update(h, s.d, dp, w, peak);
+    ntn::bilinear_update(h, s.d, dp, w, peak);
     EXPECT_NEAR(dp, s.dp, 1e-15) << "d = " << s.d;
     EXPECT_NEAR(100.0 * (s.d - dp), s.f, 1e-13) << "d = " << s.d;
     EXPECT_NEAR(w, s.work, 1e-15) << "d = " << s.d;
@@ -360,11 +360,11 @@ TEST(Hysteresis, ReturnMappingFollowsAHandComputedPath) {
   // Perfectly plastic (b = 0): the force is clipped to the yields, the work is yield x flow.
   const ntn::HysteresisData p = ntn::make_hysteresis({10.0, 5.0, 0.0}, 100.0);
   dp = 0, w = 0, peak = 0;
-  ntn::hysteresis_update(p, 0.3, dp, w, peak);  // trial 30: d_p = 0.2, f = 10, work 10 x 0.2
+  ntn::bilinear_update(p, 0.3, dp, w, peak);  // trial 30: d_p = 0.2, f = 10, work 10 x 0.2
   EXPECT_NEAR(dp, 0.2, 1e-15);
   EXPECT_NEAR(w, 2.0, 1e-14);
-  ntn::hysteresis_update(p, -0.1, dp, w,
-                         peak);  // trial -30: d_p = 0.2 - 0.25, f = -5, work 5 x 0.25
+  ntn::bilinear_update(p, -0.1, dp, w,
+                       peak);  // trial -30: d_p = 0.2 - 0.25, f = -5, work 5 x 0.25
   EXPECT_NEAR(dp, -0.05, 1e-15);
   EXPECT_NEAR(w, 3.25, 1e-14);
   EXPECT_NEAR(peak, 0.2, 1e-15);  // |d_p| went 0.2, then 0.05

@@ -8,9 +8,12 @@
 //   uninterrupted run.
 // The model: the hinged cantilever of support/plastic_models.hpp, its hinge plastic about y and z
 // (kinematic hardening 0.05 and 0, asymmetric yields, dashpots), under a tip pulse and a noisy
-// ground acceleration and tip force (inputs), with Rayleigh damping.
+// ground acceleration and tip force (inputs), with Rayleigh damping. The same with `backbone`
+// directions (kinematic about y, peak_oriented about z, both degrading past C): their history
+// also holds the excursions and the reloading lines' anchors (State::excursion).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -39,12 +42,30 @@ ntn::InitWorkspace<kS> init_work;  // static: init() is inside the allocation co
 ntn::State<kS> a, b, checkpoint;
 ntn::Scratch<kS> wa, wb;
 
-void build() {
+// A backbone law of elastic stiffness 2e6 N m/rad through B = (f_B / k, f_B).
+ntn::HysteresisSpec backbone(ntn::HysteresisRule rule, double fb, double dc, double fc, double dd,
+                             double fd, double de) {
+  ntn::HysteresisSpec h;
+  h.rule = rule;
+  h.backbone_pos = {{{fb / 2e6, fb}, {dc, fc}, {dd, fd}, {de, fd}}};
+  h.backbone_neg = h.backbone_pos;
+  h.yield_pos = h.yield_neg = fb;
+  return h;
+}
+
+void build(bool backbones = false) {
   ntn_test::hinged_cantilever(spec, ntn::HingeBehaviour::kPlastic, 2e6);
   spec.hinges[0].dashpot[ntn::kRy] = 50;
   spec.hinges[0].dashpot[ntn::kRz] = 20;
   spec.hystereses[0] = {6e3, 4e3, 0.05};
   spec.hystereses[1] = {3e3, 5e3, 0.0};
+  if (backbones) {
+    spec.hinges[0].dashpot[ntn::kRy] = spec.hinges[0].dashpot[ntn::kRz] = 0;
+    spec.hystereses[0] =
+        backbone(ntn::HysteresisRule::kKinematic, 6e3, 0.01, 6.5e3, 0.012, 2e3, 0.5);
+    spec.hystereses[1] =
+        backbone(ntn::HysteresisRule::kPeakOriented, 3e3, 0.005, 3.3e3, 0.005, 1e3, 0.5);
+  }
   spec.time_points = ntn_test::triangle_pulse(0.01);
   spec.time_functions[0] = {0, 3};
   spec.loads[0] = {4, ntn::kUz, 2e4, 0};
@@ -79,11 +100,12 @@ void expect_identical(const ntn::State<kS>& x, const ntn::State<kS>& y) {
   EXPECT_EQ(std::memcmp(x.v.data(), y.v.data(), sizeof(x.v)), 0);
   EXPECT_EQ(std::memcmp(x.plastic.data(), y.plastic.data(), sizeof(x.plastic)), 0);
   EXPECT_EQ(std::memcmp(x.dissipated.data(), y.dissipated.data(), sizeof(x.dissipated)), 0);
+  EXPECT_EQ(std::memcmp(x.excursion.data(), y.excursion.data(), sizeof(x.excursion)), 0);
   EXPECT_EQ(x.tick, y.tick);
 }
 
-TEST(PlasticRules, NoHeapAllocationInAYieldingRun) {
-  build();
+void no_heap_in_a_yielding_run(bool backbones) {
+  build(backbones);
   ntn::InitStatus st;
   ntn::StepStatus first = ntn::StepStatus::kDiverged;
   ntn_test::AllocationCounts c;
@@ -102,12 +124,16 @@ TEST(PlasticRules, NoHeapAllocationInAYieldingRun) {
               model_a.dt, kSteps, a.plastic[0], a.plastic[1], a.dissipated[0], a.dissipated[1]);
   EXPECT_GT(a.dissipated[0], 0.0) << "ry yields";
   EXPECT_GT(a.dissipated[1], 0.0) << "rz yields";
+  if (backbones) {  // both went past their capping points: the run degrades
+    EXPECT_GT(std::max(a.excursion[0][0], a.excursion[0][1]), 0.012);
+    EXPECT_GT(std::max(a.excursion[1][0], a.excursion[1][1]), 0.005);
+  }
   EXPECT_EQ(c.allocations, 0U);
   EXPECT_EQ(c.deallocations, 0U);
 }
 
-TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdentical) {
-  build();
+void repeat_runs_and_checkpoints(bool backbones) {
+  build(backbones);
   {
     const ntn_test::EigenNoMalloc guard;
     ASSERT_TRUE(ntn_test::init_model(spec, model_a).ok());
@@ -148,6 +174,19 @@ TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdentical) {
   expect_identical(a, b);
   EXPECT_EQ(std::memcmp(wa.outputs.data(), wb.outputs.data(), sizeof(wa.outputs)), 0);
   EXPECT_GT(a.dissipated[0] + a.dissipated[1], checkpoint.dissipated[0] + checkpoint.dissipated[1]);
+}
+
+TEST(PlasticRules, NoHeapAllocationInAYieldingRun) {
+  no_heap_in_a_yielding_run(false);
+}
+TEST(PlasticRules, NoHeapAllocationInAYieldingRunWithBackbones) {
+  no_heap_in_a_yielding_run(true);
+}
+TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdentical) {
+  repeat_runs_and_checkpoints(false);
+}
+TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdenticalWithBackbones) {
+  repeat_runs_and_checkpoints(true);
 }
 
 }  // namespace

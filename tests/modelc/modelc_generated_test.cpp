@@ -5,6 +5,7 @@
 // kernel.
 #include <gtest/gtest.h>
 
+#include "backbone_portal_model.hpp"
 #include "cantilever_model.hpp"
 #include "hinged_beam_model.hpp"
 #include "ntn/kernel.hpp"
@@ -51,6 +52,7 @@ ntn::Model<frame::kSizes> g_frame;
 ntn::Model<cant::kSizes> g_cant;
 ntn::Model<hb::kSizes> g_hinged;
 ntn::Model<ntn::models::pinned_joint::kSizes> g_pinned;
+ntn::Model<ntn::models::backbone_portal::kSizes> g_backbone;
 
 template <ntn::Sizes S, std::size_t M>
 void check(const ntn::ModelSpec<S>& spec, std::string_view source,
@@ -91,6 +93,17 @@ TEST(GeneratedHeader, HingedBeamMatchesFileAndInitializes) {
     hinge_names.push_back(h.name);
   ntn::test::expect_same_names(hb::kHingeNames, hinge_names);
   EXPECT_EQ(g_hinged.stable.governing_hinge, r.model->stable.governing_hinge);
+}
+
+// Backbone laws (rule, points, limits) in the header, bit for bit as the file reads at run time.
+TEST(GeneratedHeader, BackbonePortalMatchesFileAndInitializes) {
+  namespace bp = ntn::models::backbone_portal;
+  static_assert(bp::kSizes.hystereses == 2);
+  static_assert(bp::kSpec.hystereses[0].rule == ntn::HysteresisRule::kKinematic);
+  static_assert(bp::kSpec.hystereses[1].rule == ntn::HysteresisRule::kPeakOriented);
+  static_assert(bp::kSpec.hystereses[1].backbone_neg[2].force == 2.0e4);
+  check(bp::kSpec, bp::kSourceFile, bp::kInputNames, bp::kOutputNames, bp::kOutputUnits,
+        bp::kMemberNames, g_backbone);
 }
 
 // The compiler's mechanisms are the DOFs the kernel holds at zero (DESIGN §7.1): the pinned

@@ -138,14 +138,15 @@ TEST(ModelLimits, NestingScanCountsLevels) {
   const ntn::modelc::NestingScan s = scan_nesting("x.y.z = 1\n", 2);
   EXPECT_EQ(s.line, 1);
   EXPECT_EQ(s.column, 4);  // the second dot starts level 3
-  // The shipped models and every good fixture need at most 5 levels.
+  // The shipped models and every good fixture need at most 7 levels (a backbone's points in a
+  // member-end release: good/backbone_portal.toml).
   for (const char* dir : {NTN_CONFIG_DIR, NTN_MODELC_GOOD_DIR}) {
     for (const auto& e : std::filesystem::directory_iterator(dir)) {
       if (e.path().extension() != ".toml") continue;
       std::ifstream in(e.path(), std::ios::binary);
       const std::string text((std::istreambuf_iterator<char>(in)),
                              std::istreambuf_iterator<char>());
-      EXPECT_LE(scan_nesting(text).depth, 5) << e.path();
+      EXPECT_LE(scan_nesting(text).depth, 7) << e.path();
     }
   }
 }

@@ -133,6 +133,45 @@ direction = "ry"
   EXPECT_TRUE(noted);
 }
 
+// A backbone (ASCE 41 points B, C, D, E) with its rule: k = f_B / d_B, the points into the law
+// as given (the negative sense: the same unless given; its B put on the elastic line exactly),
+// the stable step and the modes at k like a linear direction of that k.
+TEST(ModelcPlastic, BackbonesGetTheirPointsRuleAndElasticStiffness) {
+  const auto r = load_model_from_string(
+      model("{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+            "\"kinematic\", io = 0.005, ls = 0.02, cp = 0.03 }",
+            "{ backbone = [[0.001, 1e5], [0.02, 1.1e5], [0.025, 2e4], [0.04, 2e4]], "
+            "backbone_negative = [[0.0008, 8.00000001e4], [0.01, 9e4], [0.01, 1e4], [0.03, 0]], "
+            "rule = \"peak_oriented\" }"),
+      "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& d = *r.model;
+  ASSERT_EQ(d.hystereses.size(), 2U);
+  const ntn::HysteresisSpec& base = d.hystereses[0];
+  const ntn::HysteresisSpec& stub = d.hystereses[1];
+  EXPECT_EQ(base.rule, ntn::HysteresisRule::kKinematic);
+  EXPECT_EQ(stub.rule, ntn::HysteresisRule::kPeakOriented);
+  EXPECT_EQ(d.hinges[0].stiffness[4], 2e5 / 0.002);
+  EXPECT_EQ(d.hinges[1].stiffness[4], 1e5 / 0.001);
+  EXPECT_EQ(base.backbone_pos[1].d, 0.03);
+  EXPECT_EQ(base.backbone_pos[2].force, 4e4);
+  EXPECT_EQ(base.backbone_neg[3].d, 0.05);  // symmetric unless backbone_negative is given
+  EXPECT_EQ(base.yield_pos, 2e5);
+  EXPECT_EQ(stub.yield_neg, 8.00000001e4);
+  EXPECT_EQ(stub.backbone_neg[0].d, 8.00000001e4 / 1e8);  // on the elastic line, exactly
+  EXPECT_EQ(stub.backbone_neg[3].force, 0.0);
+  EXPECT_EQ(base.limits, (std::array<double, 3>{0.005, 0.02, 0.03}));
+  EXPECT_TRUE(ntn::hysteresis_valid(base, d.hinges[0].stiffness[4], 0.0));
+  EXPECT_TRUE(ntn::hysteresis_valid(stub, d.hinges[1].stiffness[4], 0.0));
+  const auto lin = load_model_from_string(model("{ linear = 1e8 }", "{ linear = 1e8 }"), "m.toml");
+  ASSERT_TRUE(lin.ok()) << format_all(lin.errors);
+  EXPECT_EQ(d.stable.dt_stable, lin.model->stable.dt_stable);
+  EXPECT_NE(ntn::modelc::info_text(d).find("2 hysteretic directions (1 backbone kinematic, 1 "
+                                           "backbone peak_oriented), yield 8e+04 to 2e+05"),
+            std::string::npos)
+      << ntn::modelc::info_text(d);
+}
+
 // Acceptance limits io, ls, cp: into the law, and the levels they grade (performance_level:
 // 0 no plastic deformation, 1 within IO, 2 within LS, 3 within CP, 4 beyond).
 TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
@@ -148,7 +187,7 @@ TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
   EXPECT_EQ(r.model->hystereses[1].limits, (std::array<double, 3>{}));
   EXPECT_EQ(r.model->outputs[0].kind, ntn::OutputKind::kHingeLevel);
   EXPECT_EQ(r.model->output_units[0], "-");
-  EXPECT_TRUE(ntn::hysteresis_valid(law));
+  EXPECT_TRUE(ntn::hysteresis_valid(law, 1e9, 0.0));
   const std::array<double, 3> lim = law.limits;
   EXPECT_EQ(ntn::performance_level(lim, 0.0), 0);
   EXPECT_EQ(ntn::performance_level(lim, 1e-9), 1);
@@ -158,14 +197,16 @@ TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
   EXPECT_EQ(ntn::performance_level(lim, 0.04), 4);
   EXPECT_EQ(ntn::performance_level({}, 0.04), 1);  // no limits: yielded or not
   // ntn-model info counts them: the yields' range, how many have limits.
-  EXPECT_NE(ntn::modelc::info_text(*r.model).find(
-                "plastic      2 plastic directions (bilinear, kinematic hardening), yield "
-                "1e+05 to 2e+05 N or N m, 1 with IO/LS/CP limits"),
-            std::string::npos)
+  EXPECT_NE(
+      ntn::modelc::info_text(*r.model).find(
+          "plastic      2 hysteretic directions (2 plastic (bilinear, kinematic hardening)), yield "
+          "1e+05 to 2e+05 N or N m, 1 with IO/LS/CP limits"),
+      std::string::npos)
       << ntn::modelc::info_text(*r.model);
   ntn::HysteresisSpec bad = law;
   bad.limits = {0.02, 0.005, 0.03};
-  EXPECT_FALSE(ntn::hysteresis_valid(bad));  // the kernel refuses what the compiler refuses
+  EXPECT_FALSE(
+      ntn::hysteresis_valid(bad, 1e9, 0.0));  // the kernel refuses what the compiler refuses
 }
 
 // A plastic direction far stiffer than the members it joins sets the stable step: a note at the
@@ -240,7 +281,92 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"LimitsDecrease",
                 "{ plastic = 1e9, yield = 2e5, io = 0.01, ls = 0.005, cp = 0.03 }", kOk, "",
                 "46:52: error: key 'hinges[0].ry.ls': ls = 0.005 is below io = 0.01: the "
-                "limits must not decrease (io <= ls <= cp)"}),
+                "limits must not decrease (io <= ls <= cp)"},
+        BadCase{"BackboneOutOfOrder",
+                "{ backbone = [[0.002, 2e5], [0.001, 2.2e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\" }",
+                kOk, "",
+                "46:34: error: key 'hinges[0].ry.backbone[1]': points out of order: C "
+                "(capping) at deformation 0.001 must lie beyond B (yield) at 0.002"},
+        BadCase{"BackboneDBeforeC",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.02, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\" }",
+                kOk, "",
+                "46:49: error: key 'hinges[0].ry.backbone[2]': points out of order: D "
+                "(residual) at deformation 0.02 must not lie before C (capping) at 0.03 (equal "
+                "deformations: a vertical drop)"},
+        BadCase{"BackboneCappingBelowYield",
+                "{ backbone = [[0.002, 2e5], [0.03, 1.9e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\" }",
+                kOk, "",
+                "46:34: error: key 'hinges[0].ry.backbone[1]': point C (capping) has force "
+                "190000, below the yield force 200000 at B: the capping strength is the "
+                "envelope's largest"},
+        BadCase{"BackboneResidualAboveCapping",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 3e5], [0.05, 4e4]], rule = "
+                "\"kinematic\" }",
+                kOk, "",
+                "46:49: error: key 'hinges[0].ry.backbone[2]': point D (residual) has force "
+                "300000: the residual strength must lie between 0 and the capping strength "
+                "220000 at C"},
+        BadCase{"BackboneSteeperThanK",
+                "{ backbone = [[0.002, 2e5], [0.003, 3.5e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\" }",
+                kOk, "",
+                "46:34: error: key 'hinges[0].ry.backbone[1]': the segment from B (yield) to C "
+                "(capping) rises at 1.5e+08, not below the elastic stiffness k = 1e+08: a "
+                "backbone hardens less steeply than it loads elastically"},
+        BadCase{"BackboneThreePoints",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.05, 4e4]], rule = \"kinematic\" }",
+                kOk, "",
+                "46:19: error: key 'hinges[0].ry.backbone': expected the 4 points B, C, D, E "
+                "of an ASCE 41 backbone as [deformation, force] pairs (A is the origin), got 3 "
+                "points"},
+        BadCase{"BackboneNegativeForce",
+                "{ backbone = [[0.002, 2e5], [0.03, -2.2e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\" }",
+                kOk, "",
+                "46:41: error: key 'hinges[0].ry.backbone[1][1]': must not be negative (got "
+                "-220000)"},
+        BadCase{"BackboneWithoutRule",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]] }", kOk, "",
+                "46:6: error: key 'hinges[0].ry.rule': missing required key 'rule'"},
+        BadCase{"BackboneUnknownRule",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"isotropic\" }",
+                kOk, "",
+                "46:83: error: key 'hinges[0].ry.rule': must be one of \"kinematic\", "
+                "\"peak_oriented\" (got \"isotropic\")"},
+        BadCase{"BackboneDashpot",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\", dashpot = 10 }",
+                kOk, "",
+                "46:106: error: key 'hinges[0].ry.dashpot': a backbone direction takes no "
+                "dashpot: its force must be able to drop to zero (damp the frame with "
+                "[model.damping])"},
+        BadCase{"BackboneCpBeyondE",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]], rule = "
+                "\"kinematic\", io = 0.01, ls = 0.03, cp = 0.05 }",
+                kOk, "",
+                "46:123: error: key 'hinges[0].ry.cp': cp = 0.05 lies beyond the backbone's "
+                "last point: the plastic deformation at E in the positive sense is d_E - f_E / "
+                "k = 0.0496"},
+        BadCase{"BackboneNegativeOffElastic",
+                "{ backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]], "
+                "backbone_negative = [[0.001, 2e5], [0.03, 2.2e5], [0.03, 4e4], [0.05, 4e4]], rule "
+                "= \"kinematic\" }",
+                kOk, "",
+                "46:97: error: key 'hinges[0].ry.backbone_negative[0]': point B (yield) "
+                "[0.001, 200000] is not on the elastic line of the positive sense (k = 1e+08): "
+                "both senses unload at the same k; give its deformation as force / k = 0.002"},
+        BadCase{"RuleWithoutBackbone", "{ plastic = 1e9, yield = 2e5, rule = \"kinematic\" }", kOk,
+                "", "46:43: error: key 'hinges[0].ry.rule': only applies with 'backbone'"},
+        BadCase{"BackboneAndPlastic",
+                "{ plastic = 1e9, yield = 2e5, backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, "
+                "4e4], [0.05, 4e4]] }",
+                kOk, "",
+                "46:47: error: key 'hinges[0].ry.backbone': cannot be given together with "
+                "'plastic'"}),
     [](const ::testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 }  // namespace

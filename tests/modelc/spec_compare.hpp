@@ -121,6 +121,21 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
     for (std::size_t k = 0; k < 12; ++k)
       expect_bits(h.element_loads[i].local[k], d.element_loads[i].local[k], "element load", i);
   }
+  for (std::size_t i = 0; i < h.hystereses.size(); ++i) {
+    const HysteresisSpec &x = h.hystereses[i], &y = d.hystereses[i];
+    EXPECT_EQ(x.rule, y.rule) << i;
+    expect_bits(x.yield_pos, y.yield_pos, "yield_pos", i);
+    expect_bits(x.yield_neg, y.yield_neg, "yield_neg", i);
+    expect_bits(x.hardening, y.hardening, "hardening", i);
+    for (std::size_t k = 0; k < 3; ++k)
+      expect_bits(x.limits[k], y.limits[k], "limits", i);
+    for (std::size_t k = 0; k < 4; ++k) {
+      expect_bits(x.backbone_pos[k].d, y.backbone_pos[k].d, "backbone_pos d", i);
+      expect_bits(x.backbone_pos[k].force, y.backbone_pos[k].force, "backbone_pos force", i);
+      expect_bits(x.backbone_neg[k].d, y.backbone_neg[k].d, "backbone_neg d", i);
+      expect_bits(x.backbone_neg[k].force, y.backbone_neg[k].force, "backbone_neg force", i);
+    }
+  }
   const Settings &a = h.settings, &b = d.settings;
   expect_bits(a.dt, b.dt, "dt", 0);
   expect_bits(a.frame_period, b.frame_period, "frame_period", 0);

@@ -268,4 +268,56 @@ ry = { plastic = 1e8, yield = 1e5, hardening = 0.05, io = 0.002, ls = 0.005, cp 
                    "has no hinge 'nope'");
 }
 
+// A backbone direction: the envelope A-B-C-D-E of each sense (and no strength past E) with the
+// IO/LS/CP limits where its plastic deformation d - f / k reaches them.
+TEST(PlotCli, HysteresisWithABackbone) {
+  TempDir dir;
+  write_file(dir / "m.toml", R"([model]
+name = "m"
+[[materials]]
+id = "S"
+E = 210e9
+nu = 0.3
+rho = 7850
+[[sections]]
+id = "H"
+A = 1e-2
+Iy = 1e-4
+Iz = 5e-5
+J = 1e-6
+[[nodes]]
+id = 1
+xyz = [0, 0, 0]
+[[nodes]]
+id = 2
+xyz = [0, 0, 3]
+[[members]]
+id = "C"
+nodes = [1, 2]
+material = "S"
+section = "H"
+[[hinges]]
+id = "base"
+nodes = [1, "ground"]
+ry = { backbone = [[0.001, 1e5], [0.01, 1.2e5], [0.012, 2e4], [0.02, 2e4]], rule = "peak_oriented", io = 0.002, ls = 0.005, cp = 0.008 }
+)");
+  std::string csv = "time[s],base_ry[rad],base_My[N m]\n";
+  for (int i = 0; i <= 40; ++i) {
+    const double d = 0.0005 * (i % 20 < 10 ? i % 20 : 20 - i % 20);  // small elastic cycles
+    char row[96];
+    std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g\n", 0.01 * i, d, 1e8 * d);
+    csv += row;
+  }
+  write_file(dir / "run.csv", csv);
+  const auto r = run(kCli + " hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
+                         (dir / "m.toml") + " --hinge base --direction ry --out " + (dir / "loops"),
+                     dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto svg = parse_svg(dir / "loops.svg");
+  ASSERT_EQ(svg.error, "");
+  for (const char* text : {"backbone (peak_oriented)", "IO", "LS", "CP"})
+    EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
+  EXPECT_EQ(r.err.find("not drawn"), std::string::npos) << r.err;
+}
+
 }  // namespace

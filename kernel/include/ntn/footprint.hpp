@@ -110,16 +110,17 @@ constexpr std::size_t model_footprint(const Sizes& s) {
 constexpr std::size_t state_footprint(const Sizes& s) {
   const std::size_t dofs = kDofsPerNode * s.nodes;
   detail::Layout l;
-  l.array<double>(dofs);          // u
-  l.array<double>(dofs);          // v
-  l.array<double>(s.inputs);      // held_inputs
-  l.scalar<std::int64_t>();       // tick
-  l.scalar<std::uint64_t>();      // inputs_held
-  l.scalar<std::uint64_t>();      // inputs_out_of_range
-  l.scalar<std::uint32_t>();      // faults
-  l.array<double>(s.hystereses);  // plastic
-  l.array<double>(s.hystereses);  // dissipated
-  l.array<double>(s.hystereses);  // plastic_peak
+  l.array<double>(dofs);                         // u
+  l.array<double>(dofs);                         // v
+  l.array<double>(s.inputs);                     // held_inputs
+  l.scalar<std::int64_t>();                      // tick
+  l.scalar<std::uint64_t>();                     // inputs_held
+  l.scalar<std::uint64_t>();                     // inputs_out_of_range
+  l.scalar<std::uint32_t>();                     // faults
+  l.array<double>(s.hystereses);                 // plastic
+  l.array<double>(s.hystereses);                 // dissipated
+  l.array<double>(s.hystereses);                 // plastic_peak
+  l.array<std::array<double, 4>>(s.hystereses);  // excursion
   return l.size();
 }
 

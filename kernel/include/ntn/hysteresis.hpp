@@ -1,35 +1,59 @@
-// Hysteretic hinge directions (HingeBehaviour::kPlastic, DESIGN §7): bilinear elasto-plastic with
-// kinematic hardening. A direction of elastic stiffness k carries f = k (d - d_p) (+ its dashpot);
-// the elastic range is q - yield_neg <= f <= q + yield_pos around the back force q = H d_p, with
-// H = b k / (1 - b) so that the tangent after yield is k H / (k + H) = b k. d_p (the plastic
-// deformation) and the energy dissipated, the plastic work integral f dd_p, are the direction's
-// history in State (State::plastic, State::dissipated): a checkpoint restores them.
+// Hysteretic hinge directions (HingeBehaviour::kPlastic, DESIGN §7). A direction of elastic
+// stiffness k carries f = k (d - d_p) (+ its dashpot, bilinear only); its law decides, once per
+// step, how the plastic deformation d_p moves. d_p, the energy dissipated (the plastic work
+// integral f dd_p), the largest |d_p| and the backbone rules' excursions are the direction's
+// history in State: a checkpoint restores them.
+// kBilinear: elasto-plastic with kinematic hardening. The elastic range is
+// q - yield_neg <= f <= q + yield_pos around the back force q = H d_p, with H = b k / (1 - b) so
+// that the tangent after yield is k H / (k + H) = b k.
+// kKinematic, kPeakOriented: a backbone and its rule (backbone.hpp).
 #pragma once
 
 #include <array>
 
+#include "ntn/backbone.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
 
 // What the step needs of one hysteretic direction (Model::hystereses).
 struct HysteresisData {
-  double k = 0;                    // N/m or N m/rad, elastic stiffness
-  double yield_pos = 0;            // N or N m
-  double yield_neg = 0;            // N or N m, as a magnitude
-  double H = 0;                    // kinematic hardening modulus b k / (1 - b)
-  double inv_kH = 0;               // 1 / (k + H)
-  std::array<double, 3> limits{};  // io, ls, cp on the peak |d_p| (0, 0, 0: none)
+  HysteresisRule rule = HysteresisRule::kBilinear;  // first: the step reads rule to inv_kH
+  double k = 0;                                     // N/m or N m/rad, elastic stiffness
+  double yield_pos = 0;                             // N or N m
+  double yield_neg = 0;                             // N or N m, as a magnitude
+  double H = 0;                                     // kinematic hardening modulus b k / (1 - b)
+  double inv_kH = 0;                                // 1 / (k + H)
+  std::array<double, 3> limits{};                   // io, ls, cp on the peak |d_p| (0, 0, 0: none)
+  Envelope pos, neg;  // the backbone of each sense (kKinematic, kPeakOriented)
 };
 
-// A law the kernel takes: yields > 0 and finite, hardening in [0, 1), acceptance limits none or
-// 0 < io <= ls <= cp (finite).
-constexpr bool hysteresis_valid(const HysteresisSpec& s) {
+// A law the kernel takes for a direction of elastic stiffness k and dashpot c: acceptance limits
+// none or 0 < io <= ls <= cp (finite); bilinear: yields > 0 and finite, hardening in [0, 1);
+// backbone: both envelopes valid (backbone.hpp), yields equal to their B forces, no dashpot (its
+// force must be able to drop to zero), cp within the plastic deformation at E in both senses.
+constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
   const auto& l = s.limits;
   const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
   const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && l[2] < 1e300;
-  return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
-         s.hardening >= 0 && s.hardening < 1 && (none || ordered);
+  if (!(none || ordered)) return false;
+  if (s.rule == HysteresisRule::kBilinear)
+    return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
+           s.hardening >= 0 && s.hardening < 1;
+  if (s.rule != HysteresisRule::kKinematic && s.rule != HysteresisRule::kPeakOriented) return false;
+  if (!(k > 0) || c != 0 || s.hardening != 0 || !envelope_valid(s.backbone_pos, k) ||
+      !envelope_valid(s.backbone_neg, k) || s.yield_pos != s.backbone_pos[0].force ||
+      s.yield_neg != s.backbone_neg[0].force)
+    return false;
+  const double last_pos = s.backbone_pos[3].d - s.backbone_pos[3].force / k;
+  const double last_neg = s.backbone_neg[3].d - s.backbone_neg[3].force / k;
+  return none || (l[2] <= last_pos && l[2] <= last_neg);
+}
+
+// The plastic deformation at a backbone's point E, d_E - f_E / k: how far the acceptance limits
+// may reach.
+constexpr double backbone_last_plastic(const std::array<CurvePoint, 4>& p, double k) {
+  return p[3].d - p[3].force / k;
 }
 
 // Performance level of a direction whose largest plastic deformation so far is `peak`: 0 below
@@ -53,16 +77,21 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
   h.H = s.hardening * k / (1.0 - s.hardening);
   h.inv_kH = 1.0 / (k + h.H);
   h.limits = s.limits;
+  h.rule = s.rule;
+  if (s.rule != HysteresisRule::kBilinear) {
+    h.pos = make_envelope(s.backbone_pos);
+    h.neg = make_envelope(s.backbone_neg);
+  }
   return h;
 }
 
-// The return mapping at deformation d (once per step, the hinge-spring stage): when the trial
+// The bilinear return mapping at deformation d: when the trial
 // force k (d - d_p) leaves the elastic range by x, d_p moves by x / (k + H), which puts the force
 // back on its edge (exact for the bilinear law). `dissipated` grows by the plastic work along the
 // edge, integral of (H d_p + yield) dd_p from the old d_p to the new one (exact on that path).
 // `peak` keeps the largest |d_p|.
-inline void hysteresis_update(const HysteresisData& h, double d, double& dp, double& dissipated,
-                              double& peak) {
+inline void bilinear_update(const HysteresisData& h, double d, double& dp, double& dissipated,
+                            double& peak) {
   const double xi = h.k * (d - dp) - h.H * dp;  // the trial force relative to the back force
   double edge = 0, delta = 0;
   if (xi > h.yield_pos) {
@@ -79,6 +108,17 @@ inline void hysteresis_update(const HysteresisData& h, double d, double& dp, dou
   dp = dp_new;
   const double size = dp_new < 0 ? -dp_new : dp_new;
   if (size > peak) peak = size;
+}
+
+// A hysteretic direction's history brought to deformation d (once per step, the hinge-spring
+// stage, integrator.hpp).
+inline void hysteresis_update(const HysteresisData& h, double d, double& dp, double& dissipated,
+                              double& peak, std::array<double, 4>& excursion) {
+  if (h.rule == HysteresisRule::kBilinear) {
+    bilinear_update(h, d, dp, dissipated, peak);
+  } else {
+    backbone_update(h.rule, h.k, h.pos, h.neg, d, dp, dissipated, peak, excursion);
+  }
 }
 
 }  // namespace ntn

@@ -162,7 +162,7 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
           if (!((h.plastic >> k) & 1U)) continue;
           const auto slot = static_cast<std::size_t>(h.history[k]);
           hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
-                            s.plastic_peak[slot]);
+                            s.plastic_peak[slot], s.excursion[slot]);
         }
       }
       hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);

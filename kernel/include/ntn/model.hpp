@@ -170,7 +170,9 @@ template <Sizes S>
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
       if (!((h.plastic >> k) & 1U)) continue;
       const auto slot = static_cast<std::size_t>(h.history[k]);
-      if (slot >= S.hystereses || !hysteresis_valid(spec.hystereses[slot]) || slot_used[slot] != 0)
+      if (slot >= S.hystereses ||
+          !hysteresis_valid(spec.hystereses[slot], h.stiffness[k], h.dashpot[k]) ||
+          slot_used[slot] != 0)
         return {InitError::kBadHinge, static_cast<int>(i)};
       slot_used[slot] = 1;
     }
@@ -325,11 +327,13 @@ template <Sizes S>
   model.time_functions = spec.time_functions;
   model.loads = spec.loads;
   model.element_loads = spec.element_loads;
-  for (const HingeSpec& hs : spec.hinges) {  // each slot's law with its direction's elastic k
-    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-      if (hs.behaviour[k] != HingeBehaviour::kPlastic) continue;
-      const auto slot = static_cast<std::size_t>(hs.hysteresis[k]);
-      model.hystereses[slot] = make_hysteresis(spec.hystereses[slot], hs.stiffness[k]);
+  if constexpr (S.hystereses > 0) {
+    for (const HingeSpec& hs : spec.hinges) {  // each slot's law with its direction's elastic k
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if (hs.behaviour[k] != HingeBehaviour::kPlastic) continue;
+        const auto slot = static_cast<std::size_t>(hs.hysteresis[k]);
+        model.hystereses[slot] = make_hysteresis(spec.hystereses[slot], hs.stiffness[k]);
+      }
     }
   }
   model.inputs = spec.inputs;

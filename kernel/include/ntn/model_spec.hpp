@@ -112,9 +112,9 @@ enum class HingeBehaviour : std::uint8_t {
   kLinear,   // spring `stiffness` and optional dashpot `dashpot`
   kCurve,    // piecewise-linear force(deformation) `curve`; segments at least as stiff as the
              // limit stiffness are rigid branches (a gap or a stop)
-  kPlastic,  // bilinear elasto-plastic with kinematic hardening: elastic `stiffness`, yield and
-             // hardening in `hysteresis` (a HysteresisSpec), optional `dashpot`; its plastic
-             // deformation and dissipated energy live in State (hysteresis.hpp)
+  kPlastic,  // hysteretic: elastic `stiffness`, its law in `hysteresis` (a HysteresisSpec:
+             // bilinear with kinematic hardening, or a backbone with a hysteresis rule), optional
+             // `dashpot` (bilinear only); its history lives in State (hysteresis.hpp)
 };
 
 // Each method is a struct in its own header (ntn_exact.hpp, ntn_paper.hpp, penalty.hpp); only
@@ -143,11 +143,32 @@ struct HingeSpec {
       hysteresis{};  // index into hystereses (kPlastic), one per direction
 };
 
-// A hysteretic hinge direction's law (kPlastic): yield force or moment in the positive and the
-// negative sense (both > 0, N or N m) and the hardening ratio b in [0, 1): the tangent after
-// yield is b k (kinematic hardening: the elastic range, of width yield_pos + yield_neg, moves
-// with the back force). Each entry belongs to one direction; its index is the direction's slot
-// in State::plastic and State::dissipated.
+struct CurvePoint {
+  double d = 0;      // m or rad, relative displacement in the hinge frame
+  double force = 0;  // N or N m, force on node 1 in the hinge frame
+};
+
+// How a hysteretic direction (kPlastic) loads, unloads and reloads (hysteresis.hpp).
+enum class HysteresisRule : std::uint8_t {
+  kBilinear,      // yield_pos/yield_neg, hardening: the elastic range translates (kinematic)
+  kKinematic,     // a backbone; each sense bounded by its envelope, the first post-yield
+                  // segment extended back across the origin (steel: unloading at k, the elastic
+                  // range translates); strength past the capping point never comes back
+  kPeakOriented,  // a backbone; unloading at k to zero force, reloading toward the point of the
+                  // largest excursion so far in that sense (concrete, timber)
+};
+
+// A hysteretic hinge direction's law (kPlastic). Each entry belongs to one direction; its index
+// is the direction's slot in State::plastic, State::dissipated, State::plastic_peak and
+// State::excursion.
+// kBilinear: yield force or moment in the positive and the negative sense (both > 0, N or N m)
+// and the hardening ratio b in [0, 1): the tangent after yield is b k (kinematic hardening: the
+// elastic range, of width yield_pos + yield_neg, moves with the back force).
+// kKinematic, kPeakOriented: the monotonic envelope of each sense (ASCE 41 / FEMA 356), as
+// magnitudes, after A = (0, 0): B the yield point (on the elastic line: force = k d), C the
+// capping point, D the drop to the residual strength, E the ultimate deformation, past which the
+// direction has no strength left in either sense and transmits no force. yield_pos and
+// yield_neg hold B's forces, hardening 0.
 // `limits`: the acceptance criteria on the peak plastic deformation |d_p| (ASCE 41 / FEMA 356:
 // immediate occupancy, life safety, collapse prevention), all three or none (zeros);
 // performance_level() (hysteresis.hpp) grades a direction by them.
@@ -156,6 +177,9 @@ struct HysteresisSpec {
   double yield_neg = 0;
   double hardening = 0;
   std::array<double, 3> limits{};  // m or rad: io, ls, cp; 0, 0, 0: none
+  HysteresisRule rule = HysteresisRule::kBilinear;
+  std::array<CurvePoint, 4> backbone_pos{};  // B, C, D, E (kKinematic, kPeakOriented)
+  std::array<CurvePoint, 4> backbone_neg{};  // the same in the negative sense, as magnitudes
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's
@@ -173,11 +197,6 @@ struct ElementLoadSpec {
 struct CurveSpec {
   int first = 0;
   int count = 0;
-};
-
-struct CurvePoint {
-  double d = 0;      // m or rad, relative displacement in the hinge frame
-  double force = 0;  // N or N m, force on node 1 in the hinge frame
 };
 
 struct OutputSpec {

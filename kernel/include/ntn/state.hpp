@@ -34,10 +34,15 @@ struct State {
   std::uint64_t inputs_out_of_range = 0;       // inputs outside [min, max], held likewise
   std::uint32_t faults = 0;                    // Fault bits, sticky
   // The history of the hysteretic hinge directions (kPlastic, hysteresis.hpp), by slot
-  // (HingeSpec::hysteresis): plastic deformation d_p (m or rad) and energy dissipated (J).
+  // (HingeSpec::hysteresis): plastic deformation d_p (m or rad: the force is k (d - d_p)) and
+  // energy dissipated (J).
   std::array<double, S.hystereses> plastic{};
   std::array<double, S.hystereses> dissipated{};
   std::array<double, S.hystereses> plastic_peak{};  // the largest |d_p| so far
+  // Backbone rules only (backbone.hpp): the largest deformation reached in the positive and in
+  // the negative sense (magnitudes), and where the reloading lines of the positive and the
+  // negative sense start (peak_oriented: the zero-force points of the last unloading lines).
+  std::array<std::array<double, 4>, S.hystereses> excursion{};
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b

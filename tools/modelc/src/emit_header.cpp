@@ -219,6 +219,18 @@ const char* hinge_method(HingeMethod m) {
   throw std::invalid_argument("emit_header: unknown hinge method");
 }
 
+const char* hysteresis_rule(HysteresisRule r) {
+  switch (r) {
+    case HysteresisRule::kBilinear:
+      return "ntn::HysteresisRule::kBilinear";
+    case HysteresisRule::kKinematic:
+      return "ntn::HysteresisRule::kKinematic";
+    case HysteresisRule::kPeakOriented:
+      return "ntn::HysteresisRule::kPeakOriented";
+  }
+  throw std::invalid_argument("emit_header: unknown hysteresis rule");
+}
+
 const char* clamp_rule(ClampRule c) {
   switch (c) {
     case ClampRule::kMomentum:
@@ -331,8 +343,19 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
            ", .local = " + lits(l.local) + "}";
   });
   array_init(o, "hystereses", m.hystereses, [](const HysteresisSpec& h) {
-    return "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
-           ", .hardening = " + lit(h.hardening) + ", .limits = " + lits(h.limits) + "}";
+    std::string s = "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
+                    ", .hardening = " + lit(h.hardening) + ", .limits = " + lits(h.limits);
+    if (h.rule == HysteresisRule::kBilinear) return s + "}";
+    const auto points = [](const std::array<CurvePoint, 4>& p) {
+      std::string t = "{{";
+      for (std::size_t i = 0; i < p.size(); ++i)
+        t += (i ? ", " : "") + std::string("{.d = ") + lit(p[i].d) +
+             ", .force = " + lit(p[i].force) + "}";
+      return t + "}}";
+    };
+    return s + ", .rule = " + hysteresis_rule(h.rule) +
+           ",\n       .backbone_pos = " + points(h.backbone_pos) +
+           ",\n       .backbone_neg = " + points(h.backbone_neg) + "}";
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +

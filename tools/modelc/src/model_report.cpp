@@ -216,16 +216,27 @@ std::string info_text(const ModelDescription& m) {
              " points)");
     if (!m.hystereses.empty()) {
       double lo = 1e300, hi = 0;
-      int limits = 0;
+      int limits = 0, kinematic = 0, peak_oriented = 0;
       for (const HysteresisSpec& h : m.hystereses) {
         lo = std::min({lo, h.yield_pos, h.yield_neg});
         hi = std::max({hi, h.yield_pos, h.yield_neg});
         limits += h.limits[0] > 0 ? 1 : 0;
+        kinematic += h.rule == HysteresisRule::kKinematic ? 1 : 0;
+        peak_oriented += h.rule == HysteresisRule::kPeakOriented ? 1 : 0;
       }
-      line("plastic", std::to_string(m.hystereses.size()) +
-                          " plastic directions (bilinear, kinematic hardening), yield " +
-                          f("%.4g", lo) + (hi > lo ? " to " + f("%.4g", hi) : std::string()) +
-                          " N or N m, " + std::to_string(limits) +
+      const auto bilinear = static_cast<int>(m.hystereses.size()) - kinematic - peak_oriented;
+      std::string kinds;
+      if (bilinear > 0)
+        kinds += std::to_string(bilinear) + " plastic (bilinear, kinematic hardening)";
+      if (kinematic > 0)
+        kinds += (kinds.empty() ? "" : ", ") + std::to_string(kinematic) + " backbone kinematic";
+      if (peak_oriented > 0)
+        kinds +=
+            (kinds.empty() ? "" : ", ") + std::to_string(peak_oriented) + " backbone peak_oriented";
+      line("plastic", std::to_string(m.hystereses.size()) + " hysteretic directions (" + kinds +
+                          "), yield " + f("%.4g", lo) +
+                          (hi > lo ? " to " + f("%.4g", hi) : std::string()) + " N or N m, " +
+                          std::to_string(limits) +
                           " with IO/LS/CP limits; at their elastic stiffness in the stable step "
                           "and the modes");
     }

@@ -12,7 +12,8 @@
 
 namespace ntn::modelc::compile {
 
-// One hinge direction: "rigid", "free", { linear = k, dashpot = c } or { curve = "id" }.
+// One hinge direction: "rigid", "free", { linear = k, dashpot = c }, { curve = "id" },
+// { plastic = k, yield = F, ... } or { backbone = [B, C, D, E], rule = "...", ... }.
 std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const std::string& key);
 
 // release_start / release_end: an array of DOF names (those free, the rest rigid), or a table

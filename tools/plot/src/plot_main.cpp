@@ -210,8 +210,9 @@ struct HysteresisArgs {
 
 // A plastic hinge direction's force-deformation loops (issue 15): the force channel over the
 // deformation channel; with --model, --hinge and --direction, the law's monotonic envelope
-// (bilinear: k up to the yield, then b k) and the acceptance limits IO, LS, CP marked at the
-// deformations where the envelope reaches those plastic deformations.
+// (bilinear: k up to the yield, then b k; backbone: its points A-B-C-D-E, no strength past E)
+// and the acceptance limits IO, LS, CP marked at the deformations where the envelope reaches
+// those plastic deformations.
 pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
   const pl::Table t = pl::read_table(o.file, "s");
   const std::size_t cx = t.index(a.deformation), cy = t.index(a.force);
@@ -253,6 +254,43 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
     bad("--direction: " + a.direction + " of hinge " + a.hinge + " is not plastic");
   const ntn::HysteresisSpec& law = m.hystereses[static_cast<std::size_t>(hs.hysteresis[k])];
   const double kel = hs.stiffness[k];
+  static const char* const kLevel[3] = {"IO", "LS", "CP"};
+  if (law.rule != ntn::HysteresisRule::kBilinear) {
+    // The backbone A-B-C-D-E of each sense, then no strength past E; the limits where the
+    // envelope's plastic deformation d - f / k reaches them (it grows along every segment).
+    pl::Series env{
+        std::string("backbone (") +
+            (law.rule == ntn::HysteresisRule::kKinematic ? "kinematic" : "peak_oriented") + ")",
+        {},
+        {}};
+    for (int side : {-1, 1}) {
+      const auto& pts = side > 0 ? law.backbone_pos : law.backbone_neg;
+      std::vector<double> xs{0.0}, ys{0.0};
+      for (const ntn::CurvePoint& q : pts)
+        xs.push_back(side * q.d), ys.push_back(side * q.force);
+      xs.push_back(side * pts[3].d), ys.push_back(0.0);
+      if (side < 0) {
+        env.x.insert(env.x.end(), xs.rbegin(), xs.rend());
+        env.y.insert(env.y.end(), ys.rbegin(), ys.rend());
+      } else {
+        env.x.insert(env.x.end(), xs.begin() + 1, xs.end());
+        env.y.insert(env.y.end(), ys.begin() + 1, ys.end());
+      }
+      for (std::size_t l = 0; law.limits[0] > 0 && l < 3; ++l) {
+        const double dp = law.limits[l];
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+          const ntn::CurvePoint &q0 = pts[i], &q1 = pts[i + 1];
+          const double p0 = q0.d - q0.force / kel, p1 = q1.d - q1.force / kel;
+          if (dp < p0 || dp > p1 || !(p1 > p0)) continue;
+          const double at = (dp - p0) / (p1 - p0);
+          p.markers.push_back({side * (q0.d + at * (q1.d - q0.d)), kLevel[l]});
+          break;
+        }
+      }
+    }
+    p.series.push_back(env);
+    return fig;
+  }
   const double H = law.hardening * kel / (1.0 - law.hardening);
   // The envelope d(d_p) = d_p + (F_y + H d_p) / k on each side, drawn over the loops' extent.
   const auto [lo, hi] = std::minmax_element(p.series[0].x.begin(), p.series[0].x.end());
@@ -278,7 +316,6 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
       env.y.insert(env.y.end(), ys.begin() + 1, ys.end());
     }
     if (law.limits[0] > 0) {
-      static const char* const kLevel[3] = {"IO", "LS", "CP"};
       for (std::size_t l = 0; l < 3; ++l) {
         const double dp = law.limits[l];
         const double d = dp + (fy + H * dp) / kel;

@@ -22,8 +22,9 @@ inline constexpr std::size_t kMaxModelFileBytes = std::size_t{64} << 20;
 
 // Deepest nesting: tables, arrays and inline tables one inside another, each part of a dotted
 // key or table header counting as a table, the value itself one more (`a = 1` is 1, `[m.d]`
-// then `x = [[1]]` is 5). A valid model reaches 5 (`[[members]]` with
-// `release_start.rz.linear = 1e6`); deeper input can only be an error, so the limit leaves room
+// then `x = [[1]]` is 5). A valid model reaches 7 (`[[members]]` with
+// `release_start = { ry = { backbone = [[d, f], ...] } }`); deeper input can only be an error, so
+// the limit leaves room
 // and stays far below toml++'s stack needs (it crashed between 20 000 and 50 000 levels).
 inline constexpr int kMaxNesting = 32;
 
