@@ -43,8 +43,9 @@ ntn::HingeData hg_data(const ntn::HingeSpec& spec) {
   ntn::HingeData h;
   const std::array<ntn::CurveSpec, 0> no_curves{};
   const std::array<ntn::CurvePoint, 0> no_points{};
-  EXPECT_TRUE(ntn::resolve_hinge(spec, ntn::Settings{}, kHgNodes, no_curves, no_points, h,
-                                 [](std::size_t) { return true; }));
+  EXPECT_TRUE(ntn::resolve_hinge(
+      spec, ntn::Settings{}, kHgNodes, no_curves, no_points, h, [](std::size_t) { return true; },
+      [](std::size_t) { return false; }));
   return h;
 }
 

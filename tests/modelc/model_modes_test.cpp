@@ -259,6 +259,7 @@ TEST(ModelModes, HingeDirectionsFollowTheModel) {
       const std::string where = m.hinge_info[h].name + " " + kDirection[k];
       switch (m.hinges[h].behaviour[k]) {
         case ntn::HingeBehaviour::kRigid:
+        case ntn::HingeBehaviour::kRigidPlastic:  // below its yield: rigid
           EXPECT_EQ(t, "tied") << where;
           EXPECT_TRUE(dir["stiffness"].is_null()) << where;
           break;

@@ -172,6 +172,38 @@ TEST(ModelcPlastic, BackbonesGetTheirPointsRuleAndElasticStiffness) {
       << ntn::modelc::info_text(d);
 }
 
+// rigid_plastic (issue 16): a history slot with its yields; under ntn_exact rigid below yield
+// (the stable step and the modes as a rigid direction's), refused under ntn_paper at the key.
+TEST(ModelcPlastic, RigidPlasticDirectionsGetTheirYieldsAndSlots) {
+  const auto r = load_model_from_string(
+      model("{ rigid_plastic = 2e5, yield_negative = 1e5, io = 0.01, ls = 0.02, cp = 0.04 }",
+            "{ plastic = 5e8, yield = 1e5 }",
+            "\n[[outputs]]\nname = \"slip\"\nkind = \"hinge_plastic_deformation\"\nhinge = "
+            "\"base\"\ndirection = \"ry\"\n"),
+      "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& d = *r.model;
+  EXPECT_EQ(d.hinges[0].behaviour[4], HingeBehaviour::kRigidPlastic);
+  EXPECT_EQ(d.hinges[0].hysteresis[4], 0);
+  EXPECT_EQ(d.hystereses[0].yield_pos, 2e5);
+  EXPECT_EQ(d.hystereses[0].yield_neg, 1e5);
+  EXPECT_EQ(d.hystereses[0].rule, ntn::HysteresisRule::kBilinear);
+  EXPECT_EQ(d.outputs[0].kind, ntn::OutputKind::kHingePlastic);
+  const auto rigid =
+      load_model_from_string(model("\"rigid\"", "{ plastic = 5e8, yield = 1e5 }"), "m.toml");
+  ASSERT_TRUE(rigid.ok()) << format_all(rigid.errors);
+  EXPECT_EQ(d.stable.dt_stable, rigid.model->stable.dt_stable);
+  std::string paper = model("{ rigid_plastic = 2e5 }", "{ plastic = 5e8, yield = 1e5 }");
+  paper.replace(paper.find("name = \"m\""), 10, "name = \"m\"\nhinge_method = \"ntn_paper\"");
+  const auto p = load_model_from_string(paper, "m.toml");
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(format_all(p.errors),
+            "m.toml:47:6: error: key 'hinges[0].ry': a rigid_plastic direction needs hinge_method "
+            "= \"ntn_exact\" (exact stick and slip) or \"penalty\" (an elasto-plastic penalty "
+            "spring): the seed's algorithm (\"ntn_paper\") gives no constraint force to test "
+            "against the yield\n");
+}
+
 // Acceptance limits io, ls, cp: into the law, and the levels they grade (performance_level:
 // 0 no plastic deformation, 1 within IO, 2 within LS, 3 within CP, 4 beyond).
 TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
@@ -361,6 +393,16 @@ INSTANTIATE_TEST_SUITE_P(
                 "both senses unload at the same k; give its deformation as force / k = 0.002"},
         BadCase{"RuleWithoutBackbone", "{ plastic = 1e9, yield = 2e5, rule = \"kinematic\" }", kOk,
                 "", "46:43: error: key 'hinges[0].ry.rule': only applies with 'backbone'"},
+        BadCase{"RigidPlasticZero", "{ rigid_plastic = 0 }", kOk, "",
+                "46:24: error: key 'hinges[0].ry.rigid_plastic': must be positive (got "
+                "0)"},
+        BadCase{"RigidPlasticDashpot", "{ rigid_plastic = 1e5, dashpot = 3 }", kOk, "",
+                "46:39: error: key 'hinges[0].ry.dashpot': a rigid_plastic direction "
+                "takes no dashpot: it is rigid while it sticks"},
+        BadCase{"HardeningWithRigidPlastic", "{ rigid_plastic = 1e5, hardening = 0.1 }", kOk, "",
+
+                "46:41: error: key 'hinges[0].ry.hardening': only applies with "
+                "'plastic'"},
         BadCase{"BackboneAndPlastic",
                 "{ plastic = 1e9, yield = 2e5, backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, "
                 "4e4], [0.05, 4e4]] }",

@@ -92,12 +92,14 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<std::int32_t>(s.hinges);              // project_edges
   l.array<ForestTree>(s.hinges);                // trees
   l.array<std::int32_t>(s.hinges);              // tree_stops
+  l.array<std::int32_t>(s.hinges);              // slip_hinges
   l.scalar<int>();                              // num_edges
   l.scalar<int>();                              // num_roots
   l.scalar<int>();                              // num_spring_hinges
   l.scalar<int>();                              // num_branch_hinges
   l.scalar<int>();                              // num_project_edges
   l.scalar<int>();                              // num_trees
+  l.scalar<int>();                              // num_slip_hinges
   l.scalar<int>();                              // held_dofs
   l.scalar<HingeMethod>();                      // hinge_method
   l.scalar<ClampRule>();                        // clamp
@@ -152,6 +154,7 @@ constexpr std::size_t scratch_footprint(const Sizes& s) {
   l.array<double>(dofs);                                // a
   l.array<double>(s.hinges > 0 ? dofs : 0);             // r
   l.array<double>(s.outputs);                           // outputs
+  l.array<double>(s.hystereses);                        // slip_force
   l.add(clamp_work_footprint(s), clamp_work_align(s));  // clamp (ClampWork)
   l.scalar<std::array<double, 3>>();                    // ground
   l.scalar<double>();                                   // time

@@ -113,8 +113,10 @@ struct HingeData {
   std::uint8_t springs = 0;   // bit d: direction d carries a spring force (linear, curve, penalty)
   std::uint8_t rigid = 0;     // bit d: a coupled direction, held by the NTN coupling (not penalty)
   std::uint8_t branches = 0;  // bit d: direction d is a curve with a rigid branch (a stop)
-  std::uint8_t plastic = 0;   // bit d: direction d is hysteretic (kPlastic)
-  std::array<std::int32_t, kDofsPerNode> history{};  // kPlastic: its slot in State::plastic
+  std::uint8_t plastic = 0;   // bit d: direction d is hysteretic (kPlastic; kRigidPlastic
+                              // under penalty: a bilinear spring of the penalty stiffness)
+  std::uint8_t slip = 0;      // bit d: a rigid-plastic direction held by the slip stage (slip.hpp)
+  std::array<std::int32_t, kDofsPerNode> history{};  // kPlastic, kRigidPlastic: its history slot
 };
 
 // Relative displacement in the hinge frame (DESIGN §7):
@@ -199,10 +201,10 @@ inline void hinge_spring_force(const HingeData& h, std::span<const CurvePoint> p
 // spring). False for a bad spec: node out of range, a frame that is not orthonormal and
 // right-handed (to 1e-9), a bad curve, a negative stiffness or dashpot, an eccentric ground
 // hinge, a rigid direction the method refuses.
-template <class RigidDirection>
+template <class RigidDirection, class SlipDirection>
 bool resolve_hinge(const HingeSpec& spec, const Settings& settings, std::size_t node_count,
                    std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
-                   HingeData& h, RigidDirection&& rigid_direction) {
+                   HingeData& h, RigidDirection&& rigid_direction, SlipDirection&& slip_direction) {
   h = HingeData{};
   h.node1 = spec.node1, h.node2 = spec.node2;
   h.frame = spec.frame;
@@ -254,6 +256,11 @@ bool resolve_hinge(const HingeSpec& spec, const Settings& settings, std::size_t 
         h.history[k] = spec.hysteresis[k];
         h.springs |= bit;
         h.plastic |= bit;
+        break;
+      case HingeBehaviour::kRigidPlastic:  // what the method makes of it (slip_direction)
+        if (spec.hysteresis[k] < 0 || spec.dashpot[k] != 0) return false;
+        h.history[k] = spec.hysteresis[k];
+        if (!slip_direction(k)) return false;
         break;
     }
   }

@@ -2,6 +2,7 @@
 // HingeMethod. Each method is a struct of static functions in its own header:
 //
 //   rigid_direction(settings, k, h)   init: what a rigid direction becomes (coupled, or a spring)
+//   slip_direction(settings, k, h)    init: what a rigid-plastic direction becomes (slip.hpp)
 //   init(spec, model, work)           init: what the method precomputes
 //   residual(m, s, w)                 step: the residual pass R_n - C v (S 2-3), a_n where
 //   uncoupled couple(m, s, w)                   step: the NTN coupling, R -> a at coupled DOFs
@@ -53,8 +54,10 @@ inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, std
                             std::span<const CurveSpec> curves, std::span<const CurvePoint> points,
                             HingeData& h) {
   return with_hinge_method(settings.hinge_method, [&](auto method) {
-    return resolve_hinge(spec, settings, node_count, curves, points, h,
-                         [&](std::size_t k) { return method.rigid_direction(settings, k, h); });
+    return resolve_hinge(
+        spec, settings, node_count, curves, points, h,
+        [&](std::size_t k) { return method.rigid_direction(settings, k, h); },
+        [&](std::size_t k) { return method.slip_direction(settings, k, h); });
   });
 }
 

@@ -14,6 +14,7 @@
 #include "ntn/loads.hpp"
 #include "ntn/model.hpp"
 #include "ntn/residual.hpp"
+#include "ntn/slip.hpp"
 #include "ntn/state.hpp"
 #include "ntn/status.hpp"
 
@@ -228,7 +229,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
       case OutputKind::kHingeLevel:
         if constexpr (S.hinges > 0 && S.hystereses > 0) {
           const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
-          if ((h.plastic >> o.dof) & 1U) {
+          if (((h.plastic | h.slip) >> o.dof) & 1U) {
             const auto slot = static_cast<std::size_t>(h.history[static_cast<std::size_t>(o.dof)]);
             value = o.kind == OutputKind::kHingePlastic ? s.plastic[slot]
                     : o.kind == OutputKind::kHingeDissipated
@@ -303,6 +304,8 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.plastic.fill(0.0);  // no plastic history at the start of a run
   s.dissipated.fill(0.0);
   s.plastic_peak.fill(0.0);
+  for (auto& x : s.excursion)
+    x.fill(0.0);
 }
 
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with
@@ -341,8 +344,9 @@ template <Sizes S>
   detail::ntn_coupling(m, s, w);       // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
   detail::sample_outputs(m, s, w, t);  // outputs: the channels at t_n
   const bool finite = detail::update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
-  detail::hinge_stops(m, s, w);                 // stops: rigid branches clamped (S 33, §7.1)
-  detail::constraint_projection(m, s, w);       // constraint projection: S 27-37, §7.1
+  detail::hinge_stops(m, s, w);  // stops: slip directions held or slid, rigid branches clamped
+  slip_outputs(m, w);            // the slip directions' forces at t_n into their channels
+  detail::constraint_projection(m, s, w);  // constraint projection: S 27-37, §7.1
   ++s.tick;
   if (!finite) {
     s.faults |= kFaultDiverged;

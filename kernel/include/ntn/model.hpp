@@ -80,12 +80,14 @@ struct Model {
   // ntn_exact: the stop hinges (indices into branch_hinges) whose two nodes lie in one tree,
   // tree by tree (ForestTree::first_stop, end_stop).
   std::array<std::int32_t, S.hinges> tree_stops{};
+  std::array<std::int32_t, S.hinges> slip_hinges{};  // ntn_exact: hinges with a slip direction
   int num_edges = 0;
   int num_roots = 0;
   int num_spring_hinges = 0;
   int num_branch_hinges = 0;
   int num_project_edges = 0;
   int num_trees = 0;
+  int num_slip_hinges = 0;
   int held_dofs = 0;           // DOFs held at zero as mechanisms (no mass, no stiffness)
   HingeMethod hinge_method{};  // Settings::hinge_method (hinge_methods.hpp picks the method)
   ClampRule clamp = ClampRule::kMomentum;
@@ -168,11 +170,16 @@ template <Sizes S>
     if (!make_hinge_data(spec.hinges[i], spec.settings, S.nodes, spec.curves, spec.curve_points, h))
       return {InitError::kBadHinge, static_cast<int>(i)};
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-      if (!((h.plastic >> k) & 1U)) continue;
+      if (!(((h.plastic | h.slip) >> k) & 1U)) continue;
       const auto slot = static_cast<std::size_t>(h.history[k]);
       if (slot >= S.hystereses ||
           !hysteresis_valid(spec.hystereses[slot], h.stiffness[k], h.dashpot[k]) ||
           slot_used[slot] != 0)
+        return {InitError::kBadHinge, static_cast<int>(i)};
+      // A rigid-plastic direction's law: bilinear, perfectly plastic (slip.hpp).
+      if (h.behaviour[k] == HingeBehaviour::kRigidPlastic &&
+          (spec.hystereses[slot].rule != HysteresisRule::kBilinear ||
+           spec.hystereses[slot].hardening != 0))
         return {InitError::kBadHinge, static_cast<int>(i)};
       slot_used[slot] = 1;
     }
@@ -251,6 +258,7 @@ template <Sizes S>
     model.curve_points = spec.curve_points;
     model.num_edges = model.num_roots = model.held_dofs = 0;
     model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
+    model.num_slip_hinges = 0;
     model.num_trees = 0;
     for (std::size_t i = 0; i < S.hinges; ++i) {
       const HingeData& h = model.hinges[i];
@@ -259,6 +267,7 @@ template <Sizes S>
         model.spring_hinges[static_cast<std::size_t>(model.num_spring_hinges++)] = hinge;
       if (h.branches != 0)
         model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = hinge;
+      if (h.slip != 0) model.slip_hinges[static_cast<std::size_t>(model.num_slip_hinges++)] = hinge;
     }
     for (auto& e : model.hinge_edge)
       e = -1;
@@ -328,11 +337,19 @@ template <Sizes S>
   model.loads = spec.loads;
   model.element_loads = spec.element_loads;
   if constexpr (S.hystereses > 0) {
-    for (const HingeSpec& hs : spec.hinges) {  // each slot's law with its direction's elastic k
+    // Each slot's law with its direction's elastic k (a rigid-plastic direction: the penalty
+    // stiffness under penalty, 1 under ntn_exact, where the slip stage uses the yields alone).
+    for (std::size_t i = 0; i < S.hinges; ++i) {
+      const HingeSpec& hs = spec.hinges[i];
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-        if (hs.behaviour[k] != HingeBehaviour::kPlastic) continue;
+        if (hs.behaviour[k] != HingeBehaviour::kPlastic &&
+            hs.behaviour[k] != HingeBehaviour::kRigidPlastic)
+          continue;
         const auto slot = static_cast<std::size_t>(hs.hysteresis[k]);
-        model.hystereses[slot] = make_hysteresis(spec.hystereses[slot], hs.stiffness[k]);
+        const double k_el = hs.behaviour[k] == HingeBehaviour::kPlastic ? hs.stiffness[k]
+                            : (model.hinges[i].plastic >> k) & 1U ? model.hinges[i].stiffness[k]
+                                                                  : 1.0;
+        model.hystereses[slot] = make_hysteresis(spec.hystereses[slot], k_el);
       }
     }
   }

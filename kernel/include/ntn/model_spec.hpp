@@ -115,6 +115,10 @@ enum class HingeBehaviour : std::uint8_t {
   kPlastic,  // hysteretic: elastic `stiffness`, its law in `hysteresis` (a HysteresisSpec:
              // bilinear with kinematic hardening, or a backbone with a hysteresis rule), optional
              // `dashpot` (bilinear only); its history lives in State (hysteresis.hpp)
+  kRigidPlastic,  // rigid until its force reaches the yield of its `hysteresis` (a kBilinear
+                  // HysteresisSpec, hardening 0), then it slides at that force (slip.hpp):
+                  // exact stick and slip under ntn_exact, a bilinear spring of the penalty
+                  // stiffness under penalty, refused by ntn_paper; its slip is State::plastic
 };
 
 // Each method is a struct in its own header (ntn_exact.hpp, ntn_paper.hpp, penalty.hpp); only

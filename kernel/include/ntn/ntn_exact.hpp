@@ -13,6 +13,7 @@
 #include "ntn/hinge.hpp"
 #include "ntn/model_spec.hpp"
 #include "ntn/residual.hpp"
+#include "ntn/slip.hpp"
 #include "ntn/state.hpp"
 #include "ntn/status.hpp"
 
@@ -44,6 +45,13 @@ struct NtnExactMethod {
   // Rigid direction k of a hinge: an edge of the constraint forest.
   static bool rigid_direction(const Settings&, std::size_t k, HingeData& h) {
     h.rigid |= static_cast<std::uint8_t>(1U << k);
+    return true;
+  }
+
+  // Rigid-plastic direction k: free in the forest, held (stick) or slid (slip) by the slip stage
+  // after the update, exactly (slip.hpp).
+  static bool slip_direction(const Settings&, std::size_t k, HingeData& h) {
+    h.slip |= static_cast<std::uint8_t>(1U << k);
     return true;
   }
 
@@ -89,8 +97,10 @@ struct NtnExactMethod {
     forest_down(m.roots, m.num_roots, m.edges, m.edge_matrices, m.num_edges, r, w.a.data());
   }
 
+  // The slip directions (slip.hpp), then the stops' clamp.
   template <Sizes S>
   static void stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+    slip_stage(m, s, w);
     clamp_stops(m, s, w);
   }
   // Each child's rigid components from its parent's, in the trees that round (rotated or

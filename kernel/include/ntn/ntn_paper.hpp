@@ -204,6 +204,10 @@ struct NtnPaperMethod {
     return true;
   }
 
+  // Rigid-plastic directions need the constraint force of a direction to test against its
+  // yield, which the seed's algorithm does not give: refused.
+  static bool slip_direction(const Settings&, std::size_t, HingeData&) { return false; }
+
   // S 22-26: the mass the accelerations divide by is the hinge-summed one (init() inverts it).
   template <Sizes S>
   static InitStatus init(const ModelSpec<S>&, Model<S>& model, InitWorkspace<S>& work) {

@@ -30,6 +30,16 @@ struct PenaltyMethod {
     return true;
   }
 
+  // Rigid-plastic direction k: a bilinear elasto-plastic spring of the penalty stiffness (its
+  // yield from the direction's law; perfectly plastic), the comparison the seed's way allows.
+  static bool slip_direction(const Settings& settings, std::size_t k, HingeData& h) {
+    h.stiffness[k] = penalty_stiffness(settings, k);
+    if (!(h.stiffness[k] > 0)) return false;
+    h.springs |= static_cast<std::uint8_t>(1U << k);
+    h.plastic |= static_cast<std::uint8_t>(1U << k);
+    return true;
+  }
+
   // Nothing to precompute: the springs are in Model::spring_hinges like any other.
   template <Sizes S>
   static InitStatus init(const ModelSpec<S>&, Model<S>&, InitWorkspace<S>&) {

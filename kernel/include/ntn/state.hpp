@@ -88,7 +88,12 @@ struct Scratch {
   // written and read by the hinge-force output of that tree (forest_hinge_force).
   std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};
   std::array<double, S.outputs>
-      outputs{};                   // channels at t_n: written by outputs, read by the caller
+      outputs{};  // channels at t_n: written by outputs (a slip direction's force by the slip
+                  // stage), read by the caller
+  // N or N m, by history slot: the force of each rigid-plastic direction at t_n (the slip
+  // stage's, slip.hpp; 0 for the other slots): written by the slip stage, read by it and by the
+  // hinge-force outputs it then writes.
+  std::array<double, S.hystereses> slip_force{};
   ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
   std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
   double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller

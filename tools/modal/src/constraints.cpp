@@ -74,7 +74,7 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
   out.hinges.resize(spec.hinges.size());
   Settings settings = spec.settings;
   if (!penalty_as_springs) settings.hinge_method = HingeMethod::kNtnExact;
-  bool dashpots = false, plastic = false;
+  bool dashpots = false, plastic = false, rigid_plastic = false;
   for (std::size_t h = 0; h < spec.hinges.size(); ++h) {
     const HingeSpec& hs = spec.hinges[h];
     HingeData check;
@@ -87,8 +87,10 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
     }
     LinearHinge& lh = out.hinges[h];
     for (std::size_t k = 0; k < 6; ++k) {
+      rigid_plastic = rigid_plastic || hs.behaviour[k] == HingeBehaviour::kRigidPlastic;
       switch (hs.behaviour[k]) {
         case HingeBehaviour::kRigid:
+        case HingeBehaviour::kRigidPlastic:  // below its yield: rigid (a penalty spring)
           if (penalty_as_springs) {
             lh.stiffness[k] = ntn::penalty_stiffness(settings, k);
           } else {
@@ -114,6 +116,9 @@ HingeLinearization linearize_hinges(const SpecView& spec, bool penalty_as_spring
     }
   }
   if (dashpots) out.notes.push_back("hinge dashpots left out: the modes are undamped");
+  if (rigid_plastic) {
+    out.notes.push_back("rigid-plastic hinge directions rigid (the modes below their yield)");
+  }
   if (plastic) {
     out.notes.push_back(
         "plastic hinge directions at their elastic stiffness (the modes below yield)");

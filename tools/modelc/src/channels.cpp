@@ -95,9 +95,9 @@ void add_channels(Compilation& comp) {
         const bool history = o.node_kind == OutputKind::kHingePlastic ||
                              o.node_kind == OutputKind::kHingeDissipated ||
                              o.node_kind == OutputKind::kHingeLevel;
-        if (history &&
-            d.hinges[static_cast<std::size_t>(os.hinge)]
-                    .behaviour[static_cast<std::size_t>(o.dof)] != HingeBehaviour::kPlastic) {
+        const HingeBehaviour hb =
+            d.hinges[static_cast<std::size_t>(os.hinge)].behaviour[static_cast<std::size_t>(o.dof)];
+        if (history && hb != HingeBehaviour::kPlastic && hb != HingeBehaviour::kRigidPlastic) {
           L.error(o.dof_at, "direction " + std::string(kDofNames[static_cast<std::size_t>(o.dof)]) +
                                 " of " + d.describe_hinge(os.hinge) +
                                 " is not plastic: it has no plastic deformation or dissipated "

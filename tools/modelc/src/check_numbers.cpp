@@ -198,7 +198,9 @@ void check_hinge_spring_numbers(Compilation& comp) {
       const Factor stiff{b == HingeBehaviour::kRigid     ? "the penalty stiffness"
                          : b == HingeBehaviour::kCurve   ? "the curve's steepest soft slope"
                          : b == HingeBehaviour::kPlastic ? "plastic (elastic stiffness)"
-                                                         : "linear",
+                         : b == HingeBehaviour::kRigidPlastic
+                             ? "the penalty stiffness (rigid-plastic)"
+                             : "linear",
                          hd.stiffness[k], 1, comp.dir_at[hi][k], unit};
       if (!check_derived(L, hd.stiffness[k] * w, "frequency^2 k (1/m1 + 1/m2)" + of,
                          {stiff, inv_mass}, false))

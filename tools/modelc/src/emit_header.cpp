@@ -203,6 +203,8 @@ const char* behaviour(HingeBehaviour b) {
       return "ntn::HingeBehaviour::kCurve";
     case HingeBehaviour::kPlastic:
       return "ntn::HingeBehaviour::kPlastic";
+    case HingeBehaviour::kRigidPlastic:
+      return "ntn::HingeBehaviour::kRigidPlastic";
   }
   throw std::invalid_argument("emit_header: unknown hinge behaviour");
 }

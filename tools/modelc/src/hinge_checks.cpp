@@ -141,6 +141,7 @@ MassCheck hinge_mass_check(const SpecView& spec, std::span<const double> mass) {
           if (!any) continue;
           switch (h.behaviour[k]) {
             case HingeBehaviour::kRigid:
+            case HingeBehaviour::kRigidPlastic:  // rigid below its yield
               if (penalty) {
                 spring_rows.push_back(r), spring_is_penalty.push_back(true);
               } else {

@@ -29,6 +29,19 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& dirs) {
       hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
       comp.d.hystereses.push_back(b.law);
     }
+    if (b.kind == HingeBehaviour::kRigidPlastic) {  // a history slot: its slip, its work
+      if (comp.d.settings.hinge_method == HingeMethod::kNtnPaper) {
+        comp.L.error(b.at,
+                     "a rigid_plastic direction needs hinge_method = \"ntn_exact\" (exact "
+                     "stick and slip) or \"penalty\" (an elasto-plastic penalty spring): "
+                     "the seed's algorithm (\"ntn_paper\") gives no constraint force to "
+                     "test against the yield");
+        ok = false;
+        continue;
+      }
+      hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
+      comp.d.hystereses.push_back(b.law);
+    }
     if (b.kind == HingeBehaviour::kCurve) {
       hs.curve[k] = ref(comp.ids.curves, *b.curve, "curve");
       ok = ok && hs.curve[k] >= 0;

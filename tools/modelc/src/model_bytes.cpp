@@ -23,10 +23,11 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
   // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
-  // of hinges with springs, with branches, of projected edges and of the trees' stops, a tree
-  // slot (a forest has at most one tree per hinge) and its clamp check mark (Scratch).
+  // of hinges with springs, with branches, of projected edges, of the trees' stops and with slip
+  // directions, a tree slot (a forest has at most one tree per hinge) and its clamp check mark
+  // (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
-                sizeof(ForestRoot) + 5 * sizeof(std::int32_t) + sizeof(ForestTree) +
+                sizeof(ForestRoot) + 6 * sizeof(std::int32_t) + sizeof(ForestTree) +
                 sizeof(std::int64_t);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force

@@ -200,7 +200,8 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   b.at = place(n.source(), key);
   const std::string what =
       "must be \"rigid\", \"free\", { linear = k, dashpot = c }, { curve = \"id\" }, "
-      "{ plastic = k, yield = F } or { backbone = [B, C, D, E], rule = \"kinematic\" }";
+      "{ plastic = k, yield = F }, { backbone = [B, C, D, E], rule = \"kinematic\" } or "
+      "{ rigid_plastic = F }";
   if (const auto* s = n.as_string()) {
     if (s->get() == "rigid" || s->get() == "free") {
       b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
@@ -216,19 +217,23 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   }
   Table tb(L, *t, key,
            {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening",
-            "backbone", "backbone_negative", "rule", "io", "ls", "cp"});
+            "backbone", "backbone_negative", "rule", "rigid_plastic", "io", "ls", "cp"});
   tb.check_unknown();
-  const char* const kKinds[4] = {"linear", "curve", "plastic", "backbone"};
-  for (std::size_t i = 0; i < 4; ++i) {
-    for (std::size_t j = i + 1; j < 4; ++j) {
+  const char* const kKinds[5] = {"linear", "curve", "plastic", "backbone", "rigid_plastic"};
+  for (std::size_t i = 0; i < 5; ++i) {
+    for (std::size_t j = i + 1; j < 5; ++j) {
       if (tb.conflict(kKinds[i], kKinds[j])) return std::nullopt;
     }
   }
-  for (std::string_view k : {"yield", "yield_negative", "hardening"}) {
+  for (std::string_view k : {"yield", "hardening"}) {
     if (tb.has(k) && !tb.has("plastic")) {
       L.error(tb.where(k), "only applies with 'plastic'");
       return std::nullopt;
     }
+  }
+  if (tb.has("yield_negative") && !tb.has("plastic") && !tb.has("rigid_plastic")) {
+    L.error(tb.where("yield_negative"), "only applies with 'plastic' or 'rigid_plastic'");
+    return std::nullopt;
   }
   for (std::string_view k : {"backbone_negative", "rule"}) {
     if (tb.has(k) && !tb.has("backbone")) {
@@ -237,12 +242,33 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     }
   }
   for (std::string_view k : {"io", "ls", "cp"}) {
-    if (tb.has(k) && !tb.has("plastic") && !tb.has("backbone")) {
-      L.error(tb.where(k), "only applies with 'plastic' or 'backbone'");
+    if (tb.has(k) && !tb.has("plastic") && !tb.has("backbone") && !tb.has("rigid_plastic")) {
+      L.error(tb.where(k), "only applies with 'plastic', 'backbone' or 'rigid_plastic'");
       return std::nullopt;
     }
   }
   if (tb.has("backbone")) return read_backbone(L, tb, *t, b);
+  if (tb.has("rigid_plastic")) {
+    // Rigid until its force reaches the yield, then sliding at it (ntn/slip.hpp).
+    const auto fy = tb.positive("rigid_plastic", Need::kRequired);
+    const auto fn = tb.positive("yield_negative", Need::kOptional);
+    std::array<double, 3> limits{};
+    bool ok = fy && (fn || !tb.has("yield_negative"));
+    ok = read_limits(L, tb, *t, limits) && ok;
+    if (tb.has("dashpot")) {
+      L.error(tb.where("dashpot"),
+              "a rigid_plastic direction takes no dashpot: it is rigid while it sticks");
+      ok = false;
+    }
+    if (!ok) return std::nullopt;
+    b.kind = HingeBehaviour::kRigidPlastic;
+    b.k = 0;
+    b.c = 0;
+    b.law.yield_pos = *fy;
+    b.law.yield_neg = fn.value_or(*fy);
+    b.law.limits = limits;
+    return b;
+  }
   if (tb.has("plastic")) {
     // Bilinear elasto-plastic with kinematic hardening (ntn/hysteresis.hpp).
     const auto k = tb.positive("plastic", Need::kRequired);

@@ -7,14 +7,17 @@
 // external work (gravity, base excitation -M iota a_g, loads, force inputs) - internal work (the
 // elements' elastic and beta K forces, hinge springs, plastic directions and dashpots) - the
 // mass-proportional damping's work; the residual is rounding (and the work of rigid stops' clamps,
-// which are impulses). The internal work's hysteretic share is the plastic directions' own record,
-// State::dissipated (the plastic work integral f dd_p).
+// which are impulses). The internal work includes the rigid-plastic directions' forces (slip.hpp:
+// they act through the slip stage, not F_n): f (B Delta_n)_k each. The internal work's
+// hysteretic share is the plastic directions' own record, State::dissipated (the plastic work
+// integral f dd_p; for a rigid-plastic direction the friction work f ds).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
+#include "ntn/hinge.hpp"
 #include "ntn/model.hpp"
 #include "ntn/residual.hpp"
 #include "ntn/state.hpp"
@@ -42,6 +45,26 @@ class EnergyBalance {
         ext += delta * m.mass[j] * w.load_g[d];
         in += delta * w.f[j];
         damp += delta * m.alpha * m.mass[j] * v_prev_[j];
+      }
+    }
+    if constexpr (S.hinges > 0 && S.hystereses > 0) {  // rigid-plastic directions: f (B Delta)_k
+      for (int i = 0; i < m.num_slip_hinges; ++i) {
+        const HingeData& h =
+            m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
+        double delta1[6], delta2[6], bd[6];
+        for (std::size_t c = 0; c < 6; ++c) {
+          const auto j1 = static_cast<std::size_t>(kDofsPerNode * h.node1) + c;
+          delta1[c] = half_dt * (s.v[j1] + v_prev_[j1]);
+          if (h.node2 != kGround) {
+            const auto j2 = static_cast<std::size_t>(kDofsPerNode * h.node2) + c;
+            delta2[c] = half_dt * (s.v[j2] + v_prev_[j2]);
+          }
+        }
+        hinge_relative(h, delta1, h.node2 == kGround ? nullptr : delta2, bd);
+        for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+          if ((h.slip >> k) & 1U)
+            in += w.slip_force[static_cast<std::size_t>(h.history[k])] * bd[k];
+        }
       }
     }
     for (int k = 0; k < m.num_slots; ++k) {  // where P_n is not m g: the load slots

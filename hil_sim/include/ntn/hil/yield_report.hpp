@@ -29,7 +29,8 @@ inline const char* direction_name(int direction) {
   return direction >= 0 && direction < 6 ? kNames[direction] : "?";
 }
 
-// Every plastic direction whose plastic deformation is not zero, in hinge then direction order.
+// Every plastic direction whose plastic deformation is not zero (a rigid-plastic one: that has
+// slid), in hinge then direction order.
 template <Sizes S>
 std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<S>& s) {
   std::vector<YieldedDirection> out;
@@ -37,7 +38,7 @@ std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<
     for (std::size_t h = 0; h < S.hinges; ++h) {
       const HingeData& hd = m.hinges[h];
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-        if (!((hd.plastic >> k) & 1U)) continue;
+        if (!(((hd.plastic | hd.slip) >> k) & 1U)) continue;
         const auto slot = static_cast<std::size_t>(hd.history[k]);
         if (!(s.plastic_peak[slot] > 0)) continue;
         out.push_back({static_cast<int>(h), static_cast<int>(k), s.plastic_peak[slot],
