@@ -204,6 +204,20 @@ TEST(ModelcPlastic, RigidPlasticDirectionsGetTheirYieldsAndSlots) {
             "against the yield\n");
 }
 
+// friction (issue 16): mu, cohesion and the normal direction into the law (default normal ux).
+TEST(ModelcPlastic, FrictionDirectionsGetMuCohesionAndNormal) {
+  const auto r = load_model_from_string(
+      model("{ friction = 0.4, cohesion = 50, normal = \"uz\" }", "{ plastic = 5e8, yield = 1e5 }"),
+      "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& d = *r.model;
+  EXPECT_EQ(d.hinges[0].behaviour[4], HingeBehaviour::kRigidPlastic);
+  EXPECT_EQ(d.hystereses[0].normal, 2);
+  EXPECT_EQ(d.hystereses[0].mu, 0.4);
+  EXPECT_EQ(d.hystereses[0].cohesion, 50.0);
+  EXPECT_TRUE(ntn::hysteresis_valid(d.hystereses[0], 0.0, 0.0));
+}
+
 // Acceptance limits io, ls, cp: into the law, and the levels they grade (performance_level:
 // 0 no plastic deformation, 1 within IO, 2 within LS, 3 within CP, 4 beyond).
 TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
@@ -403,6 +417,16 @@ INSTANTIATE_TEST_SUITE_P(
 
                 "46:41: error: key 'hinges[0].ry.hardening': only applies with "
                 "'plastic'"},
+        BadCase{"FrictionNormalIsItself", "{ friction = 0.3, normal = \"ry\" }", kOk, "",
+                "46:33: error: key 'hinges[0].ry.normal': the normal of a friction "
+                "direction must be another direction of the hinge that does not slide "
+                "itself (rigid, a spring or a curve): it is this direction"},
+        BadCase{"FrictionNegativeMu", "{ friction = -0.3, normal = \"uz\" }", kOk, "",
+                "46:19: error: key 'hinges[0].ry.friction': must not be negative (got "
+                "-0.3)"},
+        BadCase{"CohesionWithoutFriction", "{ rigid_plastic = 1e5, cohesion = 3 }", kOk, "",
+                "46:40: error: key 'hinges[0].ry.cohesion': only applies with "
+                "'friction'"},
         BadCase{"BackboneAndPlastic",
                 "{ plastic = 1e9, yield = 2e5, backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, "
                 "4e4], [0.05, 4e4]] }",

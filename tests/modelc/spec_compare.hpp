@@ -124,6 +124,9 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
   for (std::size_t i = 0; i < h.hystereses.size(); ++i) {
     const HysteresisSpec &x = h.hystereses[i], &y = d.hystereses[i];
     EXPECT_EQ(x.rule, y.rule) << i;
+    EXPECT_EQ(x.normal, y.normal) << i;
+    expect_bits(x.mu, y.mu, "mu", i);
+    expect_bits(x.cohesion, y.cohesion, "cohesion", i);
     expect_bits(x.yield_pos, y.yield_pos, "yield_pos", i);
     expect_bits(x.yield_neg, y.yield_neg, "yield_neg", i);
     expect_bits(x.hardening, y.hardening, "hardening", i);

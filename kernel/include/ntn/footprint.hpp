@@ -155,6 +155,7 @@ constexpr std::size_t scratch_footprint(const Sizes& s) {
   l.array<double>(s.hinges > 0 ? dofs : 0);             // r
   l.array<double>(s.outputs);                           // outputs
   l.array<double>(s.hystereses);                        // slip_force
+  l.array<double>(s.hystereses);                        // slip_normal
   l.add(clamp_work_footprint(s), clamp_work_align(s));  // clamp (ClampWork)
   l.scalar<std::array<double, 3>>();                    // ground
   l.scalar<double>();                                   // time

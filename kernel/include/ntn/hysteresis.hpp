@@ -26,6 +26,9 @@ struct HysteresisData {
   double inv_kH = 0;                                // 1 / (k + H)
   std::array<double, 3> limits{};                   // io, ls, cp on the peak |d_p| (0, 0, 0: none)
   Envelope pos, neg;  // the backbone of each sense (kKinematic, kPeakOriented)
+  int normal = -1;    // friction (slip.hpp): the direction whose force N sets the limit, or -1
+  double mu = 0;
+  double cohesion = 0;
 };
 
 // A law the kernel takes for a direction of elastic stiffness k and dashpot c: acceptance limits
@@ -37,6 +40,10 @@ constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
   const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
   const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && l[2] < 1e300;
   if (!(none || ordered)) return false;
+  if (s.normal >= 0)  // friction: the yields are not used
+    return s.rule == HysteresisRule::kBilinear && s.normal < 6 && s.mu >= 0 && s.mu < 1e300 &&
+           s.cohesion >= 0 && s.cohesion < 1e300 && s.hardening == 0;
+  if (s.normal != -1) return false;
   if (s.rule == HysteresisRule::kBilinear)
     return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
            s.hardening >= 0 && s.hardening < 1;
@@ -78,6 +85,7 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
   h.inv_kH = 1.0 / (k + h.H);
   h.limits = s.limits;
   h.rule = s.rule;
+  h.normal = s.normal, h.mu = s.mu, h.cohesion = s.cohesion;
   if (s.rule != HysteresisRule::kBilinear) {
     h.pos = make_envelope(s.backbone_pos);
     h.neg = make_envelope(s.backbone_neg);

@@ -189,6 +189,25 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
   return f[static_cast<std::size_t>(k)];
 }
 
+// The friction directions' normal forces N at t_n (slip.hpp), before the update moves u: the
+// force of the normal direction as its channel gives it (a rigid one's lambda, a spring's force).
+template <Sizes S>
+void slip_normals(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  if constexpr (S.hinges > 0 && S.hystereses > 0) {
+    int coupled_tree = -1;
+    for (int i = 0; i < m.num_slip_hinges; ++i) {
+      const int hi = m.slip_hinges[static_cast<std::size_t>(i)];
+      const HingeData& h = m.hinges[static_cast<std::size_t>(hi)];
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if (!((h.slip >> k) & 1U)) continue;
+        const auto slot = static_cast<std::size_t>(h.history[k]);
+        const int normal = m.hystereses[slot].normal;
+        if (normal >= 0) w.slip_normal[slot] = hinge_force(m, s, w, hi, normal, coupled_tree);
+      }
+    }
+  }
+}
+
 template <Sizes S>
 double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k) {
   const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
@@ -342,6 +361,7 @@ template <Sizes S>
   detail::hinge_springs(m, s, w);      // hinge springs: F_n += B^T f_L (§7)
   detail::residual_stage(m, s, w);     // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
   detail::ntn_coupling(m, s, w);       // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
+  detail::slip_normals(m, s, w);       // friction: the normal forces N at t_n (slip.hpp)
   detail::sample_outputs(m, s, w, t);  // outputs: the channels at t_n
   const bool finite = detail::update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
   detail::hinge_stops(m, s, w);  // stops: slip directions held or slid, rigid branches clamped

@@ -176,10 +176,15 @@ template <Sizes S>
           !hysteresis_valid(spec.hystereses[slot], h.stiffness[k], h.dashpot[k]) ||
           slot_used[slot] != 0)
         return {InitError::kBadHinge, static_cast<int>(i)};
-      // A rigid-plastic direction's law: bilinear, perfectly plastic (slip.hpp).
+      // A rigid-plastic direction's law: bilinear, perfectly plastic (slip.hpp). Friction only
+      // on a slip direction (ntn_exact) whose normal is another direction of the hinge that is
+      // not a slip direction itself (its force at t_n is known before the slip stage).
+      const HysteresisSpec& law = spec.hystereses[slot];
       if (h.behaviour[k] == HingeBehaviour::kRigidPlastic &&
-          (spec.hystereses[slot].rule != HysteresisRule::kBilinear ||
-           spec.hystereses[slot].hardening != 0))
+          (law.rule != HysteresisRule::kBilinear || law.hardening != 0))
+        return {InitError::kBadHinge, static_cast<int>(i)};
+      if (law.normal >= 0 && (!((h.slip >> k) & 1U) || law.normal == static_cast<int>(k) ||
+                              ((h.slip >> law.normal) & 1U)))
         return {InitError::kBadHinge, static_cast<int>(i)};
       slot_used[slot] = 1;
     }

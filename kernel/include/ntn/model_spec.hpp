@@ -116,7 +116,8 @@ enum class HingeBehaviour : std::uint8_t {
              // bilinear with kinematic hardening, or a backbone with a hysteresis rule), optional
              // `dashpot` (bilinear only); its history lives in State (hysteresis.hpp)
   kRigidPlastic,  // rigid until its force reaches the yield of its `hysteresis` (a kBilinear
-                  // HysteresisSpec, hardening 0), then it slides at that force (slip.hpp):
+                  // HysteresisSpec, hardening 0), or its friction limit mu max(0, -N) + c
+                  // (HysteresisSpec::normal), then it slides at that force (slip.hpp):
                   // exact stick and slip under ntn_exact, a bilinear spring of the penalty
                   // stiffness under penalty, refused by ntn_paper; its slip is State::plastic
 };
@@ -184,6 +185,13 @@ struct HysteresisSpec {
   HysteresisRule rule = HysteresisRule::kBilinear;
   std::array<CurvePoint, 4> backbone_pos{};  // B, C, D, E (kKinematic, kPeakOriented)
   std::array<CurvePoint, 4> backbone_neg{};  // the same in the negative sense, as magnitudes
+  // Friction (a kRigidPlastic direction, slip.hpp): with `normal` >= 0 its limit in both senses
+  // is mu max(0, -N) + cohesion, N the force at t_n of direction `normal` of the same hinge
+  // (rigid, a spring or a curve; N < 0 presses the nodes together: the spring convention
+  // f = k d, d < 0 when they approach along the normal axis), and the yields are not used.
+  int normal = -1;
+  double mu = 0;
+  double cohesion = 0;  // N or N m
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's

@@ -33,6 +33,11 @@ struct Model;  // model.hpp
 inline constexpr int kSlipSweeps = 64;           // Gauss-Seidel sweeps per step, at most
 inline constexpr double kSlipTolerance = 1e-12;  // force change, relative to the yield
 
+// A friction direction's limit: mu max(0, -N) + cohesion (N < 0 presses the nodes together).
+inline double friction_limit(const HysteresisData& law, double normal) {
+  return law.mu * (normal < 0 ? -normal : 0.0) + law.cohesion;
+}
+
 namespace detail {
 
 // One sweep over every slip direction: each one's force moves toward what holds it, within its
@@ -61,14 +66,17 @@ double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first) {
       if (!(mobility > 0)) continue;  // both sides held: nothing can slide
       const double old_force = w.slip_force[slot];
       double force = old_force + (d[k] - s.plastic[slot]) / (mobility * dt2);
-      if (force > law.yield_pos) force = law.yield_pos;
-      if (force < -law.yield_neg) force = -law.yield_neg;
+      double up = law.yield_pos, down = law.yield_neg;
+      if (law.normal >= 0) up = down = friction_limit(law, w.slip_normal[slot]);
+      if (force > up) force = up;
+      if (force < -down) force = -down;
       const double change = force - old_force;
       if (change == 0) continue;
       w.slip_force[slot] = force;
       clamp_move(m, s, w, parts, -change * dt2, ++w.clamp.events);
-      const double scale = force > 0 ? law.yield_pos : law.yield_neg;
-      const double rel = (change > 0 ? change : -change) / scale;
+      const double scale = up > down ? up : down;
+      const double size = change > 0 ? change : -change;
+      const double rel = scale > 0 ? size / scale : size;
       if (rel > largest) largest = rel;
     }
   }
@@ -98,7 +106,9 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
         const auto slot = static_cast<std::size_t>(h.history[k]);
         const HysteresisData& law = m.hystereses[slot];
         const double f = w.slip_force[slot];
-        if (f != law.yield_pos && f != -law.yield_neg) continue;  // it sticks: s stays
+        double up = law.yield_pos, down = law.yield_neg;
+        if (law.normal >= 0) up = down = friction_limit(law, w.slip_normal[slot]);
+        if (f != up && f != -down) continue;  // it sticks: s stays
         const double ds = d[k] - s.plastic[slot];
         s.dissipated[slot] += f * ds;  // >= 0: it slides the way its force resists
         s.plastic[slot] = d[k];

@@ -94,6 +94,9 @@ struct Scratch {
   // stage's, slip.hpp; 0 for the other slots): written by the slip stage, read by it and by the
   // hinge-force outputs it then writes.
   std::array<double, S.hystereses> slip_force{};
+  // N or N m, by history slot: a friction direction's normal force N at t_n (slip.hpp): written
+  // by the slip-normal stage (after the coupling), read by the slip stage.
+  std::array<double, S.hystereses> slip_normal{};
   ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
   std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
   double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller

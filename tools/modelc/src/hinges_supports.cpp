@@ -39,6 +39,28 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& dirs) {
         ok = false;
         continue;
       }
+      if (b.law.normal >= 0) {  // friction: the normal is another, non-slip direction
+        const auto n = static_cast<std::size_t>(b.law.normal);
+        if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic) {
+          comp.L.error(
+              b.normal_at,
+              std::string("the normal of a friction direction must be another direction ") +
+                  "of the hinge that does not slide itself (rigid, a spring or a curve)" +
+                  (n == k ? ": it is this direction" : ": it slides") +
+                  (b.normal_at.line == b.at.line && b.normal_at.column == b.at.column
+                       ? " (the default normal is ux: give normal = \"..\")"
+                       : ""));
+          ok = false;
+          continue;
+        }
+        if (comp.d.settings.hinge_method == HingeMethod::kPenalty) {
+          comp.L.error(b.at,
+                       "a friction direction needs hinge_method = \"ntn_exact\": under "
+                       "\"penalty\" only a constant limit (rigid_plastic = F) is offered");
+          ok = false;
+          continue;
+        }
+      }
       hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
       comp.d.hystereses.push_back(b.law);
     }

@@ -200,8 +200,8 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   b.at = place(n.source(), key);
   const std::string what =
       "must be \"rigid\", \"free\", { linear = k, dashpot = c }, { curve = \"id\" }, "
-      "{ plastic = k, yield = F }, { backbone = [B, C, D, E], rule = \"kinematic\" } or "
-      "{ rigid_plastic = F }";
+      "{ plastic = k, yield = F }, { backbone = [B, C, D, E], rule = \"kinematic\" }, "
+      "{ rigid_plastic = F } or { friction = mu, normal = \"ux\" }";
   if (const auto* s = n.as_string()) {
     if (s->get() == "rigid" || s->get() == "free") {
       b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
@@ -217,17 +217,25 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   }
   Table tb(L, *t, key,
            {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening",
-            "backbone", "backbone_negative", "rule", "rigid_plastic", "io", "ls", "cp"});
+            "backbone", "backbone_negative", "rule", "rigid_plastic", "friction", "cohesion",
+            "normal", "io", "ls", "cp"});
   tb.check_unknown();
-  const char* const kKinds[5] = {"linear", "curve", "plastic", "backbone", "rigid_plastic"};
-  for (std::size_t i = 0; i < 5; ++i) {
-    for (std::size_t j = i + 1; j < 5; ++j) {
+  const char* const kKinds[6] = {"linear",   "curve",         "plastic",
+                                 "backbone", "rigid_plastic", "friction"};
+  for (std::size_t i = 0; i < 6; ++i) {
+    for (std::size_t j = i + 1; j < 6; ++j) {
       if (tb.conflict(kKinds[i], kKinds[j])) return std::nullopt;
     }
   }
   for (std::string_view k : {"yield", "hardening"}) {
     if (tb.has(k) && !tb.has("plastic")) {
       L.error(tb.where(k), "only applies with 'plastic'");
+      return std::nullopt;
+    }
+  }
+  for (std::string_view k : {"cohesion", "normal"}) {
+    if (tb.has(k) && !tb.has("friction")) {
+      L.error(tb.where(k), "only applies with 'friction'");
       return std::nullopt;
     }
   }
@@ -242,12 +250,37 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     }
   }
   for (std::string_view k : {"io", "ls", "cp"}) {
-    if (tb.has(k) && !tb.has("plastic") && !tb.has("backbone") && !tb.has("rigid_plastic")) {
-      L.error(tb.where(k), "only applies with 'plastic', 'backbone' or 'rigid_plastic'");
+    if (tb.has(k) && !tb.has("plastic") && !tb.has("backbone") && !tb.has("rigid_plastic") &&
+        !tb.has("friction")) {
+      L.error(tb.where(k),
+              "only applies with 'plastic', 'backbone', 'rigid_plastic' or 'friction'");
       return std::nullopt;
     }
   }
   if (tb.has("backbone")) return read_backbone(L, tb, *t, b);
+  if (tb.has("friction")) {
+    // Coulomb friction: rigid while |f| < mu max(0, -N) + cohesion, N the force of direction
+    // `normal` of the same hinge (ntn/slip.hpp).
+    const auto mu = tb.non_negative("friction", Need::kOptional);
+    const auto c = tb.non_negative("cohesion", Need::kOptional);
+    const auto normal = tb.choice("normal", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
+    std::array<double, 3> limits{};
+    bool ok = mu && (c || !tb.has("cohesion")) && (normal || !tb.has("normal"));
+    ok = read_limits(L, tb, *t, limits) && ok;
+    if (tb.has("dashpot")) {
+      L.error(tb.where("dashpot"),
+              "a friction direction takes no dashpot: it is rigid while it sticks");
+      ok = false;
+    }
+    if (!ok) return std::nullopt;
+    b.kind = HingeBehaviour::kRigidPlastic;
+    b.law.normal = normal.value_or(0);
+    b.law.mu = *mu;
+    b.law.cohesion = c.value_or(0.0);
+    b.law.limits = limits;
+    b.normal_at = tb.has("normal") ? tb.where("normal") : b.at;
+    return b;
+  }
   if (tb.has("rigid_plastic")) {
     // Rigid until its force reaches the yield, then sliding at it (ntn/slip.hpp).
     const auto fy = tb.positive("rigid_plastic", Need::kRequired);

@@ -62,8 +62,9 @@ struct BehaviourIn {
   HingeBehaviour kind = HingeBehaviour::kRigid;
   double k = 0, c = 0;        // kLinear, kPlastic
   std::optional<IdAt> curve;  // kCurve
-  HysteresisSpec law;         // kPlastic: yields and hardening
+  HysteresisSpec law;         // kPlastic, kRigidPlastic: its law (friction: mu, normal)
   Where at;                   // the value that set it (for curve errors)
+  Where normal_at;            // friction: its `normal` key (or the value, by default)
 };
 using Behaviours = std::array<BehaviourIn, kDofsPerNode>;
 
