@@ -753,6 +753,8 @@ int hil_main(int argc, char** argv) {
                     ntn::hil::direction_name(y.direction), y.peak, y.residual,
                     y.direction >= 3 ? "rad" : "m", y.dissipated,
                     ntn::hil::level_name(y.level, y.has_limits));
+        if (y.first_slip >= 0)  // a rigid-plastic direction's event
+          std::printf("      %s at t = %.6g s\n", y.failed ? "failed" : "first slid", y.first_slip);
       }
     }
     if (result.kinetic_limit < std::numeric_limits<double>::infinity()) {

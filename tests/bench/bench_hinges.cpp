@@ -265,7 +265,7 @@ void print_summary(const SummaryReporter& rep) {
     std::printf("  %-22s %9.2f us/step  dt %6.1f us  %8.3f s CPU per simulated s\n", "merged",
                 merged->cpu_per_step * 1e6, merged->dt * 1e6, merged->cpu_per_sim_s);
   }
-  for (const char* kind : {"pinned", "mixed", "semirigid", "plastic"}) {
+  for (const char* kind : {"pinned", "mixed", "semirigid", "plastic", "rigid_plastic"}) {
     for (Variant v : {Variant::kExact, Variant::kPaper, Variant::kPenalty}) {
       const std::string label = std::string(kind) + "/" + name_of(v);
       const Figures* f = rep.find("step/" + label + "/");
@@ -286,6 +286,18 @@ void print_summary(const SummaryReporter& rep) {
     const double r = plastic->cpu_per_step / semi->cpu_per_step;
     std::printf("  plastic / linear hinge directions per step: %.2f (target <= 1.3: %s)\n", r,
                 r <= 1.3 ? "met" : "missed");
+  }
+  const Figures* rp = rep.find("step/rigid_plastic/ntn_exact/");
+  const Figures* rp_penalty = rep.find("step/rigid_plastic/penalty/");
+  if (rp != nullptr && merged != nullptr && merged->cpu_per_step > 0) {
+    const double r = rp->cpu_per_step / merged->cpu_per_step;
+    std::printf("  rigid_plastic / merged per step: %.2f (target <= 2: %s)\n", r,
+                r <= 2 ? "met" : "missed");
+  }
+  if (rp != nullptr && rp_penalty != nullptr && rp->cpu_per_sim_s > 0) {
+    std::printf(
+        "  time to simulate 1 s, rigid_plastic penalty (the calibrated k) / ntn_exact: %.0f\n",
+        rp_penalty->cpu_per_sim_s / rp->cpu_per_sim_s);
   }
   const Figures* exact = rep.find("step/pinned/ntn_exact/");
   const Figures* penalty = rep.find("step/pinned/penalty/");
@@ -684,6 +696,8 @@ int main(int argc, char** argv) {
   register_step<Joints::kMixed, Variant::kPenalty>("mixed");
   register_step<Joints::kSemiRigid, Variant::kExact>("semirigid");
   register_step<Joints::kPlastic, Variant::kExact>("plastic");
+  register_step<Joints::kRigidPlastic, Variant::kExact>("rigid_plastic");
+  register_step<Joints::kRigidPlastic, Variant::kPenalty>("rigid_plastic");
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   SummaryReporter reporter;

@@ -58,6 +58,8 @@ enum class Joints : std::uint8_t {
   kSemiRigid,  // as kPinned, but ry and rz are `linear` rotational springs kSemiRigidSpring
   kPlastic,    // as kSemiRigid, but ry and rz are `plastic` (same k, yield kPlasticYield): the
                // beam ends yield under the benchmark load (issue 15, "Speed")
+  kRigidPlastic,  // as kPinned, but ry and rz are `rigid_plastic` (yield kPlasticYield): rigid
+                  // until they yield, then sliding (issue 16, "Speed")
 };
 
 constexpr int hinge_count(Grid g, Joints j) {
@@ -69,7 +71,8 @@ constexpr Sizes sizes_of(Grid g, Joints j) {
   s.hinges = static_cast<std::size_t>(hinge_count(g, j));
   s.nodes += s.hinges;  // one node of its own per hinged beam end
   if (j == Joints::kMixed) s.curves = 1, s.curve_points = 4;
-  if (j == Joints::kPlastic) s.hystereses = 2 * s.hinges;  // ry and rz of every hinge
+  if (j == Joints::kPlastic || j == Joints::kRigidPlastic)
+    s.hystereses = 2 * s.hinges;  // ry and rz of every hinge
   return s;
 }
 
@@ -189,6 +192,15 @@ void build_frame(ModelSpec<sizes_of(G, J)>& spec) {
         h.behaviour[kRy] = HingeBehaviour::kCurve, h.curve[kRy] = 0;
         h.behaviour[kRz] = HingeBehaviour::kLinear;
         h.stiffness[kRz] = kMixedSpring, h.dashpot[kRz] = kMixedDashpot;
+      }
+      if constexpr (J == Joints::kRigidPlastic) {
+        const int slot = 2 * (next_hinge - 1);
+        h.behaviour[kRy] = h.behaviour[kRz] = HingeBehaviour::kRigidPlastic;
+        h.hysteresis[kRy] = slot, h.hysteresis[kRz] = slot + 1;
+        for (int k = 0; k < 2; ++k) {
+          spec.hystereses[static_cast<std::size_t>(slot + k)] = {.yield_pos = kPlasticYield,
+                                                                 .yield_neg = kPlasticYield};
+        }
       }
       if constexpr (J == Joints::kSemiRigid || J == Joints::kPlastic) {
         constexpr HingeBehaviour kB =

@@ -218,6 +218,25 @@ TEST(ModelcPlastic, FrictionDirectionsGetMuCohesionAndNormal) {
   EXPECT_TRUE(ntn::hysteresis_valid(d.hystereses[0], 0.0, 0.0));
 }
 
+// failure (issue 16): a bolt's limit, rigid until then.
+TEST(ModelcPlastic, FailureDirectionsGetTheirLimit) {
+  const auto r = load_model_from_string(
+      model("{ failure = 3e4 }", "{ plastic = 5e8, yield = 1e5 }"), "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& d = *r.model;
+  EXPECT_EQ(d.hinges[0].behaviour[4], HingeBehaviour::kRigidPlastic);
+  EXPECT_EQ(d.hystereses[0].failure, 1);
+  EXPECT_EQ(d.hystereses[0].yield_pos, 3e4);
+  EXPECT_EQ(d.hystereses[0].yield_neg, 3e4);
+  std::string penalty = model("{ failure = 3e4 }", "{ plastic = 5e8, yield = 1e5 }");
+  penalty.replace(penalty.find("name = \"m\""), 10, "name = \"m\"\nhinge_method = \"penalty\"");
+  const auto p = load_model_from_string(penalty, "m.toml");
+  ASSERT_FALSE(p.ok());
+  EXPECT_NE(format_all(p.errors).find("a failure direction needs hinge_method = \"ntn_exact\""),
+            std::string::npos)
+      << format_all(p.errors);
+}
+
 // Acceptance limits io, ls, cp: into the law, and the levels they grade (performance_level:
 // 0 no plastic deformation, 1 within IO, 2 within LS, 3 within CP, 4 beyond).
 TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {

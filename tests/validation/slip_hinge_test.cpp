@@ -12,7 +12,10 @@
 //    exact slide as 1/sqrt(k) (its loading time to the yield).
 // 5. A block on an inclined support (friction, mu N with N the rigid normal direction's force):
 //    it stays put when tan(theta) <= mu, else it accelerates at g (sin theta - mu cos theta).
-// 6. Bit-identical repeat runs; ntn_paper refuses the direction.
+// 6. A bolt (`failure`) between a free-flying pair pulled apart by a ramp: it breaks when its
+//    force reaches the limit, the pair's momentum is kept through the event, and afterwards each
+//    mass moves under its own load.
+// 7. Bit-identical repeat runs; ntn_paper refuses the direction.
 // The block: the oscillator of support/plastic_models.hpp (1000 kg at node 0 along x, a soft
 // element of 1 N/m and 1 g to a clamped node), its hinge rigid-plastic in ux.
 #include <gtest/gtest.h>
@@ -23,6 +26,7 @@
 #include <vector>
 
 #include "ntn/hil/energy.hpp"
+#include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
@@ -321,6 +325,103 @@ TEST(SlipFriction, BlockOnAnInclineSticksOrSlidesAtCoulombsAcceleration) {
     const double holds = expect == 0 ? std::sin(theta) : mu * std::cos(theta);
     EXPECT_NEAR(force, -holds * mass * kG, 1e-9 * mass * kG) << deg;
   }
+}
+
+// The pair: nodes 0 and 1 at the origin (1000 kg each along x), joined by a hinge whose ux is a
+// failure direction of limit 5 kN (the other directions free: every DOF but ux is held on every
+// node); the soft element runs from node 1 to node 2 (1 m along x). Loads: -c t on node 0 and
+// +c t on node 1 (c = 1e4 N/s), so the bolt carries c t and breaks at t = 0.5 s.
+constexpr ntn::Sizes kPair{.nodes = 3,
+                           .elements = 1,
+                           .time_functions = 1,
+                           .time_points = 2,
+                           .loads = 2,
+                           .outputs = 1,
+                           .hinges = 1,
+                           .hystereses = 1};
+Sim<kPair> pair;
+
+// in_tree: no supports, the bolt rigid in every other direction, so that nodes 0 and 1 form a
+// rigid tree and the slip stage solves the bolt in it (slip_tree_solve); else every DOF but ux
+// held and the bolt's other directions free (two lone nodes: Gauss-Seidel).
+void bolt_breaks(bool in_tree) {
+  const double c = 1e4, F = 5e3, dt = 1e-4;
+  ntn::ModelSpec<kPair>& s = pair.spec;
+  s = {};
+  const auto ux_only = static_cast<std::uint8_t>(ntn_test::kFixedAll & ~(1U << ntn::kUx));
+  for (int n = 0; n < 3; ++n) {
+    s.nodes[static_cast<std::size_t>(n)] = {};
+    s.nodes[static_cast<std::size_t>(n)].fixed = in_tree ? 0 : ux_only;
+  }
+  s.nodes[2].x = 1.0;
+  const double J = in_tree ? 10.0 : 0.0;  // kg m^2: the free pair's rotations need inertia
+  s.nodes[0].added = {kSdofMass, in_tree ? kSdofMass : 0, in_tree ? kSdofMass : 0, J, J, J};
+  s.nodes[1].added = s.nodes[0].added;
+  s.settings.rotary_inertia = in_tree;  // the soft element's free end
+  s.elements[0] =
+      ntn_test::element(1, 2, ntn_test::kSdofMaterial, ntn_test::kSdofSection, {0, 0, 1});
+  s.hinges[0] = ntn_test::hinge(0, 1, ntn_test::kIdentity3, ntn_test::released(in_tree ? 0 : 0x3f));
+  s.hinges[0].behaviour[ntn::kUx] = ntn::HingeBehaviour::kRigidPlastic;
+  s.hinges[0].hysteresis[ntn::kUx] = 0;
+  s.hystereses[0].yield_pos = s.hystereses[0].yield_neg = F;
+  s.hystereses[0].failure = 1;
+  s.time_points = {{{0.0, 0.0}, {10.0, 10.0}}};
+  s.time_functions[0] = {0, 2};
+  s.loads[0] = {0, ntn::kUx, -c, 0};
+  s.loads[1] = {1, ntn::kUx, c, 0};
+  s.outputs[0] = ntn_test::hinge_channel(K::kHingeForce);
+  s.settings.dt = dt;
+  {
+    const ntn_test::EigenNoMalloc guard;
+    const ntn::InitStatus st = ntn_test::init_model(s, pair.model);
+    ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+    pair.state = {};
+    ASSERT_EQ(ntn::start(pair.model, pair.state, pair.scratch, {}), ntn::StepStatus::kOk);
+  }
+  double momentum_worst = 0, force_peak = 0;
+  const long steps = 10'000;  // 1 s
+  const ntn_test::EigenNoMalloc guard;
+  for (long n = 0; n < steps; ++n) {
+    ASSERT_EQ(ntn::step(pair.model, pair.state, pair.scratch, {}), ntn::StepStatus::kOk);
+    force_peak = std::fmax(force_peak, std::fabs(pair.scratch.outputs[0]));
+    double p = 0;
+    for (int node = 0; node < 3; ++node)
+      p += pair.model.mass[dof(node, ntn::kUx)] * pair.state.v[dof(node, ntn::kUx)];
+    momentum_worst = std::fmax(momentum_worst, std::fabs(p));
+  }
+  const double t_break = static_cast<double>(pair.state.first_slip[0] - 1) * dt;
+  const double t_end = static_cast<double>(steps) * dt;
+  const double v0 = pair.state.v[dof(0, ntn::kUx)];  // v_{N-1/2}
+  const double expect_v0 =
+      -c / (2 * pair.model.mass[dof(0, ntn::kUx)]) * ((t_end - dt / 2) * (t_end - dt / 2) - 0.25);
+  std::printf(
+      "  broke at t = %.4f s (F / c = %.4f s), peak bolt force %.1f N, |momentum| <= "
+      "%.2e N s, v0 %.6f m/s (closed form %.6f)\n",
+      t_break, F / c, force_peak, momentum_worst, v0, expect_v0);
+  ASSERT_GT(pair.state.first_slip[0], 0);
+  EXPECT_NEAR(t_break, F / c, 2 * dt);
+  EXPECT_LE(force_peak, F);
+  // Momentum: the sum of m v over 10^4 steps of rounding, against m v ~ 1e3 N s.
+  EXPECT_LE(momentum_worst, 1e-9);
+  // After the break each mass is on its own: within the step's offset of the break (v changes
+  // by c t_b dt / m = 5e-4 m/s per misplaced step).
+  EXPECT_NEAR(v0, expect_v0, 1e-3);
+  const auto y = ntn::hil::yielded_directions(pair.model, pair.state);
+  ASSERT_EQ(y.size(), 1U);
+  EXPECT_TRUE(y[0].failed);
+  EXPECT_EQ(y[0].first_slip, t_break);
+}
+
+TEST(SlipFailure, ABoltBreaksAtItsLimitAndThePairKeepsItsMomentum) {
+  // Truth: statics of the joined pair (the bolt carries the load c t until it reaches its limit
+  // F: t_b = F / c), momentum conservation (the loads sum to zero at every instant, and the break
+  // is internal), and each mass's own motion after it: v = (c / 2m) (t^2 - t_b^2) outward.
+  bolt_breaks(false);
+}
+
+TEST(SlipFailure, ABoltInARigidTreeBreaksTheSameWay) {
+  // The same truth with the bolt's nodes in one rigid tree: the tree's block solve.
+  bolt_breaks(true);
 }
 
 TEST(SlipRules, RepeatRunsAreBitIdenticalAndNtnPaperRefuses) {

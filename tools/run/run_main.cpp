@@ -364,6 +364,9 @@ int main(int argc, char** argv) {
                     ntn::hil::direction_name(y.direction), fmt("%.4g", y.peak).c_str(),
                     rot ? "rad" : "m", fmt("%.4g", y.residual).c_str(), rot ? "rad" : "m",
                     fmt("%.4g", y.dissipated).c_str(), ntn::hil::level_name(y.level, y.has_limits));
+        if (y.first_slip >= 0)  // a rigid-plastic direction's event
+          std::printf("      %s at t = %s s\n", y.failed ? "failed" : "first slid",
+                      fmt("%.6g", y.first_slip).c_str());
       }
     }
     if (result.input_held_frames > 0)
@@ -415,8 +418,11 @@ int main(int argc, char** argv) {
          << mdl::kHingeNames[static_cast<std::size_t>(y.hinge)]
          << "\", \"direction\": " << y.direction << ", \"peak\": " << fmt("%.17g", y.peak)
          << ", \"residual\": " << fmt("%.17g", y.residual)
-         << ", \"dissipated_J\": " << fmt("%.17g", y.dissipated) << ", \"level\": " << y.level
-         << "}";
+         << ", \"dissipated_J\": " << fmt("%.17g", y.dissipated) << ", \"level\": " << y.level;
+      if (y.first_slip >= 0)
+        js << ", \"first_slip_s\": " << fmt("%.17g", y.first_slip)
+           << ", \"failed\": " << (y.failed ? "true" : "false");
+      js << "}";
     }
     js << "\n  ]\n}\n";
     if (auto e = ntn::cli::close_output(js, "--summary-json", json_path)) {

@@ -123,6 +123,7 @@ constexpr std::size_t state_footprint(const Sizes& s) {
   l.array<double>(s.hystereses);                 // dissipated
   l.array<double>(s.hystereses);                 // plastic_peak
   l.array<std::array<double, 4>>(s.hystereses);  // excursion
+  l.array<std::int64_t>(s.hystereses);           // first_slip
   return l.size();
 }
 

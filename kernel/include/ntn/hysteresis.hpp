@@ -29,6 +29,7 @@ struct HysteresisData {
   int normal = -1;    // friction (slip.hpp): the direction whose force N sets the limit, or -1
   double mu = 0;
   double cohesion = 0;
+  bool failure = false;  // breaks at its first slip (slip.hpp)
 };
 
 // A law the kernel takes for a direction of elastic stiffness k and dashpot c: acceptance limits
@@ -40,6 +41,7 @@ constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
   const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
   const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && l[2] < 1e300;
   if (!(none || ordered)) return false;
+  if (s.failure != 0 && (s.failure != 1 || s.normal >= 0)) return false;
   if (s.normal >= 0)  // friction: the yields are not used
     return s.rule == HysteresisRule::kBilinear && s.normal < 6 && s.mu >= 0 && s.mu < 1e300 &&
            s.cohesion >= 0 && s.cohesion < 1e300 && s.hardening == 0;
@@ -86,6 +88,7 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
   h.limits = s.limits;
   h.rule = s.rule;
   h.normal = s.normal, h.mu = s.mu, h.cohesion = s.cohesion;
+  h.failure = s.failure != 0;
   if (s.rule != HysteresisRule::kBilinear) {
     h.pos = make_envelope(s.backbone_pos);
     h.neg = make_envelope(s.backbone_neg);

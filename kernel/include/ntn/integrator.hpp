@@ -325,6 +325,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.plastic_peak.fill(0.0);
   for (auto& x : s.excursion)
     x.fill(0.0);
+  s.first_slip.fill(0);
 }
 
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with

@@ -192,6 +192,9 @@ struct HysteresisSpec {
   int normal = -1;
   double mu = 0;
   double cohesion = 0;  // N or N m
+  // Failure (a kRigidPlastic direction): 1 when the direction breaks the first time its force
+  // reaches its yield (a bolt): free for the rest of the run (State::first_slip says when).
+  int failure = 0;
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's

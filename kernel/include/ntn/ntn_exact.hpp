@@ -75,6 +75,7 @@ struct NtnExactMethod {
         std::span<const ForestEdge>(model.edges.data(), static_cast<std::size_t>(fb.edges));
     model.num_trees = forest_trees(edges, model.node_tree, model.trees);
     init_tree_stops(model);
+    sort_slip_hinges(model);
     model.num_project_edges = select_projected_edges(
         edges,
         std::span<const ForestTree>(model.trees.data(), static_cast<std::size_t>(model.num_trees)),

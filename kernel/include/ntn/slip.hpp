@@ -11,12 +11,19 @@
 // rounding); otherwise f is the yield it passed, the model moves by that, and the direction has
 // slid to where d now is: s takes it, and the friction work |f| |ds| is dissipated (exact: f is
 // constant over the slide). The direction sticks again when the force to hold it falls back
-// inside its yield, i.e. when the trial relative motion reverses. Several slip directions of one
-// part are solved together by projected Gauss-Seidel on their forces (box-constrained, in a fixed
-// order, until no force changes by more than 1e-12 of its yield): the same inputs, the same bits.
+// inside its yield, i.e. when the trial relative motion reverses. The slip directions of one rigid
+// tree are solved together (slip_tree_solve: a box-constrained problem in their forces, by an
+// active set and L D L^T, like the stops' clamp_tree); those between parts, on the ground, or in
+// a tree the block solve declines, by projected Gauss-Seidel in a fixed order until no force
+// changes by more than 1e-12 of its limit. The same inputs give the same bits.
 // The forces a_n receives are the step's f (S 35-37 increments, as the stops' clamp).
+// Friction (HysteresisData::normal): the limit mu max(0, -N) + cohesion, N the normal
+// direction's force at t_n (slip_normals, integrator.hpp). Failure (HysteresisData::failure):
+// the first slide breaks the direction, which is free from the next step on; State::first_slip
+// records when any rigid-plastic direction first slid.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -38,15 +45,26 @@ inline double friction_limit(const HysteresisData& law, double normal) {
   return law.mu * (normal < 0 ? -normal : 0.0) + law.cohesion;
 }
 
+// The limits of slip direction `slot` now, in the positive and the negative sense: its yields,
+// its friction limit, or none left once a `failure` direction has broken.
+template <Sizes S>
+void slip_limits(const HysteresisData& law, const State<S>& s, const Scratch<S>& w,
+                 std::size_t slot, double& up, double& down) {
+  up = law.yield_pos, down = law.yield_neg;
+  if (law.normal >= 0) up = down = friction_limit(law, w.slip_normal[slot]);
+  if (law.failure && s.first_slip[slot] != 0) up = down = 0.0;
+}
+
 namespace detail {
 
-// One sweep over every slip direction: each one's force moves toward what holds it, within its
-// yields. Returns the largest change of a force relative to its yield.
+// One Gauss-Seidel sweep over the slip directions of slip hinges [begin, end): each one's force
+// moves toward what holds it, within its limits. Returns the largest change of a force relative
+// to its limit.
 template <Sizes S>
-double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first) {
+double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first, int begin, int end) {
   double largest = 0;
   const double dt2 = m.dt * m.dt;
-  for (int i = 0; i < m.num_slip_hinges; ++i) {
+  for (int i = begin; i < end; ++i) {
     const HingeData& h =
         m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
     ClampPart parts[2];
@@ -66,8 +84,8 @@ double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first) {
       if (!(mobility > 0)) continue;  // both sides held: nothing can slide
       const double old_force = w.slip_force[slot];
       double force = old_force + (d[k] - s.plastic[slot]) / (mobility * dt2);
-      double up = law.yield_pos, down = law.yield_neg;
-      if (law.normal >= 0) up = down = friction_limit(law, w.slip_normal[slot]);
+      double up = 0, down = 0;
+      slip_limits(law, s, w, slot, up, down);
       if (force > up) force = up;
       if (force < -down) force = -down;
       const double change = force - old_force;
@@ -83,7 +101,198 @@ double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first) {
   return largest;
 }
 
+// The rigid tree that holds both nodes of slip hinge `hinge`, or -1 (a ground hinge, or one
+// between two parts): the slip stage solves a tree's directions together.
+template <Sizes S>
+int slip_tree(const Model<S>& m, int hinge) {
+  const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
+  if (h.node2 == kGround) return -1;
+  const std::int32_t t = m.node_tree[static_cast<std::size_t>(h.node1)];
+  return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)] ? t : -1;
+}
+
+inline constexpr int kSlipBlock = 16;  // the most slip directions of one tree solved together
+
+// The slip directions of slip hinges [begin, end), all in rigid tree `tree`, together: with
+// W_ij = b_i^T M_c^-1 b_j (the constrained system's mobility between them) and e_i = (d_i -
+// s_i) / dt^2, the forces f solve the box-constrained problem: W f = e on the directions that
+// stick, f_i at a limit where direction i slides (and the rest of e_i points past it). An active
+// set (every direction sticking at first; the one furthest past its limit put at it, or the one
+// at a limit that would pull back released, one at a time), each round solved by L D L^T on the
+// sticking set; then the tree moves once by -dt^2 M_c^-1 sum_j f_j b_j. False (nothing moved)
+// when the tree has more than kSlipBlock directions, W is singular on a set, or the set does not
+// settle: the caller then runs Gauss-Seidel.
+template <Sizes S>
+bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, int begin, int end) {
+  struct Dir {
+    int hinge;
+    std::size_t k, slot;
+    double e, up, down;
+  };
+  Dir c[kSlipBlock];
+  int n = 0;
+  const double dt2 = m.dt * m.dt;
+  for (int q = begin; q < end; ++q) {
+    const int hi = m.slip_hinges[static_cast<std::size_t>(q)];
+    const HingeData& h = m.hinges[static_cast<std::size_t>(hi)];
+    double d[6];
+    hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+                   &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)], d);
+    for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+      if (!((h.slip >> k) & 1U)) continue;
+      if (n == kSlipBlock) return false;
+      const auto slot = static_cast<std::size_t>(h.history[k]);
+      double up = 0, down = 0;
+      slip_limits(m.hystereses[slot], s, w, slot, up, down);
+      c[n++] = {hi, k, slot, (d[k] - s.plastic[slot]) / dt2, up, down};
+    }
+  }
+  const ClampPart parts[2] = {ClampPart{tree, -1}, {}};
+  double W[kSlipBlock][kSlipBlock];
+  for (int j = 0; j < n; ++j) {
+    clamp_response(m, w, m.hinges[static_cast<std::size_t>(c[j].hinge)], c[j].k, parts);
+    for (int i = 0; i < n; ++i)
+      W[i][j] = clamp_projection(w, m.hinges[static_cast<std::size_t>(c[i].hinge)], c[i].k);
+  }
+  for (int i = 0; i < n; ++i) {  // symmetric up to rounding
+    if (!(W[i][i] > 0)) return false;
+    for (int j = 0; j < i; ++j)
+      W[i][j] = W[j][i] = 0.5 * (W[i][j] + W[j][i]);
+  }
+  // at[i]: 0 sticks (free force), +1 at its upper limit, -1 at its lower, 2 held at 0 (no limit)
+  int at[kSlipBlock];
+  double f[kSlipBlock];
+  for (int i = 0; i < n; ++i) {
+    at[i] = c[i].up == 0 && c[i].down == 0 ? 2 : 0;
+    f[i] = 0;
+  }
+  bool settled = false;
+  for (int round = 0; round < 4 * kSlipBlock && !settled; ++round) {
+    // W_FF f_F = e_F - W_FB f_B by L D L^T on the sticking set F.
+    double L[kSlipBlock][kSlipBlock] = {}, D[kSlipBlock] = {}, z[kSlipBlock] = {};
+    double scale = 0;
+    for (int i = 0; i < n; ++i) {
+      if (at[i] == 0 && W[i][i] > scale) scale = W[i][i];
+    }
+    for (int j = 0; j < n; ++j) {
+      if (at[j] != 0) continue;
+      double djj = W[j][j];
+      for (int q = 0; q < j; ++q) {
+        if (at[q] == 0) djj -= L[j][q] * L[j][q] * D[q];
+      }
+      if (!(djj > 1e-12 * scale)) return false;  // dependent directions
+      D[j] = djj;
+      for (int i = j + 1; i < n; ++i) {
+        if (at[i] != 0) continue;
+        double sum = W[i][j];
+        for (int q = 0; q < j; ++q) {
+          if (at[q] == 0) sum -= L[i][q] * L[j][q] * D[q];
+        }
+        L[i][j] = sum / djj;
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      if (at[i] != 0) continue;
+      double sum = c[i].e;
+      for (int j = 0; j < n; ++j) {
+        if (at[j] != 0) sum -= W[i][j] * f[j];
+      }
+      for (int q = 0; q < i; ++q) {
+        if (at[q] == 0) sum -= L[i][q] * z[q];
+      }
+      z[i] = sum;
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      if (at[i] != 0) continue;
+      double sum = z[i] / D[i];
+      for (int q = i + 1; q < n; ++q) {
+        if (at[q] == 0) sum -= L[q][i] * f[q];
+      }
+      f[i] = sum;
+    }
+    // The sticking direction furthest past a limit goes to it; else the direction at a limit
+    // whose rest of e points back inside is released; else done.
+    int worst = -1;
+    double most = 0;
+    for (int i = 0; i < n; ++i) {
+      if (at[i] != 0) continue;
+      const double over = f[i] > c[i].up ? f[i] - c[i].up : -c[i].down - f[i];
+      const double limit = c[i].up > c[i].down ? c[i].up : c[i].down;
+      if (over > 0 && over > most * limit) most = over / limit, worst = i;
+    }
+    if (worst >= 0) {
+      at[worst] = f[worst] > c[worst].up ? 1 : -1;
+      f[worst] = at[worst] > 0 ? c[worst].up : -c[worst].down;
+      continue;
+    }
+    int release = -1;
+    double pull = 0;
+    for (int i = 0; i < n; ++i) {
+      if (at[i] != 1 && at[i] != -1) continue;
+      double r = c[i].e, size = c[i].e < 0 ? -c[i].e : c[i].e;
+      for (int j = 0; j < n; ++j) {
+        r -= W[i][j] * f[j];
+        const double t = W[i][j] * f[j];
+        size += t < 0 ? -t : t;
+      }
+      const double back = -static_cast<double>(at[i]) * r;  // > 0: it would move back inside
+      if (back > 1e-12 * size && back / W[i][i] > pull) pull = back / W[i][i], release = i;
+    }
+    if (release >= 0) {
+      at[release] = 0;
+      continue;
+    }
+    settled = true;
+  }
+  if (!settled) return false;
+  // One move of the tree: y = M_c^-1 sum_j (-dt^2 f_j) b_j.
+  bool any = false;
+  for_each_node(m, parts[0], [&](int nd) {
+    for (std::size_t q = 0; q < 6; ++q)
+      w.clamp.impulse[static_cast<std::size_t>(kDofsPerNode * nd) + q] = 0.0;
+  });
+  for (int j = 0; j < n; ++j) {
+    w.slip_force[c[j].slot] = f[j];
+    if (f[j] == 0) continue;
+    any = true;
+    const HingeData& h = m.hinges[static_cast<std::size_t>(c[j].hinge)];
+    double b1[6], b2[6];
+    hinge_direction(h, c[j].k, b1, b2);
+    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+    const auto i2 = static_cast<std::size_t>(kDofsPerNode * h.node2);
+    for (std::size_t q = 0; q < 6; ++q) {
+      w.clamp.impulse[i1 + q] -= dt2 * f[j] * b1[q];
+      w.clamp.impulse[i2 + q] -= dt2 * f[j] * b2[q];
+    }
+  }
+  if (!any) return true;
+  forest_tree_accelerations(m.trees[static_cast<std::size_t>(tree)], m.roots, m.edges,
+                            m.edge_matrices, w.clamp.impulse.data(), w.clamp.response.data());
+  clamp_move(m, s, w, parts, 1.0, ++w.clamp.events);
+  return true;
+}
+
+// Gauss-Seidel over slip hinges [begin, end) until no force changes by more than kSlipTolerance
+// of its limit (kSlipSweeps at most).
+template <Sizes S>
+void slip_gauss_seidel(const Model<S>& m, State<S>& s, Scratch<S>& w, int begin, int end) {
+  for (int sweep = 0; sweep < kSlipSweeps; ++sweep) {
+    if (!(slip_sweep(m, s, w, sweep == 0, begin, end) > kSlipTolerance)) break;
+  }
+}
+
 }  // namespace detail
+
+// At init (ntn_exact, after the forest's trees): the slip hinges ordered by the tree that holds
+// both their nodes (those in none first), then by index, so that each tree's are one range.
+template <Sizes S>
+void sort_slip_hinges(Model<S>& m) {
+  const auto first = m.slip_hinges.begin();
+  std::sort(first, first + m.num_slip_hinges, [&m](std::int32_t a, std::int32_t b) {
+    const int ta = detail::slip_tree(m, a), tb = detail::slip_tree(m, b);
+    return ta != tb ? ta < tb : a < b;
+  });
+}
 
 // The slip stage (ntn_exact's stops stage, before the stops' clamp): the forces of the slip
 // directions, then each direction that is at a yield takes its new slip and the work done.
@@ -91,8 +300,17 @@ template <Sizes S>
 void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   if constexpr (S.hinges > 0 && S.hystereses > 0) {
     if (m.num_slip_hinges == 0) return;
-    for (int sweep = 0; sweep < kSlipSweeps; ++sweep) {
-      if (!(detail::slip_sweep(m, s, w, sweep == 0) > kSlipTolerance)) break;
+    // Tree by tree (sort_slip_hinges made each tree's one range): together, or by Gauss-Seidel
+    // when that fails; the hinges in no tree (first) by Gauss-Seidel.
+    for (int i = 0; i < m.num_slip_hinges;) {
+      const int tree = detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(i)]);
+      int j = i + 1;
+      while (j < m.num_slip_hinges &&
+             detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(j)]) == tree)
+        ++j;
+      if (tree < 0 || !detail::slip_tree_solve(m, s, w, tree, i, j))
+        detail::slip_gauss_seidel(m, s, w, i, j);
+      i = j;
     }
     for (int i = 0; i < m.num_slip_hinges; ++i) {
       const HingeData& h =
@@ -106,9 +324,11 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
         const auto slot = static_cast<std::size_t>(h.history[k]);
         const HysteresisData& law = m.hystereses[slot];
         const double f = w.slip_force[slot];
-        double up = law.yield_pos, down = law.yield_neg;
-        if (law.normal >= 0) up = down = friction_limit(law, w.slip_normal[slot]);
+        double up = 0, down = 0;
+        slip_limits(law, s, w, slot, up, down);
         if (f != up && f != -down) continue;  // it sticks: s stays
+        if (s.first_slip[slot] == 0 && (up > 0 || down > 0) && d[k] != s.plastic[slot])
+          s.first_slip[slot] = s.tick + 1;  // the first slide (a failure direction breaks)
         const double ds = d[k] - s.plastic[slot];
         s.dissipated[slot] += f * ds;  // >= 0: it slides the way its force resists
         s.plastic[slot] = d[k];

@@ -43,6 +43,9 @@ struct State {
   // the negative sense (magnitudes), and where the reloading lines of the positive and the
   // negative sense start (peak_oriented: the zero-force points of the last unloading lines).
   std::array<std::array<double, 4>, S.hystereses> excursion{};
+  // Rigid-plastic directions only (slip.hpp): 1 + the tick of the step in which the direction
+  // first slid (0: never); a `failure` direction has broken from then on.
+  std::array<std::int64_t, S.hystereses> first_slip{};
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b

@@ -347,6 +347,7 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "hystereses", m.hystereses, [](const HysteresisSpec& h) {
     std::string s = "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
                     ", .hardening = " + lit(h.hardening) + ", .limits = " + lits(h.limits);
+    if (h.failure != 0) return s + ", .failure = " + lit(h.failure) + "}";
     if (h.normal >= 0)
       return s + ", .normal = " + lit(h.normal) + ", .mu = " + lit(h.mu) +
              ", .cohesion = " + lit(h.cohesion) + "}";

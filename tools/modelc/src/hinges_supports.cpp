@@ -39,6 +39,13 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& dirs) {
         ok = false;
         continue;
       }
+      if (b.law.failure != 0 && comp.d.settings.hinge_method == HingeMethod::kPenalty) {
+        comp.L.error(b.at,
+                     "a failure direction needs hinge_method = \"ntn_exact\": under "
+                     "\"penalty\" only a constant limit (rigid_plastic = F) is offered");
+        ok = false;
+        continue;
+      }
       if (b.law.normal >= 0) {  // friction: the normal is another, non-slip direction
         const auto n = static_cast<std::size_t>(b.law.normal);
         if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic) {

@@ -201,7 +201,7 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   const std::string what =
       "must be \"rigid\", \"free\", { linear = k, dashpot = c }, { curve = \"id\" }, "
       "{ plastic = k, yield = F }, { backbone = [B, C, D, E], rule = \"kinematic\" }, "
-      "{ rigid_plastic = F } or { friction = mu, normal = \"ux\" }";
+      "{ rigid_plastic = F }, { friction = mu, normal = \"ux\" } or { failure = F }";
   if (const auto* s = n.as_string()) {
     if (s->get() == "rigid" || s->get() == "free") {
       b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
@@ -218,12 +218,12 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   Table tb(L, *t, key,
            {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening",
             "backbone", "backbone_negative", "rule", "rigid_plastic", "friction", "cohesion",
-            "normal", "io", "ls", "cp"});
+            "normal", "failure", "io", "ls", "cp"});
   tb.check_unknown();
-  const char* const kKinds[6] = {"linear",   "curve",         "plastic",
-                                 "backbone", "rigid_plastic", "friction"};
-  for (std::size_t i = 0; i < 6; ++i) {
-    for (std::size_t j = i + 1; j < 6; ++j) {
+  const char* const kKinds[7] = {"linear",        "curve",    "plastic", "backbone",
+                                 "rigid_plastic", "friction", "failure"};
+  for (std::size_t i = 0; i < 7; ++i) {
+    for (std::size_t j = i + 1; j < 7; ++j) {
       if (tb.conflict(kKinds[i], kKinds[j])) return std::nullopt;
     }
   }
@@ -279,6 +279,21 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     b.law.cohesion = c.value_or(0.0);
     b.law.limits = limits;
     b.normal_at = tb.has("normal") ? tb.where("normal") : b.at;
+    return b;
+  }
+  if (tb.has("failure")) {
+    // Rigid until its force first reaches the limit, free from then on (ntn/slip.hpp).
+    const auto fy = tb.positive("failure", Need::kRequired);
+    if (tb.has("dashpot")) {
+      L.error(tb.where("dashpot"),
+              "a failure direction takes no dashpot: it is rigid until it "
+              "breaks");
+      return std::nullopt;
+    }
+    if (!fy) return std::nullopt;
+    b.kind = HingeBehaviour::kRigidPlastic;
+    b.law.yield_pos = b.law.yield_neg = *fy;
+    b.law.failure = 1;
     return b;
   }
   if (tb.has("rigid_plastic")) {

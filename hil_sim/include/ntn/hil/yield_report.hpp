@@ -21,6 +21,8 @@ struct YieldedDirection {
   double dissipated = 0;    // J
   int level = 0;            // 0..4 (performance_level)
   bool has_limits = false;  // the law has IO, LS, CP limits
+  double first_slip = -1;   // s: when a rigid-plastic direction first slid (-1: never)
+  bool failed = false;      // a `failure` direction that broke (at first_slip)
 };
 
 // "ux" ... "rz": a hinge direction's name.
@@ -41,10 +43,13 @@ std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<
         if (!(((hd.plastic | hd.slip) >> k) & 1U)) continue;
         const auto slot = static_cast<std::size_t>(hd.history[k]);
         if (!(s.plastic_peak[slot] > 0)) continue;
+        const std::int64_t first = s.first_slip[slot];
         out.push_back({static_cast<int>(h), static_cast<int>(k), s.plastic_peak[slot],
                        s.plastic[slot], s.dissipated[slot],
                        performance_level(m.hystereses[slot].limits, s.plastic_peak[slot]),
-                       m.hystereses[slot].limits[0] > 0});
+                       m.hystereses[slot].limits[0] > 0,
+                       first > 0 ? static_cast<double>(first - 1) * m.dt : -1.0,
+                       first > 0 && m.hystereses[slot].failure});
       }
     }
   }
@@ -64,7 +69,7 @@ int plastic_directions(const Model<S>& m) {
   if constexpr (S.hinges > 0) {
     for (const HingeData& h : m.hinges) {
       for (std::size_t k = 0; k < kDofsPerNode; ++k)
-        n += (h.plastic >> k) & 1U;
+        n += ((h.plastic | h.slip) >> k) & 1U;
     }
   }
   return n;
