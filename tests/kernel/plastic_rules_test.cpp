@@ -10,7 +10,9 @@
 // (kinematic hardening 0.05 and 0, asymmetric yields, dashpots), under a tip pulse and a noisy
 // ground acceleration and tip force (inputs), with Rayleigh damping. The same with `backbone`
 // directions (kinematic about y, peak_oriented about z, both degrading past C): their history
-// also holds the excursions and the reloading lines' anchors (State::excursion).
+// also holds the excursions and the reloading lines' anchors (State::excursion). And with
+// `rigid_plastic` directions (issue 16: held exactly until they yield, by the slip stage, which
+// solves the hinge's tree): their slip and its first time (State::plastic, first_slip).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,12 +55,23 @@ ntn::HysteresisSpec backbone(ntn::HysteresisRule rule, double fb, double dc, dou
   return h;
 }
 
-void build(bool backbones = false) {
+enum class Law { kBilinear, kBackbones, kRigidPlastic };
+
+void build(Law laws = Law::kBilinear) {
+  const bool backbones = laws == Law::kBackbones;
   ntn_test::hinged_cantilever(spec, ntn::HingeBehaviour::kPlastic, 2e6);
   spec.hinges[0].dashpot[ntn::kRy] = 50;
   spec.hinges[0].dashpot[ntn::kRz] = 20;
   spec.hystereses[0] = {6e3, 4e3, 0.05};
   spec.hystereses[1] = {3e3, 5e3, 0.0};
+  if (laws == Law::kRigidPlastic) {  // rigid until they yield (slip.hpp), in the hinge's tree
+    for (const int d : {ntn::kRy, ntn::kRz}) {
+      const auto k = static_cast<std::size_t>(d);
+      spec.hinges[0].behaviour[k] = ntn::HingeBehaviour::kRigidPlastic;
+      spec.hinges[0].stiffness[k] = spec.hinges[0].dashpot[k] = 0;
+    }
+    spec.hystereses[0] = {6e3, 4e3, 0.0};
+  }
   if (backbones) {
     spec.hinges[0].dashpot[ntn::kRy] = spec.hinges[0].dashpot[ntn::kRz] = 0;
     spec.hystereses[0] =
@@ -101,11 +114,13 @@ void expect_identical(const ntn::State<kS>& x, const ntn::State<kS>& y) {
   EXPECT_EQ(std::memcmp(x.plastic.data(), y.plastic.data(), sizeof(x.plastic)), 0);
   EXPECT_EQ(std::memcmp(x.dissipated.data(), y.dissipated.data(), sizeof(x.dissipated)), 0);
   EXPECT_EQ(std::memcmp(x.excursion.data(), y.excursion.data(), sizeof(x.excursion)), 0);
+  EXPECT_EQ(x.first_slip, y.first_slip);
   EXPECT_EQ(x.tick, y.tick);
 }
 
-void no_heap_in_a_yielding_run(bool backbones) {
-  build(backbones);
+void no_heap_in_a_yielding_run(Law laws) {
+  const bool backbones = laws == Law::kBackbones;
+  build(laws);
   ntn::InitStatus st;
   ntn::StepStatus first = ntn::StepStatus::kDiverged;
   ntn_test::AllocationCounts c;
@@ -132,8 +147,8 @@ void no_heap_in_a_yielding_run(bool backbones) {
   EXPECT_EQ(c.deallocations, 0U);
 }
 
-void repeat_runs_and_checkpoints(bool backbones) {
-  build(backbones);
+void repeat_runs_and_checkpoints(Law laws) {
+  build(laws);
   {
     const ntn_test::EigenNoMalloc guard;
     ASSERT_TRUE(ntn_test::init_model(spec, model_a).ok());
@@ -177,16 +192,23 @@ void repeat_runs_and_checkpoints(bool backbones) {
 }
 
 TEST(PlasticRules, NoHeapAllocationInAYieldingRun) {
-  no_heap_in_a_yielding_run(false);
+  no_heap_in_a_yielding_run(Law::kBilinear);
 }
 TEST(PlasticRules, NoHeapAllocationInAYieldingRunWithBackbones) {
-  no_heap_in_a_yielding_run(true);
+  no_heap_in_a_yielding_run(Law::kBackbones);
 }
 TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdentical) {
-  repeat_runs_and_checkpoints(false);
+  repeat_runs_and_checkpoints(Law::kBilinear);
 }
 TEST(PlasticRules, RepeatRunsAndCheckpointsMidYieldAreBitIdenticalWithBackbones) {
-  repeat_runs_and_checkpoints(true);
+  repeat_runs_and_checkpoints(Law::kBackbones);
+}
+
+TEST(PlasticRules, NoHeapAllocationInASlidingRunWithRigidPlasticDirections) {
+  no_heap_in_a_yielding_run(Law::kRigidPlastic);
+}
+TEST(PlasticRules, RepeatRunsAndCheckpointsMidSlideAreBitIdenticalWithRigidPlasticDirections) {
+  repeat_runs_and_checkpoints(Law::kRigidPlastic);
 }
 
 }  // namespace

@@ -195,12 +195,9 @@ TEST(PlotCli, Frame3dHingeForces) {
 
 namespace {
 
-// A plastic hinge direction's loops (issue 15): the force over the deformation, the law's
-// bilinear envelope and its IO, LS, CP limits marked, from a model with such a hinge (a column
-// whose base is a plastic hinge to the ground, ry).
-TEST(PlotCli, HysteresisLoopsWithEnvelopeAndLimits) {
-  TempDir dir;
-  write_file(dir / "m.toml", R"([model]
+// A 3 m column whose base is a hinge to the ground with `ry` as its bending direction.
+std::string column_model(const std::string& ry) {
+  return R"([model]
 name = "m"
 [[materials]]
 id = "S"
@@ -227,8 +224,18 @@ section = "H"
 [[hinges]]
 id = "base"
 nodes = [1, "ground"]
-ry = { plastic = 1e8, yield = 1e5, hardening = 0.05, io = 0.002, ls = 0.005, cp = 0.008 }
-)");
+ry = )" + ry +
+         "\n";
+}
+
+// A plastic hinge direction's loops (issue 15): the force over the deformation, the law's
+// bilinear envelope and its IO, LS, CP limits marked, from a model with such a hinge (a column
+// whose base is a plastic hinge to the ground, ry).
+TEST(PlotCli, HysteresisLoopsWithEnvelopeAndLimits) {
+  TempDir dir;
+  write_file(dir / "m.toml",
+             column_model("{ plastic = 1e8, yield = 1e5, hardening = 0.05, io = 0.002, ls = "
+                          "0.005, cp = 0.008 }"));
   // Two cycles of a bilinear loop, +-6 mrad, yield rotation 1 mrad.
   std::string csv = "time[s],base_ry[rad],base_My[N m]\n";
   double dp = 0;
@@ -272,35 +279,9 @@ ry = { plastic = 1e8, yield = 1e5, hardening = 0.05, io = 0.002, ls = 0.005, cp 
 // IO/LS/CP limits where its plastic deformation d - f / k reaches them.
 TEST(PlotCli, HysteresisWithABackbone) {
   TempDir dir;
-  write_file(dir / "m.toml", R"([model]
-name = "m"
-[[materials]]
-id = "S"
-E = 210e9
-nu = 0.3
-rho = 7850
-[[sections]]
-id = "H"
-A = 1e-2
-Iy = 1e-4
-Iz = 5e-5
-J = 1e-6
-[[nodes]]
-id = 1
-xyz = [0, 0, 0]
-[[nodes]]
-id = 2
-xyz = [0, 0, 3]
-[[members]]
-id = "C"
-nodes = [1, 2]
-material = "S"
-section = "H"
-[[hinges]]
-id = "base"
-nodes = [1, "ground"]
-ry = { backbone = [[0.001, 1e5], [0.01, 1.2e5], [0.012, 2e4], [0.02, 2e4]], rule = "peak_oriented", io = 0.002, ls = 0.005, cp = 0.008 }
-)");
+  write_file(dir / "m.toml",
+             column_model("{ backbone = [[0.001, 1e5], [0.01, 1.2e5], [0.012, 2e4], [0.02, 2e4]], "
+                          "rule = \"peak_oriented\", io = 0.002, ls = 0.005, cp = 0.008 }"));
   std::string csv = "time[s],base_ry[rad],base_My[N m]\n";
   for (int i = 0; i <= 40; ++i) {
     const double d = 0.0005 * (i % 20 < 10 ? i % 20 : 20 - i % 20);  // small elastic cycles
