@@ -228,6 +228,14 @@ ry = )" + ry +
          "\n";
 }
 
+// ntn-plot hysteresis of dir/run.csv (base_ry, base_My) with dir/m.toml's hinge base, ry, into
+// dir/loops.svg and .png.
+ntn::plot::test::Run plot_loops(const TempDir& dir) {
+  return run(kCli + " hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
+                 (dir / "m.toml") + " --hinge base --direction ry --out " + (dir / "loops"),
+             dir);
+}
+
 // A plastic hinge direction's loops (issue 15): the force over the deformation, the law's
 // bilinear envelope and its IO, LS, CP limits marked, from a model with such a hinge (a column
 // whose base is a plastic hinge to the ground, ry).
@@ -251,9 +259,7 @@ TEST(PlotCli, HysteresisLoopsWithEnvelopeAndLimits) {
     csv += row;
   }
   write_file(dir / "run.csv", csv);
-  const auto r = run(kCli + " hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
-                         (dir / "m.toml") + " --hinge base --direction ry --out " + (dir / "loops"),
-                     dir);
+  const auto r = plot_loops(dir);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto svg = parse_svg(dir / "loops.svg");
   ASSERT_EQ(svg.error, "");
@@ -290,9 +296,7 @@ TEST(PlotCli, HysteresisWithABackbone) {
     csv += row;
   }
   write_file(dir / "run.csv", csv);
-  const auto r = run(kCli + " hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +
-                         (dir / "m.toml") + " --hinge base --direction ry --out " + (dir / "loops"),
-                     dir);
+  const auto r = plot_loops(dir);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto svg = parse_svg(dir / "loops.svg");
   ASSERT_EQ(svg.error, "");
