@@ -93,6 +93,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<ForestTree>(s.hinges);                // trees
   l.array<std::int32_t>(s.hinges);              // tree_stops
   l.array<std::int32_t>(s.hinges);              // slip_hinges
+  l.array<double>(s.hystereses * kSlipBlock);   // slip_mobility
   l.scalar<int>();                              // num_edges
   l.scalar<int>();                              // num_roots
   l.scalar<int>();                              // num_spring_hinges

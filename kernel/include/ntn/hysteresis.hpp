@@ -16,6 +16,11 @@
 
 namespace ntn {
 
+// The most slip directions (rigid-plastic, slip.hpp) of one rigid tree solved together; a tree's
+// mobility matrix between them is kept in Model::slip_mobility, one row of this length per
+// direction.
+inline constexpr int kSlipBlock = 16;
+
 // What the step needs of one hysteretic direction (Model::hystereses).
 struct HysteresisData {
   HysteresisRule rule = HysteresisRule::kBilinear;  // first: the step reads rule to inv_kH

@@ -81,6 +81,9 @@ struct Model {
   // tree by tree (ForestTree::first_stop, end_stop).
   std::array<std::int32_t, S.hinges> tree_stops{};
   std::array<std::int32_t, S.hinges> slip_hinges{};  // ntn_exact: hinges with a slip direction
+  // ntn_exact: W_ij = b_i^T M_c^-1 b_j between the slip directions of each rigid tree, row by
+  // row in the slip stage's order (slip.hpp, init_slip_mobility): constant, so built at init.
+  std::array<double, S.hystereses * kSlipBlock> slip_mobility{};
   int num_edges = 0;
   int num_roots = 0;
   int num_spring_hinges = 0;
@@ -105,6 +108,10 @@ struct InitWorkspace {
   // lumped mass, or the hinge-summed one (ntn_paper, S 22-26).
   std::array<double, Model<S>::kDofs> divided_mass{};
   std::array<ForestWork, S.hinges> forest{};  // ntn_exact: build_forest's, one per hinge
+  // ntn_exact with slip directions: an impulse along one and the trees' response to it, for
+  // Model::slip_mobility (init_slip_mobility, slip.hpp).
+  std::array<double, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_impulse{};
+  std::array<double, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_response{};
 };
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).

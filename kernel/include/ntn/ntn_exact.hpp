@@ -76,6 +76,7 @@ struct NtnExactMethod {
     model.num_trees = forest_trees(edges, model.node_tree, model.trees);
     init_tree_stops(model);
     sort_slip_hinges(model);
+    init_slip_mobility(model, work);
     model.num_project_edges = select_projected_edges(
         edges,
         std::span<const ForestTree>(model.trees.data(), static_cast<std::size_t>(model.num_trees)),

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -36,6 +37,8 @@ namespace ntn {
 
 template <Sizes S>
 struct Model;  // model.hpp
+template <Sizes S>
+struct InitWorkspace;  // model.hpp
 
 inline constexpr int kSlipSweeps = 64;           // Gauss-Seidel sweeps per step, at most
 inline constexpr double kSlipTolerance = 1e-12;  // force change, relative to the yield
@@ -111,7 +114,15 @@ int slip_tree(const Model<S>& m, int hinge) {
   return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)] ? t : -1;
 }
 
-inline constexpr int kSlipBlock = 16;  // the most slip directions of one tree solved together
+// The number of slip directions of slip hinges [begin, end).
+template <Sizes S>
+int slip_directions(const Model<S>& m, int begin, int end) {
+  int n = 0;
+  for (int q = begin; q < end; ++q)
+    n += std::popcount(static_cast<unsigned>(
+        m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])].slip));
+  return n;
+}
 
 // The slip directions of slip hinges [begin, end), all in rigid tree `tree`, together: with
 // W_ij = b_i^T M_c^-1 b_j (the constrained system's mobility between them) and e_i = (d_i -
@@ -119,11 +130,14 @@ inline constexpr int kSlipBlock = 16;  // the most slip directions of one tree s
 // stick, f_i at a limit where direction i slides (and the rest of e_i points past it). An active
 // set (every direction sticking at first; the one furthest past its limit put at it, or the one
 // at a limit that would pull back released, one at a time), each round solved by L D L^T on the
-// sticking set; then the tree moves once by -dt^2 M_c^-1 sum_j f_j b_j. False (nothing moved)
+// sticking set; then the tree moves once by -dt^2 M_c^-1 sum_j f_j b_j. W is Model's, built at
+// init; the directions are numbered from `first_direction` in the slip stage's order. False
+// (nothing moved)
 // when the tree has more than kSlipBlock directions, W is singular on a set, or the set does not
 // settle: the caller then runs Gauss-Seidel.
 template <Sizes S>
-bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, int begin, int end) {
+bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, int begin, int end,
+                     int first_direction) {
   struct Dir {
     int hinge;
     std::size_t k, slot;
@@ -148,16 +162,12 @@ bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, in
     }
   }
   const ClampPart parts[2] = {ClampPart{tree, -1}, {}};
-  double W[kSlipBlock][kSlipBlock];
-  for (int j = 0; j < n; ++j) {
-    clamp_response(m, w, m.hinges[static_cast<std::size_t>(c[j].hinge)], c[j].k, parts);
-    for (int i = 0; i < n; ++i)
-      W[i][j] = clamp_projection(w, m.hinges[static_cast<std::size_t>(c[i].hinge)], c[i].k);
-  }
-  for (int i = 0; i < n; ++i) {  // symmetric up to rounding
+  double W[kSlipBlock][kSlipBlock];  // the tree's mobility matrix (init_slip_mobility)
+  for (int i = 0; i < n; ++i) {
+    const auto row = static_cast<std::size_t>((first_direction + i) * kSlipBlock);
+    for (int j = 0; j < n; ++j)
+      W[i][j] = m.slip_mobility[row + static_cast<std::size_t>(j)];
     if (!(W[i][i] > 0)) return false;
-    for (int j = 0; j < i; ++j)
-      W[i][j] = W[j][i] = 0.5 * (W[i][j] + W[j][i]);
   }
   // at[i]: 0 sticks (free force), +1 at its upper limit, -1 at its lower, 2 held at 0 (no limit)
   int at[kSlipBlock];
@@ -294,6 +304,80 @@ void sort_slip_hinges(Model<S>& m) {
   });
 }
 
+// At init (ntn_exact, after sort_slip_hinges): the mobility matrix W_ij = b_i^T M_c^-1 b_j of
+// each rigid tree's slip directions (at most kSlipBlock), into Model::slip_mobility, symmetrized
+// (it is symmetric up to rounding): the masses and the hinge geometry fix it for the run. The
+// same expressions and order as the stops' clamp_response and clamp_projection.
+template <Sizes S>
+void init_slip_mobility(Model<S>& m, InitWorkspace<S>& work) {
+  if constexpr (S.hinges > 0 && S.hystereses > 0) {
+    double* impulse = work.slip_impulse.data();
+    double* response = work.slip_response.data();
+    int g = 0;  // the first direction of the range, in the slip stage's order
+    for (int i = 0; i < m.num_slip_hinges;) {
+      const int tree = detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(i)]);
+      int j = i + 1;
+      while (j < m.num_slip_hinges &&
+             detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(j)]) == tree)
+        ++j;
+      const int n = detail::slip_directions(m, i, j);
+      if (tree >= 0 && n <= kSlipBlock) {
+        const ForestTree& t = m.trees[static_cast<std::size_t>(tree)];
+        int col = 0;
+        for (int q = i; q < j; ++q) {
+          const HingeData& hj =
+              m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])];
+          for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+            if (!((hj.slip >> k) & 1U)) continue;
+            detail::for_each_node(m, detail::ClampPart{tree, -1}, [&](int nd) {
+              for (std::size_t c = 0; c < 6; ++c)
+                impulse[static_cast<std::size_t>(kDofsPerNode * nd) + c] = 0.0;
+            });
+            double b1[6], b2[6];
+            hinge_direction(hj, k, b1, b2);
+            const auto i1 = static_cast<std::size_t>(kDofsPerNode * hj.node1);
+            const auto i2 = static_cast<std::size_t>(kDofsPerNode * hj.node2);
+            for (std::size_t c = 0; c < 6; ++c) {
+              impulse[i1 + c] += b1[c];
+              impulse[i2 + c] += b2[c];
+            }
+            forest_tree_accelerations(t, m.roots, m.edges, m.edge_matrices, impulse, response);
+            int row = 0;
+            for (int q2 = i; q2 < j; ++q2) {
+              const HingeData& hi =
+                  m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q2)])];
+              for (std::size_t k2 = 0; k2 < kDofsPerNode; ++k2) {
+                if (!((hi.slip >> k2) & 1U)) continue;
+                double a1[6], a2[6];
+                hinge_direction(hi, k2, a1, a2);
+                const auto j1 = static_cast<std::size_t>(kDofsPerNode * hi.node1);
+                const auto j2 = static_cast<std::size_t>(kDofsPerNode * hi.node2);
+                double sum = 0;
+                for (std::size_t c = 0; c < 6; ++c) {
+                  sum += a1[c] * response[j1 + c];
+                  sum += a2[c] * response[j2 + c];
+                }
+                m.slip_mobility[static_cast<std::size_t>((g + row) * kSlipBlock + col)] = sum;
+                ++row;
+              }
+            }
+            ++col;
+          }
+        }
+        for (int a = 0; a < n; ++a) {  // symmetric up to rounding
+          for (int b = 0; b < a; ++b) {
+            double& x = m.slip_mobility[static_cast<std::size_t>((g + a) * kSlipBlock + b)];
+            double& y = m.slip_mobility[static_cast<std::size_t>((g + b) * kSlipBlock + a)];
+            x = y = 0.5 * (x + y);
+          }
+        }
+      }
+      g += n;
+      i = j;
+    }
+  }
+}
+
 // The slip stage (ntn_exact's stops stage, before the stops' clamp): the forces of the slip
 // directions, then each direction that is at a yield takes its new slip and the work done.
 template <Sizes S>
@@ -302,14 +386,16 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     if (m.num_slip_hinges == 0) return;
     // Tree by tree (sort_slip_hinges made each tree's one range): together, or by Gauss-Seidel
     // when that fails; the hinges in no tree (first) by Gauss-Seidel.
+    int g = 0;  // the range's first direction (Model::slip_mobility's rows)
     for (int i = 0; i < m.num_slip_hinges;) {
       const int tree = detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(i)]);
       int j = i + 1;
       while (j < m.num_slip_hinges &&
              detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(j)]) == tree)
         ++j;
-      if (tree < 0 || !detail::slip_tree_solve(m, s, w, tree, i, j))
+      if (tree < 0 || !detail::slip_tree_solve(m, s, w, tree, i, j, g))
         detail::slip_gauss_seidel(m, s, w, i, j);
+      g += detail::slip_directions(m, i, j);
       i = j;
     }
     for (int i = 0; i < m.num_slip_hinges; ++i) {
