@@ -20,15 +20,21 @@ namespace ntn {
 template <Sizes S>
 struct Model;  // model.hpp
 
-// The rigid tree that holds both nodes of stop hinge `i` (index into Model::branch_hinges), or
-// -1: its stops are then solved with that tree's (clamp_tree).
+// The rigid tree that holds both nodes of hinge h, or -1 (a ground hinge, or one between two
+// parts).
 template <Sizes S>
-int stop_tree(const Model<S>& m, int i) {
-  const HingeData& h =
-      m.hinges[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])];
+int hinge_tree(const Model<S>& m, const HingeData& h) {
   if (h.node2 == kGround) return -1;
   const std::int32_t t = m.node_tree[static_cast<std::size_t>(h.node1)];
   return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)] ? t : -1;
+}
+
+// The rigid tree of stop hinge `i` (index into Model::branch_hinges), or -1: its stops are then
+// solved with that tree's (clamp_tree).
+template <Sizes S>
+int stop_tree(const Model<S>& m, int i) {
+  return hinge_tree(
+      m, m.hinges[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])]);
 }
 
 // At init, after the forest's trees: the stop hinges of each tree, tree by tree
@@ -116,43 +122,52 @@ inline double branch_excess(const HingeData& h, const double* d, std::size_t k, 
   return excess;
 }
 
-// y = M_c^-1 b into w.clamp.response over the parts' nodes, b the impulse along direction k of
-// hinge h.
+// An impulse r (per DOF, `impulse`) and the constrained system's response y = M_c^-1 r
+// (`response`), over the parts' nodes: Scratch::clamp's in the step, InitWorkspace's at init
+// (the slip directions' mobility, slip.hpp).
+// The impulse set to zero over the parts' nodes.
 template <Sizes S>
-void clamp_response(const Model<S>& m, Scratch<S>& w, const HingeData& h, std::size_t k,
-                    const ClampPart (&parts)[2]) {
-  double b1[6], b2[6];
-  hinge_direction(h, k, b1, b2);
-  const bool ground = h.node2 == kGround;
+void clear_impulse(const Model<S>& m, const ClampPart (&parts)[2], double* impulse) {
   for (const ClampPart& p : parts) {
     for_each_node(m, p, [&](int n) {
       for (std::size_t c = 0; c < 6; ++c)
-        w.clamp.impulse[static_cast<std::size_t>(kDofsPerNode * n) + c] = 0.0;
+        impulse[static_cast<std::size_t>(kDofsPerNode * n) + c] = 0.0;
     });
   }
+}
+
+// impulse += scale b, b the row of B of direction k of hinge h.
+inline void add_impulse(const HingeData& h, std::size_t k, double scale, double* impulse) {
+  double b1[6], b2[6];
+  hinge_direction(h, k, b1, b2);
+  const bool ground = h.node2 == kGround;
   const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
   const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
   for (std::size_t c = 0; c < 6; ++c) {
-    w.clamp.impulse[i1 + c] += b1[c];
-    if (!ground) w.clamp.impulse[i2 + c] += b2[c];
+    impulse[i1 + c] += scale * b1[c];
+    if (!ground) impulse[i2 + c] += scale * b2[c];
   }
-  // Each part's response: M^-1 r for a lone node, the forest's passes over a tree.
+}
+
+// Each part's response: M^-1 r for a lone node, the forest's passes over a tree.
+template <Sizes S>
+void parts_response(const Model<S>& m, const ClampPart (&parts)[2], double* impulse,
+                    double* response) {
   for (const ClampPart& p : parts) {
     if (p.node >= 0) {
       for (std::size_t c = 0; c < 6; ++c) {
         const auto j = static_cast<std::size_t>(kDofsPerNode * p.node) + c;
-        w.clamp.response[j] = w.clamp.impulse[j] * m.inv_mass[j];
+        response[j] = impulse[j] * m.inv_mass[j];
       }
     }
     if (p.tree < 0) continue;
     forest_tree_accelerations(m.trees[static_cast<std::size_t>(p.tree)], m.roots, m.edges,
-                              m.edge_matrices, w.clamp.impulse.data(), w.clamp.response.data());
+                              m.edge_matrices, impulse, response);
   }
 }
 
-// b^T y for the impulse along direction k of hinge h and the response y in w.clamp.response.
-template <Sizes S>
-double clamp_projection(const Scratch<S>& w, const HingeData& h, std::size_t k) {
+// b^T y for direction k of hinge h and the response y.
+inline double response_along(const HingeData& h, std::size_t k, const double* response) {
   double b1[6], b2[6];
   hinge_direction(h, k, b1, b2);
   const bool ground = h.node2 == kGround;
@@ -160,10 +175,26 @@ double clamp_projection(const Scratch<S>& w, const HingeData& h, std::size_t k) 
   const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
   double sum = 0;
   for (std::size_t c = 0; c < 6; ++c) {
-    sum += b1[c] * w.clamp.response[i1 + c];
-    if (!ground) sum += b2[c] * w.clamp.response[i2 + c];
+    sum += b1[c] * response[i1 + c];
+    if (!ground) sum += b2[c] * response[i2 + c];
   }
   return sum;
+}
+
+// y = M_c^-1 b into w.clamp.response over the parts' nodes, b the impulse along direction k of
+// hinge h.
+template <Sizes S>
+void clamp_response(const Model<S>& m, Scratch<S>& w, const HingeData& h, std::size_t k,
+                    const ClampPart (&parts)[2]) {
+  clear_impulse(m, parts, w.clamp.impulse.data());
+  add_impulse(h, k, 1.0, w.clamp.impulse.data());
+  parts_response(m, parts, w.clamp.impulse.data(), w.clamp.response.data());
+}
+
+// b^T y for the impulse along direction k of hinge h and the response y in w.clamp.response.
+template <Sizes S>
+double clamp_projection(const Scratch<S>& w, const HingeData& h, std::size_t k) {
+  return response_along(h, k, w.clamp.response.data());
 }
 
 // The parts move by scale y (y in w.clamp.response): u, and v and a after it (S 35-37 as

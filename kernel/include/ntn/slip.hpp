@@ -104,16 +104,6 @@ double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first, int
   return largest;
 }
 
-// The rigid tree that holds both nodes of slip hinge `hinge`, or -1 (a ground hinge, or one
-// between two parts): the slip stage solves a tree's directions together.
-template <Sizes S>
-int slip_tree(const Model<S>& m, int hinge) {
-  const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
-  if (h.node2 == kGround) return -1;
-  const std::int32_t t = m.node_tree[static_cast<std::size_t>(h.node1)];
-  return t >= 0 && t == m.node_tree[static_cast<std::size_t>(h.node2)] ? t : -1;
-}
-
 // The number of slip directions of slip hinges [begin, end).
 template <Sizes S>
 int slip_directions(const Model<S>& m, int begin, int end) {
@@ -122,6 +112,31 @@ int slip_directions(const Model<S>& m, int begin, int end) {
     n += std::popcount(static_cast<unsigned>(
         m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])].slip));
   return n;
+}
+
+// The rigid tree that holds both nodes of slip hinge `hinge` (clamp.hpp's hinge_tree), or -1:
+// the slip stage solves a tree's directions together.
+template <Sizes S>
+int slip_tree(const Model<S>& m, int hinge) {
+  return hinge_tree(m, m.hinges[static_cast<std::size_t>(hinge)]);
+}
+
+// Calls fn(tree, begin, end, first_direction) for each range of slip hinges that one rigid tree
+// holds (tree -1: those in none; sort_slip_hinges made each one range), first_direction being
+// the number of slip directions before the range (the rows of Model::slip_mobility).
+template <Sizes S, class Fn>
+void for_each_slip_range(const Model<S>& m, Fn&& fn) {
+  int g = 0;
+  for (int i = 0; i < m.num_slip_hinges;) {
+    const int tree = slip_tree(m, m.slip_hinges[static_cast<std::size_t>(i)]);
+    int j = i + 1;
+    while (j < m.num_slip_hinges &&
+           slip_tree(m, m.slip_hinges[static_cast<std::size_t>(j)]) == tree)
+      ++j;
+    fn(tree, i, j, g);
+    g += slip_directions(m, i, j);
+    i = j;
+  }
 }
 
 // The slip directions of slip hinges [begin, end), all in rigid tree `tree`, together: with
@@ -257,27 +272,16 @@ bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, in
   if (!settled) return false;
   // One move of the tree: y = M_c^-1 sum_j (-dt^2 f_j) b_j.
   bool any = false;
-  for_each_node(m, parts[0], [&](int nd) {
-    for (std::size_t q = 0; q < 6; ++q)
-      w.clamp.impulse[static_cast<std::size_t>(kDofsPerNode * nd) + q] = 0.0;
-  });
+  clear_impulse(m, parts, w.clamp.impulse.data());
   for (int j = 0; j < n; ++j) {
     w.slip_force[c[j].slot] = f[j];
     if (f[j] == 0) continue;
     any = true;
-    const HingeData& h = m.hinges[static_cast<std::size_t>(c[j].hinge)];
-    double b1[6], b2[6];
-    hinge_direction(h, c[j].k, b1, b2);
-    const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
-    const auto i2 = static_cast<std::size_t>(kDofsPerNode * h.node2);
-    for (std::size_t q = 0; q < 6; ++q) {
-      w.clamp.impulse[i1 + q] -= dt2 * f[j] * b1[q];
-      w.clamp.impulse[i2 + q] -= dt2 * f[j] * b2[q];
-    }
+    add_impulse(m.hinges[static_cast<std::size_t>(c[j].hinge)], c[j].k, -dt2 * f[j],
+                w.clamp.impulse.data());
   }
   if (!any) return true;
-  forest_tree_accelerations(m.trees[static_cast<std::size_t>(tree)], m.roots, m.edges,
-                            m.edge_matrices, w.clamp.impulse.data(), w.clamp.response.data());
+  parts_response(m, parts, w.clamp.impulse.data(), w.clamp.response.data());
   clamp_move(m, s, w, parts, 1.0, ++w.clamp.events);
   return true;
 }
@@ -307,74 +311,44 @@ void sort_slip_hinges(Model<S>& m) {
 // At init (ntn_exact, after sort_slip_hinges): the mobility matrix W_ij = b_i^T M_c^-1 b_j of
 // each rigid tree's slip directions (at most kSlipBlock), into Model::slip_mobility, symmetrized
 // (it is symmetric up to rounding): the masses and the hinge geometry fix it for the run. The
-// same expressions and order as the stops' clamp_response and clamp_projection.
+// stops' own impulse and response pieces (clear_impulse, add_impulse, parts_response,
+// response_along, clamp.hpp), with InitWorkspace's buffers.
 template <Sizes S>
 void init_slip_mobility(Model<S>& m, InitWorkspace<S>& work) {
   if constexpr (S.hinges > 0 && S.hystereses > 0) {
     double* impulse = work.slip_impulse.data();
     double* response = work.slip_response.data();
-    int g = 0;  // the first direction of the range, in the slip stage's order
-    for (int i = 0; i < m.num_slip_hinges;) {
-      const int tree = detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(i)]);
-      int j = i + 1;
-      while (j < m.num_slip_hinges &&
-             detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(j)]) == tree)
-        ++j;
-      const int n = detail::slip_directions(m, i, j);
-      if (tree >= 0 && n <= kSlipBlock) {
-        const ForestTree& t = m.trees[static_cast<std::size_t>(tree)];
-        int col = 0;
-        for (int q = i; q < j; ++q) {
-          const HingeData& hj =
-              m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])];
-          for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-            if (!((hj.slip >> k) & 1U)) continue;
-            detail::for_each_node(m, detail::ClampPart{tree, -1}, [&](int nd) {
-              for (std::size_t c = 0; c < 6; ++c)
-                impulse[static_cast<std::size_t>(kDofsPerNode * nd) + c] = 0.0;
-            });
-            double b1[6], b2[6];
-            hinge_direction(hj, k, b1, b2);
-            const auto i1 = static_cast<std::size_t>(kDofsPerNode * hj.node1);
-            const auto i2 = static_cast<std::size_t>(kDofsPerNode * hj.node2);
-            for (std::size_t c = 0; c < 6; ++c) {
-              impulse[i1 + c] += b1[c];
-              impulse[i2 + c] += b2[c];
-            }
-            forest_tree_accelerations(t, m.roots, m.edges, m.edge_matrices, impulse, response);
-            int row = 0;
-            for (int q2 = i; q2 < j; ++q2) {
-              const HingeData& hi =
-                  m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q2)])];
-              for (std::size_t k2 = 0; k2 < kDofsPerNode; ++k2) {
-                if (!((hi.slip >> k2) & 1U)) continue;
-                double a1[6], a2[6];
-                hinge_direction(hi, k2, a1, a2);
-                const auto j1 = static_cast<std::size_t>(kDofsPerNode * hi.node1);
-                const auto j2 = static_cast<std::size_t>(kDofsPerNode * hi.node2);
-                double sum = 0;
-                for (std::size_t c = 0; c < 6; ++c) {
-                  sum += a1[c] * response[j1 + c];
-                  sum += a2[c] * response[j2 + c];
-                }
-                m.slip_mobility[static_cast<std::size_t>((g + row) * kSlipBlock + col)] = sum;
-                ++row;
-              }
-            }
-            ++col;
-          }
-        }
-        for (int a = 0; a < n; ++a) {  // symmetric up to rounding
-          for (int b = 0; b < a; ++b) {
-            double& x = m.slip_mobility[static_cast<std::size_t>((g + a) * kSlipBlock + b)];
-            double& y = m.slip_mobility[static_cast<std::size_t>((g + b) * kSlipBlock + a)];
-            x = y = 0.5 * (x + y);
-          }
+    // The directions of slip hinges [begin, end) in the slip stage's order: fn(hinge, k, index).
+    const auto each = [&m](int begin, int end, auto&& fn) {
+      int index = 0;
+      for (int q = begin; q < end; ++q) {
+        const HingeData& h =
+            m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])];
+        for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+          if ((h.slip >> k) & 1U) fn(h, k, index++);
         }
       }
-      g += n;
-      i = j;
-    }
+    };
+    detail::for_each_slip_range(m, [&](int tree, int begin, int end, int g) {
+      const int n = detail::slip_directions(m, begin, end);
+      if (tree < 0 || n > kSlipBlock) return;
+      const detail::ClampPart parts[2] = {detail::ClampPart{tree, -1}, {}};
+      const auto at = [&m, g](int row, int col) -> double& {
+        return m.slip_mobility[static_cast<std::size_t>((g + row) * kSlipBlock + col)];
+      };
+      each(begin, end, [&](const HingeData& hj, std::size_t k, int col) {
+        detail::clear_impulse(m, parts, impulse);
+        detail::add_impulse(hj, k, 1.0, impulse);
+        detail::parts_response(m, parts, impulse, response);
+        each(begin, end, [&](const HingeData& hi, std::size_t k2, int row) {
+          at(row, col) = detail::response_along(hi, k2, response);
+        });
+      });
+      for (int a = 0; a < n; ++a) {  // symmetric up to rounding
+        for (int b = 0; b < a; ++b)
+          at(a, b) = at(b, a) = 0.5 * (at(a, b) + at(b, a));
+      }
+    });
   }
 }
 
@@ -386,18 +360,10 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     if (m.num_slip_hinges == 0) return;
     // Tree by tree (sort_slip_hinges made each tree's one range): together, or by Gauss-Seidel
     // when that fails; the hinges in no tree (first) by Gauss-Seidel.
-    int g = 0;  // the range's first direction (Model::slip_mobility's rows)
-    for (int i = 0; i < m.num_slip_hinges;) {
-      const int tree = detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(i)]);
-      int j = i + 1;
-      while (j < m.num_slip_hinges &&
-             detail::slip_tree(m, m.slip_hinges[static_cast<std::size_t>(j)]) == tree)
-        ++j;
-      if (tree < 0 || !detail::slip_tree_solve(m, s, w, tree, i, j, g))
-        detail::slip_gauss_seidel(m, s, w, i, j);
-      g += detail::slip_directions(m, i, j);
-      i = j;
-    }
+    detail::for_each_slip_range(m, [&](int tree, int begin, int end, int g) {
+      if (tree < 0 || !detail::slip_tree_solve(m, s, w, tree, begin, end, g))
+        detail::slip_gauss_seidel(m, s, w, begin, end);
+    });
     for (int i = 0; i < m.num_slip_hinges; ++i) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
