@@ -8,6 +8,8 @@
 // Besides the benchmarks, three modes (each replaces the benchmark run):
 //   --calibrate        penalty stiffness from runs of 1 s (README "Hinges")
 //   --penalty-sweep    penalty / ntn_exact time for 1 s under 10 and 100 times stricter criteria
+//   --slip-accuracy    rigid_plastic: the penalty stiffness that matches the exact peak slip
+//                      within 1 % over 1 s, and the time ratio to simulate 1 s there
 //   --stages[=N]       manual timing of each stage of step() over N steps (default 4000)
 //   --dump-state=FILE  u, v after 1000 steps of every variant, raw bytes (to compare builds)
 #include <benchmark/benchmark.h>
@@ -493,6 +495,75 @@ int penalty_sweep() {
   return ok ? 0 : 1;
 }
 
+// ---- --slip-accuracy: rigid_plastic against its penalty equivalent at equal accuracy. -------
+
+// The largest plastic deformation (slip) of any rigid-plastic direction over `seconds` of
+// simulated time from rest, and the run's dt and steps.
+struct PeakSlip {
+  double dt = 0, peak = 0;
+  std::int64_t steps = 0;
+  bool diverged = false;
+};
+
+PeakSlip peak_slip(Variant v, double kr, double seconds) {
+  constexpr Joints J = Joints::kRigidPlastic;
+  constexpr Sizes S = kSizes<J>;
+  Model<S>& m = static_instance<Model<S>, slot(J, Variant::kMerged, 4)>();
+  State<S>& s = static_instance<State<S>, slot(J, Variant::kMerged, 4)>();
+  Scratch<S>& w = static_instance<Scratch<S>, slot(J, Variant::kMerged, 4)>();
+  init_or_die<J>(spec_of<J>(v, kPenaltyStiffness, kr), m);
+  PeakSlip out;
+  out.dt = m.dt;
+  out.steps = static_cast<std::int64_t>(std::ceil(seconds / m.dt));
+  reset(s);
+  out.diverged = start(m, s, w, kGround) != StepStatus::kOk;
+  for (std::int64_t n = 0; n < out.steps && !out.diverged; ++n)
+    out.diverged = step(m, s, w, kGround) != StepStatus::kOk;
+  for (const double p : s.plastic_peak)
+    out.peak = std::max(out.peak, p);
+  return out;
+}
+
+// The comparison: the exact rigid-plastic frame's peak slip over 1 s, then the penalty
+// frame (its rotational penalty stiffness k_r in a 1-2-5 series from the calibrated value, each
+// at 0.9 of its own stable step) until its peak slip is within 1 %; the time to simulate 1 s of
+// each from its measured time per step.
+int slip_accuracy() {
+  constexpr Joints J = Joints::kRigidPlastic;
+  constexpr double kTolerance = 0.01;
+  std::printf("rigid_plastic frame, peak slip over 1 s: ntn_exact against penalty springs\n");
+  const double exact_step = seconds_per_step<J, Variant::kExact>(2000);
+  const double penalty_step = seconds_per_step<J, Variant::kPenalty>(2000);
+  const PeakSlip exact = peak_slip(Variant::kExact, kPenaltyRotStiffness, 1.0);
+  std::printf("  per step: ntn_exact %.2f us (dt %.2f us), penalty %.2f us\n", exact_step * 1e6,
+              exact.dt * 1e6, penalty_step * 1e6);
+  std::printf("  ntn_exact: peak slip %.6e rad, %lld steps\n", exact.peak,
+              static_cast<long long>(exact.steps));
+  if (exact.diverged || !(exact.peak > 0)) {
+    std::printf("  the exact frame did not yield (or diverged): no comparison\n");
+    return 1;
+  }
+  std::printf("  %10s %10s %10s %12s %10s\n", "k_r Nm/rad", "dt us", "steps", "slip error",
+              "ratio");
+  for (double kr = kPenaltyRotStiffness; kr <= 1e4 * kPenaltyRotStiffness;
+       kr = series_125_at_least(kr * 1.5)) {
+    const PeakSlip p = peak_slip(Variant::kPenalty, kr, 1.0);
+    const double error = std::fabs(p.peak - exact.peak) / exact.peak;
+    const double ratio = (penalty_step / p.dt) / (exact_step / exact.dt);
+    std::printf("  %10.0e %10.4f %10lld %12.3e %10.1f%s\n", kr, p.dt * 1e6,
+                static_cast<long long>(p.steps), error, ratio, p.diverged ? "  DIVERGED" : "");
+    if (!p.diverged && error <= kTolerance) {
+      std::printf(
+          "  within 1 %% at k_r = %.0e N m/rad: penalty takes %.1f x the time of "
+          "ntn_exact to simulate 1 s (target >= 30)\n",
+          kr, ratio);
+      return 0;
+    }
+  }
+  std::printf("  no penalty stiffness in the series came within 1 %%\n");
+  return 1;
+}
+
 // ---- --stages: manual timing of each stage of step(). ---------------------------------------
 
 enum Stage : std::uint8_t {
@@ -682,6 +753,7 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--calibrate") return calibrate();
     if (a == "--penalty-sweep") return penalty_sweep();
+    if (a == "--slip-accuracy") return slip_accuracy();
     if (a.rfind("--stages", 0) == 0) {
       return stages(a.size() > 9 ? std::atoi(a.c_str() + 9) : 4000);
     }

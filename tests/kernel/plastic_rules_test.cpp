@@ -115,6 +115,7 @@ void expect_identical(const ntn::State<kS>& x, const ntn::State<kS>& y) {
   EXPECT_EQ(std::memcmp(x.dissipated.data(), y.dissipated.data(), sizeof(x.dissipated)), 0);
   EXPECT_EQ(std::memcmp(x.excursion.data(), y.excursion.data(), sizeof(x.excursion)), 0);
   EXPECT_EQ(x.first_slip, y.first_slip);
+  EXPECT_EQ(x.slip_state, y.slip_state);
   EXPECT_EQ(x.tick, y.tick);
 }
 

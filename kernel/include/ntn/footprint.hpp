@@ -94,6 +94,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.array<std::int32_t>(s.hinges);              // tree_stops
   l.array<std::int32_t>(s.hinges);              // slip_hinges
   l.array<double>(s.hystereses * kSlipBlock);   // slip_mobility
+  l.array<double>(s.hystereses * kSlipBlock);   // slip_factor
   l.scalar<int>();                              // num_edges
   l.scalar<int>();                              // num_roots
   l.scalar<int>();                              // num_spring_hinges
@@ -101,6 +102,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.scalar<int>();                              // num_project_edges
   l.scalar<int>();                              // num_trees
   l.scalar<int>();                              // num_slip_hinges
+  l.scalar<int>();                              // num_slip_normals
   l.scalar<int>();                              // held_dofs
   l.scalar<HingeMethod>();                      // hinge_method
   l.scalar<ClampRule>();                        // clamp
@@ -125,6 +127,7 @@ constexpr std::size_t state_footprint(const Sizes& s) {
   l.array<double>(s.hystereses);                 // plastic_peak
   l.array<std::array<double, 4>>(s.hystereses);  // excursion
   l.array<std::int64_t>(s.hystereses);           // first_slip
+  l.array<std::int8_t>(s.hystereses);            // slip_state
   return l.size();
 }
 

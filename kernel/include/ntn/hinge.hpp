@@ -258,8 +258,11 @@ bool resolve_hinge(const HingeSpec& spec, const Settings& settings, std::size_t 
         h.plastic |= bit;
         break;
       case HingeBehaviour::kRigidPlastic:  // what the method makes of it (slip_direction)
-        if (spec.hysteresis[k] < 0 || spec.dashpot[k] != 0) return false;
+        if (spec.hysteresis[k] < 0 || spec.dashpot[k] != 0 || !(spec.stiffness[k] >= 0) ||
+            !(spec.stiffness[k] < 1e300))
+          return false;
         h.history[k] = spec.hysteresis[k];
+        h.stiffness[k] = spec.stiffness[k];  // its hardening with the slip, if any
         if (!slip_direction(k)) return false;
         break;
     }

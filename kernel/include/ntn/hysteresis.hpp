@@ -6,12 +6,14 @@
 // kBilinear: elasto-plastic with kinematic hardening. The elastic range is
 // q - yield_neg <= f <= q + yield_pos around the back force q = H d_p, with H = b k / (1 - b) so
 // that the tangent after yield is k H / (k + H) = b k.
-// kKinematic, kPeakOriented: a backbone and its rule (backbone.hpp).
+// kKinematic, kPeakOriented: a backbone and its rule (backbone.hpp). kBrittle: linear until it
+// breaks (brittle.hpp).
 #pragma once
 
 #include <array>
 
 #include "ntn/backbone.hpp"
+#include "ntn/brittle.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
@@ -31,29 +33,35 @@ struct HysteresisData {
   double inv_kH = 0;                                // 1 / (k + H)
   std::array<double, 3> limits{};                   // io, ls, cp on the peak |d_p| (0, 0, 0: none)
   Envelope pos, neg;  // the backbone of each sense (kKinematic, kPeakOriented)
-  int normal = -1;    // friction (slip.hpp): the direction whose force N sets the limit, or -1
+  int normal = -1;    // friction, fixed_if (slip.hpp): the direction whose force N sets the
+                      // limit, or -1
   double mu = 0;
   double cohesion = 0;
-  bool failure = false;  // breaks at its first slip (slip.hpp)
+  int fixed_if = 0;  // -1 (+1): held while N < 0 (N > 0), free otherwise (slip.hpp)
 };
 
 // A law the kernel takes for a direction of elastic stiffness k and dashpot c: acceptance limits
 // none or 0 < io <= ls <= cp (finite); bilinear: yields > 0 and finite, hardening in [0, 1);
 // backbone: both envelopes valid (backbone.hpp), yields equal to their B forces, no dashpot (its
-// force must be able to drop to zero), cp within the plastic deformation at E in both senses.
+// force must be able to drop to zero), cp within the plastic deformation at E in both senses;
+// brittle: yields > 0 and finite, no hardening, no dashpot; friction: mu, cohesion >= 0 and
+// finite; fixed_if: -1 or +1 with a controlling direction and nothing else.
 constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
   const auto& l = s.limits;
   const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
   const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && l[2] < 1e300;
   if (!(none || ordered)) return false;
-  if (s.failure != 0 && (s.failure != 1 || s.normal >= 0)) return false;
+  if (s.fixed_if != 0)  // held by the sign of another direction's force: no limits of its own
+    return (s.fixed_if == 1 || s.fixed_if == -1) && s.rule == HysteresisRule::kBilinear &&
+           s.normal >= 0 && s.normal < 6 && s.mu == 0 && s.cohesion == 0 && s.hardening == 0;
   if (s.normal >= 0)  // friction: the yields are not used
     return s.rule == HysteresisRule::kBilinear && s.normal < 6 && s.mu >= 0 && s.mu < 1e300 &&
            s.cohesion >= 0 && s.cohesion < 1e300 && s.hardening == 0;
   if (s.normal != -1) return false;
-  if (s.rule == HysteresisRule::kBilinear)
+  if (s.rule == HysteresisRule::kBilinear || s.rule == HysteresisRule::kBrittle)
     return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
-           s.hardening >= 0 && s.hardening < 1;
+           s.hardening >= 0 && s.hardening < 1 &&
+           (s.rule == HysteresisRule::kBilinear || (s.hardening == 0 && c == 0));
   if (s.rule != HysteresisRule::kKinematic && s.rule != HysteresisRule::kPeakOriented) return false;
   if (!(k > 0) || c != 0 || s.hardening != 0 || !envelope_valid(s.backbone_pos, k) ||
       !envelope_valid(s.backbone_neg, k) || s.yield_pos != s.backbone_pos[0].force ||
@@ -93,8 +101,8 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
   h.limits = s.limits;
   h.rule = s.rule;
   h.normal = s.normal, h.mu = s.mu, h.cohesion = s.cohesion;
-  h.failure = s.failure != 0;
-  if (s.rule != HysteresisRule::kBilinear) {
+  h.fixed_if = s.fixed_if;
+  if (s.rule == HysteresisRule::kKinematic || s.rule == HysteresisRule::kPeakOriented) {
     h.pos = make_envelope(s.backbone_pos);
     h.neg = make_envelope(s.backbone_neg);
   }
@@ -127,14 +135,21 @@ inline void bilinear_update(const HysteresisData& h, double d, double& dp, doubl
 }
 
 // A hysteretic direction's history brought to deformation d (once per step, the hinge-spring
-// stage, integrator.hpp).
-inline void hysteresis_update(const HysteresisData& h, double d, double& dp, double& dissipated,
+// stage, integrator.hpp). True the step a brittle direction breaks (the stage records when).
+inline bool hysteresis_update(const HysteresisData& h, double d, double& dp, double& dissipated,
                               double& peak, std::array<double, 4>& excursion) {
-  if (h.rule == HysteresisRule::kBilinear) {
-    bilinear_update(h, d, dp, dissipated, peak);
-  } else {
-    backbone_update(h.rule, h.k, h.pos, h.neg, d, dp, dissipated, peak, excursion);
+  switch (h.rule) {
+    case HysteresisRule::kBilinear:
+      bilinear_update(h, d, dp, dissipated, peak);
+      return false;
+    case HysteresisRule::kBrittle:
+      return brittle_update(h.k, h.yield_pos, h.yield_neg, d, dp, dissipated, peak, excursion);
+    case HysteresisRule::kKinematic:
+    case HysteresisRule::kPeakOriented:
+      break;
   }
+  backbone_update(h.rule, h.k, h.pos, h.neg, d, dp, dissipated, peak, excursion);
+  return false;
 }
 
 }  // namespace ntn

@@ -162,8 +162,9 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
         for (std::size_t k = 0; h.plastic != 0 && k < kDofsPerNode; ++k) {
           if (!((h.plastic >> k) & 1U)) continue;
           const auto slot = static_cast<std::size_t>(h.history[k]);
-          hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
-                            s.plastic_peak[slot], s.excursion[slot]);
+          if (hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
+                                s.plastic_peak[slot], s.excursion[slot]))
+            s.first_slip[slot] = s.tick + 1;  // a brittle direction broke (brittle.hpp)
         }
       }
       hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
@@ -194,6 +195,7 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
 template <Sizes S>
 void slip_normals(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   if constexpr (S.hinges > 0 && S.hystereses > 0) {
+    if (m.num_slip_normals == 0) return;
     int coupled_tree = -1;
     for (int i = 0; i < m.num_slip_hinges; ++i) {
       const int hi = m.slip_hinges[static_cast<std::size_t>(i)];
@@ -216,6 +218,22 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
   hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
                  ground ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)], d);
   return d[k];
+}
+
+// The relative velocity of hinge direction k at t_n, from v_n = v_{n-1/2} + dt/2 a_n at its nodes.
+template <Sizes S>
+double hinge_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w, int hinge, int k) {
+  const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
+  const bool ground = h.node2 == kGround;
+  double v1[6], v2[6], d_dot[6];
+  for (std::size_t c = 0; c < kDofsPerNode; ++c) {
+    const auto j1 = static_cast<std::size_t>(kDofsPerNode * h.node1) + c;
+    v1[c] = s.v[j1] + 0.5 * m.dt * w.a[j1];
+    const std::size_t j2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2) + c;
+    v2[c] = ground ? 0.0 : s.v[j2] + 0.5 * m.dt * w.a[j2];
+  }
+  hinge_relative(h, v1, ground ? nullptr : v2, d_dot);
+  return d_dot[k];
 }
 
 // Output channels at t_n: u_n, v_n = v_{n-1/2} + dt/2 a_n, a_n, end forces from u_n.
@@ -242,6 +260,11 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         break;
       case OutputKind::kHingeDisplacement:
         if constexpr (S.hinges > 0) value = hinge_displacement(m, s, o.hinge, o.dof);
+        break;
+      case OutputKind::kHingeVelocity:
+        if constexpr (S.hinges > 0) value = hinge_velocity(m, s, w, o.hinge, o.dof);
+        break;
+      case OutputKind::kHingeSlipState:  // written by the slip stage (slip_outputs)
         break;
       case OutputKind::kHingePlastic:
       case OutputKind::kHingeDissipated:
@@ -326,6 +349,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
   for (auto& x : s.excursion)
     x.fill(0.0);
   s.first_slip.fill(0);
+  s.slip_state.fill(0);
 }
 
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with
@@ -366,7 +390,7 @@ template <Sizes S>
   detail::sample_outputs(m, s, w, t);  // outputs: the channels at t_n
   const bool finite = detail::update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
   detail::hinge_stops(m, s, w);  // stops: slip directions held or slid, rigid branches clamped
-  slip_outputs(m, w);            // the slip directions' forces at t_n into their channels
+  slip_outputs(m, s, w);  // the slip directions' forces at t_n and states into their channels
   detail::constraint_projection(m, s, w);  // constraint projection: S 27-37, §7.1
   ++s.tick;
   if (!finite) {

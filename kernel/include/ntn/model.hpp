@@ -84,6 +84,9 @@ struct Model {
   // ntn_exact: W_ij = b_i^T M_c^-1 b_j between the slip directions of each rigid tree, row by
   // row in the slip stage's order (slip.hpp, init_slip_mobility): constant, so built at init.
   std::array<double, S.hystereses * kSlipBlock> slip_mobility{};
+  // ntn_exact: the L D L^T of each tree's W with every direction sticking, in the same rows
+  // (slip.hpp's ldl_factor; 0 in a tree's first entry when W is singular).
+  std::array<double, S.hystereses * kSlipBlock> slip_factor{};
   int num_edges = 0;
   int num_roots = 0;
   int num_spring_hinges = 0;
@@ -91,6 +94,7 @@ struct Model {
   int num_project_edges = 0;
   int num_trees = 0;
   int num_slip_hinges = 0;
+  int num_slip_normals = 0;    // slip directions whose limit follows another's force
   int held_dofs = 0;           // DOFs held at zero as mechanisms (no mass, no stiffness)
   HingeMethod hinge_method{};  // Settings::hinge_method (hinge_methods.hpp picks the method)
   ClampRule clamp = ClampRule::kMomentum;
@@ -183,15 +187,20 @@ template <Sizes S>
           !hysteresis_valid(spec.hystereses[slot], h.stiffness[k], h.dashpot[k]) ||
           slot_used[slot] != 0)
         return {InitError::kBadHinge, static_cast<int>(i)};
-      // A rigid-plastic direction's law: bilinear, perfectly plastic (slip.hpp). Friction only
-      // on a slip direction (ntn_exact) whose normal is another direction of the hinge that is
-      // not a slip direction itself (its force at t_n is known before the slip stage).
+      // A rigid-plastic direction's law: bilinear, perfectly plastic (slip.hpp), hardening with
+      // the slip only as its parallel spring (HingeSpec::stiffness, plain yields), or brittle.
+      // Friction and fixed_if only on a slip direction (ntn_exact) whose normal is another
+      // direction of the hinge that is not a slip direction itself and not a stop (its force at
+      // t_n is known before the slip stage; a stop's comes after it).
       const HysteresisSpec& law = spec.hystereses[slot];
       if (h.behaviour[k] == HingeBehaviour::kRigidPlastic &&
-          (law.rule != HysteresisRule::kBilinear || law.hardening != 0))
+          ((law.rule != HysteresisRule::kBilinear && law.rule != HysteresisRule::kBrittle) ||
+           law.hardening != 0 ||
+           (spec.hinges[i].stiffness[k] != 0 &&
+            (law.rule != HysteresisRule::kBilinear || law.normal >= 0))))
         return {InitError::kBadHinge, static_cast<int>(i)};
       if (law.normal >= 0 && (!((h.slip >> k) & 1U) || law.normal == static_cast<int>(k) ||
-                              ((h.slip >> law.normal) & 1U)))
+                              (((h.slip | h.branches) >> law.normal) & 1U)))
         return {InitError::kBadHinge, static_cast<int>(i)};
       slot_used[slot] = 1;
     }
@@ -221,6 +230,8 @@ template <Sizes S>
       case OutputKind::kHingePlastic:
       case OutputKind::kHingeDissipated:
       case OutputKind::kHingeLevel:
+      case OutputKind::kHingeVelocity:
+      case OutputKind::kHingeSlipState:
         ok = ok && o.hinge >= 0 && std::cmp_less(o.hinge, S.hinges);
         break;
       default:
@@ -270,7 +281,7 @@ template <Sizes S>
     model.curve_points = spec.curve_points;
     model.num_edges = model.num_roots = model.held_dofs = 0;
     model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
-    model.num_slip_hinges = 0;
+    model.num_slip_hinges = model.num_slip_normals = 0;
     model.num_trees = 0;
     for (std::size_t i = 0; i < S.hinges; ++i) {
       const HingeData& h = model.hinges[i];
@@ -280,6 +291,11 @@ template <Sizes S>
       if (h.branches != 0)
         model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = hinge;
       if (h.slip != 0) model.slip_hinges[static_cast<std::size_t>(model.num_slip_hinges++)] = hinge;
+      for (std::size_t k = 0; h.slip != 0 && k < kDofsPerNode; ++k) {
+        if ((h.slip >> k) & 1U)
+          model.num_slip_normals +=
+              spec.hystereses[static_cast<std::size_t>(h.history[k])].normal >= 0 ? 1 : 0;
+      }
     }
     for (auto& e : model.hinge_edge)
       e = -1;
@@ -350,7 +366,8 @@ template <Sizes S>
   model.element_loads = spec.element_loads;
   if constexpr (S.hystereses > 0) {
     // Each slot's law with its direction's elastic k (a rigid-plastic direction: the penalty
-    // stiffness under penalty, 1 under ntn_exact, where the slip stage uses the yields alone).
+    // stiffness under penalty, 1 under ntn_exact, where the slip stage uses the yields alone and
+    // its hardening is a spring of its own).
     for (std::size_t i = 0; i < S.hinges; ++i) {
       const HingeSpec& hs = spec.hinges[i];
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
@@ -361,7 +378,15 @@ template <Sizes S>
         const double k_el = hs.behaviour[k] == HingeBehaviour::kPlastic ? hs.stiffness[k]
                             : (model.hinges[i].plastic >> k) & 1U ? model.hinges[i].stiffness[k]
                                                                   : 1.0;
-        model.hystereses[slot] = make_hysteresis(spec.hystereses[slot], k_el);
+        HysteresisData& law = model.hystereses[slot];
+        law = make_hysteresis(spec.hystereses[slot], k_el);
+        if (hs.behaviour[k] == HingeBehaviour::kRigidPlastic &&
+            ((model.hinges[i].plastic >> k) & 1U)) {
+          // Under penalty, hardening with the slip H in series with the penalty spring k is the
+          // bilinear law's back modulus H: its tangent after yield is k H / (k + H).
+          law.H = hs.stiffness[k];
+          law.inv_kH = 1.0 / (k_el + law.H);
+        }
       }
     }
   }

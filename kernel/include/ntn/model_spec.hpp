@@ -99,6 +99,10 @@ enum class OutputKind : std::uint8_t {
   kHingePlastic,          // hinge `hinge`, local direction `dof` (kPlastic): plastic deformation
   kHingeDissipated,       // the same: hysteretic energy dissipated so far, J
   kHingeLevel,            // the same: performance level reached, 0..4 (performance_level())
+  kHingeVelocity,         // hinge `hinge`, local direction `dof`: relative velocity at t_n (the
+                          // slip velocity of a sliding direction), m/s or rad/s
+  kHingeSlipState,        // the same (kRigidPlastic): 0 sticks, +1 / -1 slides at its limit in
+                          // the positive / negative sense, 2 free (broken, or fixed_if released)
 };
 
 // NTN hinges (DESIGN §7). Node 1 is the member end ("slave"), node 2 the joint ("master") or
@@ -119,7 +123,10 @@ enum class HingeBehaviour : std::uint8_t {
                   // HysteresisSpec, hardening 0), or its friction limit mu max(0, -N) + c
                   // (HysteresisSpec::normal), then it slides at that force (slip.hpp):
                   // exact stick and slip under ntn_exact, a bilinear spring of the penalty
-                  // stiffness under penalty, refused by ntn_paper; its slip is State::plastic
+                  // stiffness under penalty, refused by ntn_paper; its slip is State::plastic.
+                  // `stiffness` > 0: linear hardening with the slip (a spring of that stiffness
+                  // in parallel; kBilinear only). Also fixed_if (HysteresisSpec::fixed_if) and
+                  // failure (kBrittle: breaks at its first slide)
 };
 
 // Each method is a struct in its own header (ntn_exact.hpp, ntn_paper.hpp, penalty.hpp); only
@@ -141,9 +148,10 @@ struct HingeSpec {
   std::array<double, 9> frame{1, 0, 0, 0, 1, 0, 0, 0, 1};  // rows: hinge axes x, y, z in global
   std::array<double, 3> eccentricity{};                    // m, e = x2 - x1 in global axes
   std::array<HingeBehaviour, kDofsPerNode> behaviour{};    // default: rigid in all six
-  std::array<double, kDofsPerNode> stiffness{};            // N/m or N m/rad (kLinear)
-  std::array<double, kDofsPerNode> dashpot{};              // N s/m or N m s/rad (kLinear)
-  std::array<int, kDofsPerNode> curve{};                   // index into curves (kCurve)
+  std::array<double, kDofsPerNode> stiffness{};            // N/m or N m/rad (kLinear, kPlastic;
+                                                 // kRigidPlastic: its hardening with the slip)
+  std::array<double, kDofsPerNode> dashpot{};  // N s/m or N m s/rad (kLinear)
+  std::array<int, kDofsPerNode> curve{};       // index into curves (kCurve)
   std::array<int, kDofsPerNode>
       hysteresis{};  // index into hystereses (kPlastic), one per direction
 };
@@ -161,6 +169,9 @@ enum class HysteresisRule : std::uint8_t {
                   // range translates); strength past the capping point never comes back
   kPeakOriented,  // a backbone; unloading at k to zero force, reloading toward the point of the
                   // largest excursion so far in that sense (concrete, timber)
+  kBrittle,       // linear (kPlastic: its stiffness; kRigidPlastic: rigid) until its force first
+                  // passes yield_pos or -yield_neg, then no force for the rest of the run (a
+                  // bolt that breaks; State::first_slip says when): brittle.hpp
 };
 
 // A hysteretic hinge direction's law (kPlastic). Each entry belongs to one direction; its index
@@ -192,9 +203,10 @@ struct HysteresisSpec {
   int normal = -1;
   double mu = 0;
   double cohesion = 0;  // N or N m
-  // Failure (a kRigidPlastic direction): 1 when the direction breaks the first time its force
-  // reaches its yield (a bolt): free for the rest of the run (State::first_slip says when).
-  int failure = 0;
+  // fixed_if (a kRigidPlastic direction, slip.hpp): -1 (+1) when the direction is rigid while
+  // the force at t_n of direction `normal` of the same hinge is negative (positive) and free
+  // otherwise (RFEM's "fixed if N-"); mu, cohesion and the yields are not used.
+  int fixed_if = 0;
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's

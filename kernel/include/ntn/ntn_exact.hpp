@@ -49,9 +49,11 @@ struct NtnExactMethod {
   }
 
   // Rigid-plastic direction k: free in the forest, held (stick) or slid (slip) by the slip stage
-  // after the update, exactly (slip.hpp).
+  // after the update, exactly (slip.hpp); its hardening with the slip, if any, a spring of that
+  // stiffness in parallel (the slider and the spring: linear kinematic hardening).
   static bool slip_direction(const Settings&, std::size_t k, HingeData& h) {
     h.slip |= static_cast<std::uint8_t>(1U << k);
+    if (h.stiffness[k] > 0) h.springs |= static_cast<std::uint8_t>(1U << k);
     return true;
   }
 

@@ -30,8 +30,9 @@ struct PenaltyMethod {
     return true;
   }
 
-  // Rigid-plastic direction k: a bilinear elasto-plastic spring of the penalty stiffness (its
-  // yield from the direction's law; perfectly plastic), the comparison the seed's way allows.
+  // Rigid-plastic direction k: an elasto-plastic spring of the penalty stiffness (its yield and
+  // hardening with the slip from the direction's law: bilinear, or brittle for `failure`), the
+  // comparison the seed's way allows.
   static bool slip_direction(const Settings& settings, std::size_t k, HingeData& h) {
     h.stiffness[k] = penalty_stiffness(settings, k);
     if (!(h.stiffness[k] > 0)) return false;

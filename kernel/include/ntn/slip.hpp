@@ -18,13 +18,17 @@
 // changes by more than 1e-12 of its limit. The same inputs give the same bits.
 // The forces a_n receives are the step's f (S 35-37 increments, as the stops' clamp).
 // Friction (HysteresisData::normal): the limit mu max(0, -N) + cohesion, N the normal
-// direction's force at t_n (slip_normals, integrator.hpp). Failure (HysteresisData::failure):
-// the first slide breaks the direction, which is free from the next step on; State::first_slip
-// records when any rigid-plastic direction first slid.
+// direction's force at t_n (slip_normals, integrator.hpp). fixed_if (HysteresisData::fixed_if):
+// held with no limit while that force has the given sign, free otherwise (RFEM's "fixed if
+// N-"). Failure (HysteresisRule::kBrittle): the first slide breaks the direction, which is free
+// from the next step on; State::first_slip records when any rigid-plastic direction first slid.
+// Hardening with the slip: a spring in parallel (HingeSpec::stiffness, the spring stage's), so
+// that the force is yield + H d while sliding (linear kinematic hardening, exact).
+// State::slip_state keeps how each direction left the step (stuck, sliding, free): an output
+// channel, and where the next step's tree solve starts its active set.
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -48,17 +52,67 @@ inline double friction_limit(const HysteresisData& law, double normal) {
   return law.mu * (normal < 0 ? -normal : 0.0) + law.cohesion;
 }
 
+// The limit of a held fixed_if direction: any force it takes (finite, so that the solves'
+// arithmetic stays finite).
+inline constexpr double kHeld = 1e300;
+
 // The limits of slip direction `slot` now, in the positive and the negative sense: its yields,
-// its friction limit, or none left once a `failure` direction has broken.
+// its friction limit, held or free by the sign of its control (fixed_if), or none left once a
+// `failure` direction has broken.
 template <Sizes S>
 void slip_limits(const HysteresisData& law, const State<S>& s, const Scratch<S>& w,
                  std::size_t slot, double& up, double& down) {
   up = law.yield_pos, down = law.yield_neg;
-  if (law.normal >= 0) up = down = friction_limit(law, w.slip_normal[slot]);
-  if (law.failure && s.first_slip[slot] != 0) up = down = 0.0;
+  if (law.fixed_if != 0) {
+    const double n = w.slip_normal[slot];
+    up = down = (law.fixed_if < 0 ? n < 0 : n > 0) ? kHeld : 0.0;
+  } else if (law.normal >= 0) {
+    up = down = friction_limit(law, w.slip_normal[slot]);
+  }
+  if (law.rule == HysteresisRule::kBrittle && s.first_slip[slot] != 0) up = down = 0.0;
 }
 
 namespace detail {
+
+// L D L^T of the symmetric n x n matrix A (row stride kSlipBlock, its lower triangle read) in
+// place: L below the diagonal, D on it. False when a pivot is not above 1e-12 of the largest
+// diagonal entry (dependent directions).
+inline bool ldl_factor(double* A, int n) {
+  double scale = 0;
+  for (int i = 0; i < n; ++i) {
+    if (A[i * kSlipBlock + i] > scale) scale = A[i * kSlipBlock + i];
+  }
+  for (int j = 0; j < n; ++j) {
+    double* rj = A + j * kSlipBlock;
+    double djj = rj[j];
+    for (int q = 0; q < j; ++q)
+      djj -= rj[q] * rj[q] * A[q * kSlipBlock + q];
+    if (!(djj > 1e-12 * scale)) return false;
+    rj[j] = djj;
+    for (int i = j + 1; i < n; ++i) {
+      double* ri = A + i * kSlipBlock;
+      double sum = ri[j];
+      for (int q = 0; q < j; ++q)
+        sum -= ri[q] * rj[q] * A[q * kSlipBlock + q];
+      ri[j] = sum / djj;
+    }
+  }
+  return true;
+}
+
+// Solves L D L^T x = b in place (b in x), with ldl_factor's A.
+inline void ldl_solve(const double* A, int n, double* x) {
+  for (int i = 0; i < n; ++i) {
+    for (int q = 0; q < i; ++q)
+      x[i] -= A[i * kSlipBlock + q] * x[q];
+  }
+  for (int i = 0; i < n; ++i)
+    x[i] /= A[i * kSlipBlock + i];
+  for (int i = n - 1; i >= 0; --i) {
+    for (int q = i + 1; q < n; ++q)
+      x[i] -= A[q * kSlipBlock + i] * x[q];
+  }
+}
 
 // One Gauss-Seidel sweep over the slip directions of slip hinges [begin, end): each one's force
 // moves toward what holds it, within its limits. Returns the largest change of a force relative
@@ -95,7 +149,9 @@ double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first, int
       if (change == 0) continue;
       w.slip_force[slot] = force;
       clamp_move(m, s, w, parts, -change * dt2, ++w.clamp.events);
-      const double scale = up > down ? up : down;
+      // relative to its limit (to the force itself when held without one)
+      double scale = up > down ? up : down;
+      if (scale >= kHeld) scale = force < 0 ? -force : force;
       const double size = change > 0 ? change : -change;
       const double rel = scale > 0 ? size / scale : size;
       if (rel > largest) largest = rel;
@@ -109,8 +165,10 @@ template <Sizes S>
 int slip_directions(const Model<S>& m, int begin, int end) {
   int n = 0;
   for (int q = begin; q < end; ++q)
-    n += std::popcount(static_cast<unsigned>(
-        m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])].slip));
+    for (unsigned bits =
+             m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(q)])].slip;
+         bits != 0; bits &= bits - 1)
+      ++n;
   return n;
 }
 
@@ -177,64 +235,53 @@ bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, in
     }
   }
   const ClampPart parts[2] = {ClampPart{tree, -1}, {}};
-  double W[kSlipBlock][kSlipBlock];  // the tree's mobility matrix (init_slip_mobility)
+  // The tree's mobility matrix W and its L D L^T with every direction sticking (init).
+  const double* W = &m.slip_mobility[static_cast<std::size_t>(first_direction * kSlipBlock)];
+  const double* full = &m.slip_factor[static_cast<std::size_t>(first_direction * kSlipBlock)];
   for (int i = 0; i < n; ++i) {
-    const auto row = static_cast<std::size_t>((first_direction + i) * kSlipBlock);
-    for (int j = 0; j < n; ++j)
-      W[i][j] = m.slip_mobility[row + static_cast<std::size_t>(j)];
-    if (!(W[i][i] > 0)) return false;
+    if (!(W[i * kSlipBlock + i] > 0)) return false;
   }
-  // at[i]: 0 sticks (free force), +1 at its upper limit, -1 at its lower, 2 held at 0 (no limit)
+  // at[i]: 0 sticks (free force), +1 at its upper limit, -1 at its lower, 2 held at 0 (no
+  // limit). The set starts where the last step left it (State::slip_state): a direction that
+  // slid then most often slides now.
   int at[kSlipBlock];
   double f[kSlipBlock];
   for (int i = 0; i < n; ++i) {
-    at[i] = c[i].up == 0 && c[i].down == 0 ? 2 : 0;
-    f[i] = 0;
+    const int last = s.slip_state[c[i].slot];
+    at[i] = c[i].up == 0 && c[i].down == 0 ? 2 : last == 1 || last == -1 ? last : 0;
+    f[i] = at[i] == 1 ? c[i].up : at[i] == -1 ? -c[i].down : 0.0;
   }
   bool settled = false;
   for (int round = 0; round < 4 * kSlipBlock && !settled; ++round) {
-    // W_FF f_F = e_F - W_FB f_B by L D L^T on the sticking set F.
-    double L[kSlipBlock][kSlipBlock] = {}, D[kSlipBlock] = {}, z[kSlipBlock] = {};
-    double scale = 0;
+    // W_FF f_F = e_F - W_FB f_B on the sticking set F (gathered): by the init-time factor when
+    // every direction sticks, else by factoring W_FF.
+    int F[kSlipBlock];
+    int nf = 0;
     for (int i = 0; i < n; ++i) {
-      if (at[i] == 0 && W[i][i] > scale) scale = W[i][i];
+      if (at[i] == 0) F[nf++] = i;
     }
-    for (int j = 0; j < n; ++j) {
-      if (at[j] != 0) continue;
-      double djj = W[j][j];
-      for (int q = 0; q < j; ++q) {
-        if (at[q] == 0) djj -= L[j][q] * L[j][q] * D[q];
-      }
-      if (!(djj > 1e-12 * scale)) return false;  // dependent directions
-      D[j] = djj;
-      for (int i = j + 1; i < n; ++i) {
-        if (at[i] != 0) continue;
-        double sum = W[i][j];
-        for (int q = 0; q < j; ++q) {
-          if (at[q] == 0) sum -= L[i][q] * L[j][q] * D[q];
-        }
-        L[i][j] = sum / djj;
-      }
-    }
-    for (int i = 0; i < n; ++i) {
-      if (at[i] != 0) continue;
+    double x[kSlipBlock];
+    for (int a = 0; a < nf; ++a) {
+      const int i = F[a];
       double sum = c[i].e;
       for (int j = 0; j < n; ++j) {
-        if (at[j] != 0) sum -= W[i][j] * f[j];
+        if (at[j] != 0) sum -= W[i * kSlipBlock + j] * f[j];
       }
-      for (int q = 0; q < i; ++q) {
-        if (at[q] == 0) sum -= L[i][q] * z[q];
-      }
-      z[i] = sum;
+      x[a] = sum;
     }
-    for (int i = n - 1; i >= 0; --i) {
-      if (at[i] != 0) continue;
-      double sum = z[i] / D[i];
-      for (int q = i + 1; q < n; ++q) {
-        if (at[q] == 0) sum -= L[q][i] * f[q];
+    if (nf == n && full[0] > 0) {
+      ldl_solve(full, n, x);
+    } else if (nf > 0) {
+      double A[kSlipBlock * kSlipBlock];
+      for (int a = 0; a < nf; ++a) {
+        for (int b = 0; b <= a; ++b)
+          A[a * kSlipBlock + b] = W[F[a] * kSlipBlock + F[b]];
       }
-      f[i] = sum;
+      if (!ldl_factor(A, nf)) return false;  // dependent directions
+      ldl_solve(A, nf, x);
     }
+    for (int a = 0; a < nf; ++a)
+      f[F[a]] = x[a];
     // The sticking direction furthest past a limit goes to it; else the direction at a limit
     // whose rest of e points back inside is released; else done.
     int worst = -1;
@@ -256,12 +303,13 @@ bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, in
       if (at[i] != 1 && at[i] != -1) continue;
       double r = c[i].e, size = c[i].e < 0 ? -c[i].e : c[i].e;
       for (int j = 0; j < n; ++j) {
-        r -= W[i][j] * f[j];
-        const double t = W[i][j] * f[j];
+        const double t = W[i * kSlipBlock + j] * f[j];
+        r -= t;
         size += t < 0 ? -t : t;
       }
       const double back = -static_cast<double>(at[i]) * r;  // > 0: it would move back inside
-      if (back > 1e-12 * size && back / W[i][i] > pull) pull = back / W[i][i], release = i;
+      const double wii = W[i * kSlipBlock + i];
+      if (back > 1e-12 * size && back / wii > pull) pull = back / wii, release = i;
     }
     if (release >= 0) {
       at[release] = 0;
@@ -348,6 +396,14 @@ void init_slip_mobility(Model<S>& m, InitWorkspace<S>& work) {
         for (int b = 0; b < a; ++b)
           at(a, b) = at(b, a) = 0.5 * (at(a, b) + at(b, a));
       }
+      // Its L D L^T with every direction sticking (the common step), or 0 in the first entry
+      // when W is singular (the step then factors each sticking set, or declines).
+      double* factor = &m.slip_factor[static_cast<std::size_t>(g * kSlipBlock)];
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b)
+          factor[a * kSlipBlock + b] = at(a, b);
+      }
+      if (!detail::ldl_factor(factor, n)) factor[0] = 0;
     });
   }
 }
@@ -369,8 +425,7 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
           m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
       const bool ground = h.node2 == kGround;
       double d[6];
-      hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
-                     ground ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)], d);
+      bool have_d = false;  // the relative displacement, once a direction of the hinge slides
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if (!((h.slip >> k) & 1U)) continue;
         const auto slot = static_cast<std::size_t>(h.history[k]);
@@ -378,7 +433,15 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
         const double f = w.slip_force[slot];
         double up = 0, down = 0;
         slip_limits(law, s, w, slot, up, down);
-        if (f != up && f != -down) continue;  // it sticks: s stays
+        const bool free = up == 0 && down == 0;
+        s.slip_state[slot] = static_cast<std::int8_t>(free ? 2 : f == up ? 1 : f == -down ? -1 : 0);
+        if (s.slip_state[slot] == 0) continue;  // it sticks: s stays
+        if (!have_d) {
+          hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+                         ground ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)],
+                         d);
+          have_d = true;
+        }
         if (s.first_slip[slot] == 0 && (up > 0 || down > 0) && d[k] != s.plastic[slot])
           s.first_slip[slot] = s.tick + 1;  // the first slide (a failure direction breaks)
         const double ds = d[k] - s.plastic[slot];
@@ -391,19 +454,24 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   }
 }
 
-// The hinge-force channels of slip directions: the slip stage's force at t_n (sample_outputs ran
-// before it).
+// The hinge-force and slip-state channels of slip directions, after the slip stage: its force at
+// t_n added to what sample_outputs, which ran before it, gave (0, or the hardening spring's
+// force), and how the stage left the direction (State::slip_state).
 template <Sizes S>
-void slip_outputs(const Model<S>& m, Scratch<S>& w) {
+void slip_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   if constexpr (S.hinges > 0 && S.hystereses > 0 && S.outputs > 0) {
     if (m.num_slip_hinges == 0) return;
     for (std::size_t c = 0; c < S.outputs; ++c) {
       const OutputSpec& o = m.outputs[c];
-      if (o.kind != OutputKind::kHingeForce) continue;
+      if (o.kind != OutputKind::kHingeForce && o.kind != OutputKind::kHingeSlipState) continue;
       const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
       if (!((h.slip >> o.dof) & 1U)) continue;
-      w.outputs[c] =
-          w.slip_force[static_cast<std::size_t>(h.history[static_cast<std::size_t>(o.dof)])];
+      const auto slot = static_cast<std::size_t>(h.history[static_cast<std::size_t>(o.dof)]);
+      if (o.kind == OutputKind::kHingeForce) {
+        w.outputs[c] += w.slip_force[slot];
+      } else {
+        w.outputs[c] = s.slip_state[slot];
+      }
     }
   }
 }

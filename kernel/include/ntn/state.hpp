@@ -43,9 +43,14 @@ struct State {
   // the negative sense (magnitudes), and where the reloading lines of the positive and the
   // negative sense start (peak_oriented: the zero-force points of the last unloading lines).
   std::array<std::array<double, 4>, S.hystereses> excursion{};
-  // Rigid-plastic directions only (slip.hpp): 1 + the tick of the step in which the direction
-  // first slid (0: never); a `failure` direction has broken from then on.
+  // Rigid-plastic and brittle directions (slip.hpp, brittle.hpp): 1 + the tick of the step in
+  // which the direction first slid or broke (0: never); a `failure` direction has broken from
+  // then on.
   std::array<std::int64_t, S.hystereses> first_slip{};
+  // Rigid-plastic directions under ntn_exact (slip.hpp): how the last step left each one: 0
+  // stuck, +1 / -1 at its limit in the positive / negative sense (sliding), 2 free (broken, or
+  // a fixed_if released). The next step's solve starts from it.
+  std::array<std::int8_t, S.hystereses> slip_state{};
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b

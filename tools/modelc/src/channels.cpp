@@ -97,6 +97,13 @@ void add_channels(Compilation& comp) {
                              o.node_kind == OutputKind::kHingeLevel;
         const HingeBehaviour hb =
             d.hinges[static_cast<std::size_t>(os.hinge)].behaviour[static_cast<std::size_t>(o.dof)];
+        if (o.node_kind == OutputKind::kHingeSlipState && hb != HingeBehaviour::kRigidPlastic) {
+          L.error(o.dof_at, "direction " + std::string(kDofNames[static_cast<std::size_t>(o.dof)]) +
+                                " of " + d.describe_hinge(os.hinge) +
+                                " does not stick or slip: a hinge_slip_state channel needs a "
+                                "rigid_plastic, friction, fixed_if or failure direction");
+          continue;
+        }
         if (history && hb != HingeBehaviour::kPlastic && hb != HingeBehaviour::kRigidPlastic) {
           L.error(o.dof_at, "direction " + std::string(kDofNames[static_cast<std::size_t>(o.dof)]) +
                                 " of " + d.describe_hinge(os.hinge) +
@@ -108,8 +115,11 @@ void add_channels(Compilation& comp) {
           units = o.dof < 3 ? "N" : "N m";
         } else if (o.node_kind == OutputKind::kHingeDissipated) {
           units = "J";
-        } else if (o.node_kind == OutputKind::kHingeLevel) {
+        } else if (o.node_kind == OutputKind::kHingeLevel ||
+                   o.node_kind == OutputKind::kHingeSlipState) {
           units = "-";
+        } else if (o.node_kind == OutputKind::kHingeVelocity) {
+          units = o.dof < 3 ? "m/s" : "rad/s";
         } else {
           units = o.dof < 3 ? "m" : "rad";
         }

@@ -187,6 +187,10 @@ const char* output_kind(OutputKind k) {
       return "ntn::OutputKind::kHingeDissipated";
     case OutputKind::kHingeLevel:
       return "ntn::OutputKind::kHingeLevel";
+    case OutputKind::kHingeVelocity:
+      return "ntn::OutputKind::kHingeVelocity";
+    case OutputKind::kHingeSlipState:
+      return "ntn::OutputKind::kHingeSlipState";
   }
   throw std::invalid_argument("emit_header: unknown output kind");
 }
@@ -229,6 +233,8 @@ const char* hysteresis_rule(HysteresisRule r) {
       return "ntn::HysteresisRule::kKinematic";
     case HysteresisRule::kPeakOriented:
       return "ntn::HysteresisRule::kPeakOriented";
+    case HysteresisRule::kBrittle:
+      return "ntn::HysteresisRule::kBrittle";
   }
   throw std::invalid_argument("emit_header: unknown hysteresis rule");
 }
@@ -347,7 +353,9 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "hystereses", m.hystereses, [](const HysteresisSpec& h) {
     std::string s = "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
                     ", .hardening = " + lit(h.hardening) + ", .limits = " + lits(h.limits);
-    if (h.failure != 0) return s + ", .failure = " + lit(h.failure) + "}";
+    if (h.rule == HysteresisRule::kBrittle) return s + ", .rule = " + hysteresis_rule(h.rule) + "}";
+    if (h.fixed_if != 0)
+      return s + ", .normal = " + lit(h.normal) + ", .fixed_if = " + lit(h.fixed_if) + "}";
     if (h.normal >= 0)
       return s + ", .normal = " + lit(h.normal) + ", .mu = " + lit(h.mu) +
              ", .cohesion = " + lit(h.cohesion) + "}";

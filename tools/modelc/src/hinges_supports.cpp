@@ -10,15 +10,39 @@
 
 #include "messages.hpp"
 #include "ntn/beam.hpp"
+#include "ntn/hinge.hpp"
 #include "roll.hpp"
 
 namespace ntn::modelc::compile {
 namespace {
 
-// A hinge's directions from the file's behaviours: a curve reference resolves to its index.
-bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& dirs) {
+// A hinge's directions from the file's behaviours: a curve reference resolves to its index; a
+// fixed_if on its own force becomes a stop (a curve with one rigid branch at d = 0).
+bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
   auto ref = [&comp](const std::map<std::string, int>& index, const IdAt& id,
                      const std::string& what) { return comp.ref(index, id, what); };
+  Behaviours dirs = given;  // a fixed_if whose control is its own direction: the stop
+  for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+    BehaviourIn& b = dirs[k];
+    if (b.law.fixed_if != 0 && b.law.normal == static_cast<int>(k)) {
+      b.kind = HingeBehaviour::kCurve;
+      b.stop = b.law.fixed_if;
+      b.law = {};
+    }
+  }
+  const HingeMethod method = comp.d.settings.hinge_method;
+  // Direction n is a stop (a rigid branch, by the kernel's rule): its force is the stops'
+  // clamp's, known only after the slip stage.
+  const auto is_stop = [&](std::size_t n) {
+    if (dirs[n].stop != 0) return true;
+    if (dirs[n].kind != HingeBehaviour::kCurve) return false;
+    const auto it = comp.ids.curves.find(dirs[n].curve->id);
+    if (it == comp.ids.curves.end()) return false;
+    const CurveBranches b =
+        curve_branches(comp.d.curve_points, comp.d.curves[static_cast<std::size_t>(it->second)],
+                       branch_slope_limit(comp.d.settings, n));
+    return b.valid && (b.lower > -1e300 || b.upper < 1e300);
+  };
   bool ok = true;
   for (std::size_t k = 0; k < kDofsPerNode; ++k) {
     const BehaviourIn& b = dirs[k];
@@ -30,48 +54,69 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& dirs) {
       comp.d.hystereses.push_back(b.law);
     }
     if (b.kind == HingeBehaviour::kRigidPlastic) {  // a history slot: its slip, its work
-      if (comp.d.settings.hinge_method == HingeMethod::kNtnPaper) {
-        comp.L.error(b.at,
-                     "a rigid_plastic direction needs hinge_method = \"ntn_exact\" (exact "
-                     "stick and slip) or \"penalty\" (an elasto-plastic penalty spring): "
-                     "the seed's algorithm (\"ntn_paper\") gives no constraint force to "
-                     "test against the yield");
+      const bool brittle = b.law.rule == HysteresisRule::kBrittle;
+      const char* what = brittle               ? "a failure direction"
+                         : b.law.fixed_if != 0 ? "a fixed_if direction with a control"
+                         : b.law.normal >= 0   ? "a friction direction"
+                                               : "a rigid_plastic direction";
+      if (method == HingeMethod::kNtnPaper) {
+        comp.L.error(b.at, std::string(what) +
+                               " needs hinge_method = \"ntn_exact\" (exact stick and slip)" +
+                               (b.law.normal < 0 ? " or \"penalty\" (an elasto-plastic "
+                                                   "penalty spring)"
+                                                 : "") +
+                               ": the seed's algorithm (\"ntn_paper\") gives no constraint force "
+                               "to test against the limit" +
+                               (brittle ? " (a spring that breaks works with every method: "
+                                          "{ linear = k, failure = F })"
+                                        : ""));
         ok = false;
         continue;
       }
-      if (b.law.failure != 0 && comp.d.settings.hinge_method == HingeMethod::kPenalty) {
-        comp.L.error(b.at,
-                     "a failure direction needs hinge_method = \"ntn_exact\": under "
-                     "\"penalty\" only a constant limit (rigid_plastic = F) is offered");
-        ok = false;
-        continue;
-      }
-      if (b.law.normal >= 0) {  // friction: the normal is another, non-slip direction
+      if (b.law.normal >= 0) {  // friction, fixed_if: the normal is another, non-slip direction
         const auto n = static_cast<std::size_t>(b.law.normal);
-        if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic) {
+        const char* role = b.law.fixed_if != 0 ? "the control of a fixed_if direction"
+                                               : "the normal of a friction direction";
+        if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic || is_stop(n)) {
+          const bool by_default =
+              b.normal_at.line == b.at.line && b.normal_at.column == b.at.column;
           comp.L.error(
               b.normal_at,
-              std::string("the normal of a friction direction must be another direction ") +
-                  "of the hinge that does not slide itself (rigid, a spring or a curve)" +
-                  (n == k ? ": it is this direction" : ": it slides") +
-                  (b.normal_at.line == b.at.line && b.normal_at.column == b.at.column
-                       ? " (the default normal is ux: give normal = \"..\")"
-                       : ""));
+              std::string(role) +
+                  " must be another direction of the hinge that does not slide itself and is "
+                  "not a stop (rigid, a spring or a curve without rigid branches)" +
+                  (n == k                                          ? ": it is this direction"
+                   : dirs[n].kind == HingeBehaviour::kRigidPlastic ? ": it slides"
+                                                                   : ": it is a stop, whose "
+                                                                     "force comes after the "
+                                                                     "slip stage") +
+                  (by_default ? " (the default normal is ux: give normal = \"..\")" : ""));
           ok = false;
           continue;
         }
-        if (comp.d.settings.hinge_method == HingeMethod::kPenalty) {
-          comp.L.error(b.at,
-                       "a friction direction needs hinge_method = \"ntn_exact\": under "
-                       "\"penalty\" only a constant limit (rigid_plastic = F) is offered");
+        if (method == HingeMethod::kPenalty) {
+          comp.L.error(b.at, std::string(what) +
+                                 " needs hinge_method = \"ntn_exact\": under \"penalty\" only "
+                                 "a constant limit (rigid_plastic = F, failure = F) is offered");
           ok = false;
           continue;
         }
       }
+      hs.stiffness[k] = b.k;  // its hardening with the slip, if any
       hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
       comp.d.hystereses.push_back(b.law);
     }
-    if (b.kind == HingeBehaviour::kCurve) {
+    if (b.kind == HingeBehaviour::kCurve && b.stop != 0) {  // fixed_if on its own force
+      const double side = static_cast<double>(b.stop);      // -1: rigid against d < 0
+      hs.curve[k] = static_cast<int>(comp.d.curves.size());
+      comp.d.curves.push_back({static_cast<int>(comp.d.curve_points.size()), 3});
+      // A rigid branch of slope 1e300 (at least any limit stiffness) on one side of d = 0, no
+      // force on the other.
+      comp.d.curve_points.push_back({-1.0, side < 0 ? -1e300 : 0.0});
+      comp.d.curve_points.push_back({0.0, 0.0});
+      comp.d.curve_points.push_back({1.0, side < 0 ? 0.0 : 1e300});
+      comp.d.curve_ids.push_back("fixed_if");
+    } else if (b.kind == HingeBehaviour::kCurve) {
       hs.curve[k] = ref(comp.ids.curves, *b.curve, "curve");
       ok = ok && hs.curve[k] >= 0;
     }

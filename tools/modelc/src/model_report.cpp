@@ -215,30 +215,56 @@ std::string info_text(const ModelDescription& m) {
              "; " + std::to_string(z.curves) + " curves (" + std::to_string(z.curve_points) +
              " points)");
     if (!m.hystereses.empty()) {
-      double lo = 1e300, hi = 0;
-      int limits = 0, kinematic = 0, peak_oriented = 0;
-      for (const HysteresisSpec& h : m.hystereses) {
-        lo = std::min({lo, h.yield_pos, h.yield_neg});
-        hi = std::max({hi, h.yield_pos, h.yield_neg});
-        limits += h.limits[0] > 0 ? 1 : 0;
-        kinematic += h.rule == HysteresisRule::kKinematic ? 1 : 0;
-        peak_oriented += h.rule == HysteresisRule::kPeakOriented ? 1 : 0;
+      // Each slot's kind: from its law, and rigid-plastic or not from its direction.
+      std::vector<bool> rigid(m.hystereses.size(), false);
+      for (const HingeSpec& h : m.hinges) {
+        for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+          if (h.behaviour[k] == HingeBehaviour::kRigidPlastic)
+            rigid[static_cast<std::size_t>(h.hysteresis[k])] = true;
+        }
       }
-      const auto bilinear = static_cast<int>(m.hystereses.size()) - kinematic - peak_oriented;
+      double lo = 1e300, hi = 0;
+      int limits = 0;
+      std::array<int, 8> count{};  // in the order of kKindNames
+      static const char* const kKindNames[8] = {"plastic (bilinear, kinematic hardening)",
+                                                "backbone kinematic",
+                                                "backbone peak_oriented",
+                                                "springs that break",
+                                                "rigid_plastic",
+                                                "friction",
+                                                "fixed_if",
+                                                "rigid failure"};
+      for (std::size_t i = 0; i < m.hystereses.size(); ++i) {
+        const HysteresisSpec& h = m.hystereses[i];
+        if (h.yield_pos > 0) {
+          lo = std::min({lo, h.yield_pos, h.yield_neg});
+          hi = std::max({hi, h.yield_pos, h.yield_neg});
+        }
+        limits += h.limits[0] > 0 ? 1 : 0;
+        const bool brittle = h.rule == HysteresisRule::kBrittle;
+        const std::size_t kind = !rigid[i]         ? (h.rule == HysteresisRule::kKinematic      ? 1
+                                                      : h.rule == HysteresisRule::kPeakOriented ? 2
+                                                      : brittle                                 ? 3
+                                                                                                : 0)
+                                 : brittle         ? 7
+                                 : h.fixed_if != 0 ? 6
+                                 : h.normal >= 0   ? 5
+                                                   : 4;
+        ++count[kind];
+      }
       std::string kinds;
-      if (bilinear > 0)
-        kinds += std::to_string(bilinear) + " plastic (bilinear, kinematic hardening)";
-      if (kinematic > 0)
-        kinds += (kinds.empty() ? "" : ", ") + std::to_string(kinematic) + " backbone kinematic";
-      if (peak_oriented > 0)
-        kinds +=
-            (kinds.empty() ? "" : ", ") + std::to_string(peak_oriented) + " backbone peak_oriented";
-      line("plastic", std::to_string(m.hystereses.size()) + " hysteretic directions (" + kinds +
-                          "), yield " + f("%.4g", lo) +
-                          (hi > lo ? " to " + f("%.4g", hi) : std::string()) + " N or N m, " +
-                          std::to_string(limits) +
-                          " with IO/LS/CP limits; at their elastic stiffness in the stable step "
-                          "and the modes");
+      for (std::size_t k = 0; k < count.size(); ++k) {
+        if (count[k] > 0)
+          kinds += (kinds.empty() ? "" : ", ") + std::to_string(count[k]) + " " + kKindNames[k];
+      }
+      line("plastic",
+           std::to_string(m.hystereses.size()) + " hysteretic directions (" + kinds + ")" +
+               (hi > 0 ? ", yield " + f("%.4g", lo) +
+                             (hi > lo ? " to " + f("%.4g", hi) : std::string()) + " N or N m"
+                       : std::string()) +
+               ", " + std::to_string(limits) +
+               " with IO/LS/CP limits; at their elastic stiffness in the stable step "
+               "and the modes (rigid-plastic ones: rigid)");
     }
     line("method", std::string(method_name(s.hinge_method)) + ", clamp " +
                        (s.clamp == ClampRule::kMomentum ? "momentum" : "paper (S 33)"));

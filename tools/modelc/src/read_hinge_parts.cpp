@@ -201,7 +201,8 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   const std::string what =
       "must be \"rigid\", \"free\", { linear = k, dashpot = c }, { curve = \"id\" }, "
       "{ plastic = k, yield = F }, { backbone = [B, C, D, E], rule = \"kinematic\" }, "
-      "{ rigid_plastic = F }, { friction = mu, normal = \"ux\" } or { failure = F }";
+      "{ rigid_plastic = F }, { friction = mu, normal = \"ux\" }, { fixed_if = \"negative\" } "
+      "or { failure = F }";
   if (const auto* s = n.as_string()) {
     if (s->get() == "rigid" || s->get() == "free") {
       b.kind = s->get() == "rigid" ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
@@ -216,15 +217,42 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     return std::nullopt;
   }
   Table tb(L, *t, key,
-           {"linear", "dashpot", "curve", "plastic", "yield", "yield_negative", "hardening",
-            "backbone", "backbone_negative", "rule", "rigid_plastic", "friction", "cohesion",
-            "normal", "failure", "io", "ls", "cp"});
+           {"linear",
+            "dashpot",
+            "curve",
+            "plastic",
+            "yield",
+            "yield_negative",
+            "hardening",
+            "backbone",
+            "backbone_negative",
+            "rule",
+            "rigid_plastic",
+            "hardening_stiffness",
+            "friction",
+            "cohesion",
+            "normal",
+            "fixed_if",
+            "control",
+            "failure",
+            "io",
+            "ls",
+            "cp"});
   tb.check_unknown();
-  const char* const kKinds[7] = {"linear",        "curve",    "plastic", "backbone",
-                                 "rigid_plastic", "friction", "failure"};
-  for (std::size_t i = 0; i < 7; ++i) {
-    for (std::size_t j = i + 1; j < 7; ++j) {
+  const char* const kKinds[8] = {"linear",        "curve",    "plastic",  "backbone",
+                                 "rigid_plastic", "friction", "fixed_if", "failure"};
+  for (std::size_t i = 0; i < 8; ++i) {
+    for (std::size_t j = i + 1; j < 8; ++j) {
+      if (i == 0 && j == 7) continue;  // { linear = k, failure = F }: a spring that breaks
       if (tb.conflict(kKinds[i], kKinds[j])) return std::nullopt;
+    }
+  }
+  const std::pair<std::string_view, std::string_view> kOnlyWith[] = {
+      {"hardening_stiffness", "rigid_plastic"}, {"control", "fixed_if"}};
+  for (const auto& [k, with] : kOnlyWith) {
+    if (tb.has(k) && !tb.has(with)) {
+      L.error(tb.where(k), "only applies with '" + std::string(with) + "'");
+      return std::nullopt;
     }
   }
   for (std::string_view k : {"yield", "hardening"}) {
@@ -281,27 +309,54 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     b.normal_at = tb.has("normal") ? tb.where("normal") : b.at;
     return b;
   }
-  if (tb.has("failure")) {
-    // Rigid until its force first reaches the limit, free from then on (ntn/slip.hpp).
-    const auto fy = tb.positive("failure", Need::kRequired);
+  if (tb.has("fixed_if")) {
+    // Rigid while the force of its control (itself by default) has the sign, free otherwise
+    // (ntn/slip.hpp; on its own force a stop at d = 0).
+    const auto sign = tb.choice("fixed_if", Need::kRequired, {"negative", "positive"});
+    const auto control =
+        tb.choice("control", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
     if (tb.has("dashpot")) {
-      L.error(tb.where("dashpot"),
-              "a failure direction takes no dashpot: it is rigid until it "
-              "breaks");
+      L.error(tb.where("dashpot"), "a fixed_if direction takes no dashpot: it is rigid or free");
       return std::nullopt;
     }
-    if (!fy) return std::nullopt;
-    b.kind = HingeBehaviour::kRigidPlastic;
+    if (!sign || (!control && tb.has("control"))) return std::nullopt;
+    const int s_ = *sign == 0 ? -1 : 1;
+    b.normal_at = tb.has("control") ? tb.where("control") : b.at;
+    if (control) {
+      b.kind = HingeBehaviour::kRigidPlastic;
+      b.law.fixed_if = s_;
+      b.law.normal = *control;
+    } else {
+      b.kind = HingeBehaviour::kCurve;
+      b.stop = s_;
+    }
+    return b;
+  }
+  if (tb.has("failure")) {
+    // Rigid (or a linear spring) until its force first passes the limit, free from then on
+    // (ntn/brittle.hpp; rigid under ntn_exact: ntn/slip.hpp).
+    const auto fy = tb.positive("failure", Need::kRequired);
+    const auto k = tb.has("linear") ? tb.positive("linear", Need::kRequired) : std::nullopt;
+    if (tb.has("dashpot")) {
+      L.error(tb.where("dashpot"),
+              "a failure direction takes no dashpot: its force must drop "
+              "to zero when it breaks");
+      return std::nullopt;
+    }
+    if (!fy || (!k && tb.has("linear"))) return std::nullopt;
+    b.kind = k ? HingeBehaviour::kPlastic : HingeBehaviour::kRigidPlastic;
+    b.k = k.value_or(0.0);
+    b.law.rule = HysteresisRule::kBrittle;
     b.law.yield_pos = b.law.yield_neg = *fy;
-    b.law.failure = 1;
     return b;
   }
   if (tb.has("rigid_plastic")) {
     // Rigid until its force reaches the yield, then sliding at it (ntn/slip.hpp).
     const auto fy = tb.positive("rigid_plastic", Need::kRequired);
     const auto fn = tb.positive("yield_negative", Need::kOptional);
+    const auto hard = tb.non_negative("hardening_stiffness", Need::kOptional);
     std::array<double, 3> limits{};
-    bool ok = fy && (fn || !tb.has("yield_negative"));
+    bool ok = fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening_stiffness"));
     ok = read_limits(L, tb, *t, limits) && ok;
     if (tb.has("dashpot")) {
       L.error(tb.where("dashpot"),
@@ -310,7 +365,7 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     }
     if (!ok) return std::nullopt;
     b.kind = HingeBehaviour::kRigidPlastic;
-    b.k = 0;
+    b.k = hard.value_or(0.0);  // hardening with the slip: a parallel spring (ntn/slip.hpp)
     b.c = 0;
     b.law.yield_pos = *fy;
     b.law.yield_neg = fn.value_or(*fy);

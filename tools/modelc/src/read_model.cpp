@@ -637,7 +637,9 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
                                                  "hinge_displacement",
                                                  "hinge_plastic_deformation",
                                                  "hinge_dissipated_energy",
-                                                 "hinge_performance_level"};
+                                                 "hinge_performance_level",
+                                                 "hinge_velocity",
+                                                 "hinge_slip_state"};
     Table head(L, tt, path, {});
     auto name = read_id(L, head, "name");
     auto kind = head.choice("kind", Need::kRequired, kinds);
@@ -690,7 +692,9 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
                     : *kind == 8  ? OutputKind::kHingeDisplacement
                     : *kind == 9  ? OutputKind::kHingePlastic
                     : *kind == 10 ? OutputKind::kHingeDissipated
-                                  : OutputKind::kHingeLevel;
+                    : *kind == 11 ? OutputKind::kHingeLevel
+                    : *kind == 12 ? OutputKind::kHingeVelocity
+                                  : OutputKind::kHingeSlipState;
       auto hinge = read_id(L, t, "hinge");
       auto dir = t.choice("direction", Need::kRequired, kDofNames);
       if (hinge) o.hinge = *hinge;

@@ -117,7 +117,9 @@ std::vector<std::string> outputs_of_kind(const std::string& model_file, const st
       {"hinge_displacement", K::kHingeDisplacement},
       {"hinge_plastic_deformation", K::kHingePlastic},
       {"hinge_dissipated_energy", K::kHingeDissipated},
-      {"hinge_performance_level", K::kHingeLevel}};
+      {"hinge_performance_level", K::kHingeLevel},
+      {"hinge_velocity", K::kHingeVelocity},
+      {"hinge_slip_state", K::kHingeSlipState}};
   const auto it = std::find_if(std::begin(kKinds), std::end(kKinds),
                                [&](const auto& k) { return kind == k.first; });
   if (it == std::end(kKinds)) {

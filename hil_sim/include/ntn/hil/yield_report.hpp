@@ -22,7 +22,7 @@ struct YieldedDirection {
   int level = 0;            // 0..4 (performance_level)
   bool has_limits = false;  // the law has IO, LS, CP limits
   double first_slip = -1;   // s: when a rigid-plastic direction first slid (-1: never)
-  bool failed = false;      // a `failure` direction that broke (at first_slip)
+  bool failed = false;      // a brittle (`failure`) direction that broke (at first_slip)
 };
 
 // "ux" ... "rz": a hinge direction's name.
@@ -49,7 +49,7 @@ std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<
                        performance_level(m.hystereses[slot].limits, s.plastic_peak[slot]),
                        m.hystereses[slot].limits[0] > 0,
                        first > 0 ? static_cast<double>(first - 1) * m.dt : -1.0,
-                       first > 0 && m.hystereses[slot].failure});
+                       first > 0 && m.hystereses[slot].rule == HysteresisRule::kBrittle});
       }
     }
   }

@@ -1,0 +1,315 @@
+// The rest of issue 16's connections, against closed forms:
+// 1. Hardening with the slip (rigid_plastic with a parallel spring H): under a suddenly applied
+//    force P (Y < P <= 3Y) the block slides as m x'' = P - Y - H x, reaches 2 (P - Y) / H at
+//    t = pi sqrt(m / H) and sticks there; the force while sliding is Y + H x.
+// 2. fixed_if on its own force (a one-sided stop at d = 0): a block resting on its support under
+//    gravity, pulled off by a ramp c t: it stays put while the reaction would be compression and
+//    lifts off at t* = m g / c, flying as c (t - t*)^3 / 6m after: the support never pulls.
+// 3. fixed_if with a control: a block pressed onto a compression-only spring holds a side force
+//    exactly while the spring is compressed and accelerates at H / m once it lifts off.
+// 4. A spring that breaks (`linear` + `failure`, HysteresisRule::kBrittle) under every method: a
+//    suddenly applied P > F loads it as P/k (1 - cos wt) until k x first passes F (t_b =
+//    arccos(1 - F/P) / w), then nothing holds the mass; the energy the spring held is dissipated.
+// 5. The penalty method's `failure`: the penalty spring breaks at the same limit.
+// The block: the oscillator of support/plastic_models.hpp (1000 kg at node 0, a soft element of
+// 1 N/m and 1 g to a clamped node), its hinge 0 to the ground with d = +u_x.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "ntn/hil/yield_report.hpp"
+#include "ntn/kernel.hpp"
+#include "support/builders.hpp"
+#include "support/hinges.hpp"
+#include "support/init_model.hpp"
+#include "support/no_heap.hpp"
+#include "support/plastic_models.hpp"
+
+namespace {
+
+using ntn_test::dof;
+using ntn_test::kSdofMass;
+using K = ntn::OutputKind;
+
+constexpr double kG = 9.80665;
+constexpr double kPi = 3.14159265358979323846;
+
+// The block with one constant load slot (node 0, ux), room for a curve of 3 points, and channels:
+// hinge 0's force, slip state and relative velocity in ux, the mass's velocity, and hinge 0's
+// force in uz.
+constexpr ntn::Sizes kBlock = [] {
+  ntn::Sizes z = ntn_test::sdof_sizes({.time_functions = 1,
+                                       .time_points = 2,
+                                       .loads = 2,
+                                       .outputs = 5,
+                                       .curves = 1,
+                                       .curve_points = 3});
+  return z;
+}();
+
+struct Sim {
+  ntn::ModelSpec<kBlock> spec;
+  ntn::Model<kBlock> model;
+  ntn::State<kBlock> state;
+  ntn::Scratch<kBlock> scratch;
+};
+Sim sim;
+
+// The oscillator with hinge 0's ux `behaviour` (its law in slot 0), load 0 = `p` on ux
+// (constant) and load 1 = `c` t on ux (c = 0: none).
+void block(ntn::HingeBehaviour behaviour, const ntn::HysteresisSpec& law, double p, double c) {
+  ntn::ModelSpec<kBlock>& s = sim.spec;
+  ntn_test::plastic_oscillator(s, law);
+  s.hinges[0].behaviour[ntn::kUx] = behaviour;
+  s.hinges[0].stiffness[ntn::kUx] = 0;
+  s.time_points = {{{0.0, 0.0}, {100.0, 100.0}}};
+  s.time_functions[0] = {0, 2};
+  s.loads[0] = {0, ntn::kUx, p, ntn::kConstant};
+  s.loads[1] = {0, ntn::kUx, c, 0};
+  s.outputs[0] = ntn_test::hinge_channel(K::kHingeForce);
+  s.outputs[1] = ntn_test::hinge_channel(K::kHingeSlipState);
+  s.outputs[2] = ntn_test::hinge_channel(K::kHingeVelocity);
+  s.outputs[3] = {};
+  s.outputs[3].kind = K::kVelocity;
+  s.outputs[3].node = 0;
+  s.outputs[3].dof = ntn::kUx;
+  s.outputs[4] = ntn_test::hinge_channel(K::kHingeForce, 0, ntn::kUz);
+  s.settings.dt = 1e-4;
+}
+
+void start() {
+  const ntn_test::EigenNoMalloc guard;
+  const ntn::InitStatus st = ntn_test::init_model(sim.spec, sim.model);
+  ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  sim.state = {};
+  ntn::initial_state(sim.model, sim.state);
+  ASSERT_EQ(ntn::start(sim.model, sim.state, sim.scratch, {}), ntn::StepStatus::kOk);
+}
+
+double mass() {
+  return sim.model.mass[dof(0, ntn::kUx)];
+}
+
+TEST(SlipHardening, SlidesToTwiceTheExcessOverHAndSticks) {
+  // Truth: m x'' = P - Y - H x from rest: x = (P - Y)/H (1 - cos wt), w = sqrt(H/m), until the
+  // velocity returns to 0 at t = pi / w, x = 2 (P - Y)/H; there the force to hold it, P - H x =
+  // 2Y - P, lies within the yield (P <= 3Y), so it sticks for good. Tolerances: the extreme to
+  // 1e-5 relative (the scheme's (w dt)^2 = 1e-5 and the soft element's 1 N/m, 1e-6 of H), its
+  // time to 2 steps; the force while sliding Y + H x to rounding (1e-9 of Y).
+  const double Y = 1e4, H = 1e6, P = 2e4;
+  ntn::HysteresisSpec law;
+  law.yield_pos = law.yield_neg = Y;
+  block(ntn::HingeBehaviour::kRigidPlastic, law, P, 0);
+  sim.spec.hinges[0].stiffness[ntn::kUx] = H;  // hardening with the slip
+  start();
+  const double w = std::sqrt(H / mass());
+  double peak = 0, t_peak = 0, force_worst = 0;
+  int slid = 0, stuck_after = 0;
+  const ntn_test::EigenNoMalloc guard;
+  for (long n = 0; n < 10'000; ++n) {
+    const double x_n = sim.state.u[dof(0, ntn::kUx)];  // d at t_n
+    ASSERT_EQ(ntn::step(sim.model, sim.state, sim.scratch, {}), ntn::StepStatus::kOk);
+    const double x = sim.state.u[dof(0, ntn::kUx)];
+    const int state = static_cast<int>(sim.scratch.outputs[1]);
+    if (state == 1) {
+      ++slid;  // the force at t_n: the slider's yield and the hardening spring's H d_n
+      force_worst = std::fmax(force_worst, std::fabs(sim.scratch.outputs[0] - (Y + H * x_n)));
+    }
+    if (x > peak) peak = x, t_peak = static_cast<double>(n + 1) * 1e-4;
+    if (static_cast<double>(n) * 1e-4 > 1.5 * kPi / w && state == 0) ++stuck_after;
+    // Hinge velocity of d = u_x: the mass's own, bit for bit.
+    EXPECT_EQ(sim.scratch.outputs[2], sim.scratch.outputs[3]) << n;
+  }
+  const double expect = 2 * (P - Y) / H;
+  std::printf(
+      "  peak slide %.9f m (closed form %.9f m) at t = %.5f s (pi/w = %.5f s), %d steps "
+      "sliding, force - (Y + H d) <= %.2e N\n",
+      peak, expect, t_peak, kPi / w, slid, force_worst);
+  EXPECT_NEAR(peak, expect, 1e-5 * expect);
+  EXPECT_NEAR(t_peak, kPi / w, 2e-4);
+  EXPECT_GT(slid, 900);                            // it slid for about pi/w = 0.099 s
+  EXPECT_GT(stuck_after, 1000);                    // and stuck after
+  EXPECT_EQ(sim.state.slip_state[0], 0);           // for good
+  EXPECT_NEAR(sim.state.plastic[0], peak, 1e-12);  // the slip is where it stopped
+  EXPECT_LE(force_worst, 1e-9 * Y);
+}
+
+// The stop the model compiler makes of `fixed_if = "negative"` on a direction's own force: the
+// curve [[-1, -1e300], [0, 0], [1, 0]], rigid against d < 0, no force for d > 0.
+void own_stop(ntn::ModelSpec<kBlock>& s, std::size_t k) {
+  s.hinges[0].behaviour[k] = ntn::HingeBehaviour::kCurve;
+  s.hinges[0].curve[k] = 0;
+  s.curves[0] = {0, 3};
+  s.curve_points = {{{-1.0, -1e300}, {0.0, 0.0}, {1.0, 0.0}}};
+}
+
+TEST(FixedIf, ABlockOnItsSupportLiftsOffWhenTheReactionWouldTurnToTension) {
+  // Truth: a block of mass M on a support that only pushes, under gravity M g toward it and a
+  // pull c t away from it: the reaction M g - c t holds it until t* = M g / c, after which
+  // M u'' = c (t - t*): u = c (t - t*)^3 / 6M. Tolerances: no penetration and no motion before t*
+  // to 1e-15 m (the stop lands d on 0); the flight 0.5 s after t* to 2e-3 relative (t*'s
+  // quantization to the step, 3 dt / 0.5 s = 6e-4, and the soft element, 1e-4).
+  const double c = 1e4;
+  block(ntn::HingeBehaviour::kCurve, {}, 0, c);
+  own_stop(sim.spec, ntn::kUx);
+  sim.spec.hystereses[0] = {};
+  sim.spec.hinges[0].hysteresis[ntn::kUx] = 0;
+  sim.spec.settings.gravity = {-kG, 0, 0};
+  start();
+  const double t_star = mass() * kG / c;
+  const double dt = 1e-4;
+  double before_worst = 0, below = 0;
+  const auto steps = std::lround((t_star + 0.5) / dt);
+  const ntn_test::EigenNoMalloc guard;
+  for (long n = 0; n < steps; ++n) {
+    ASSERT_EQ(ntn::step(sim.model, sim.state, sim.scratch, {}), ntn::StepStatus::kOk);
+    const double u = sim.state.u[dof(0, ntn::kUx)];
+    if (static_cast<double>(n + 1) * dt < t_star)
+      before_worst = std::fmax(before_worst, std::fabs(u));
+    below = std::fmin(below, u);
+  }
+  const double t = static_cast<double>(steps) * dt - t_star;
+  const double expect = c * t * t * t / (6 * mass());
+  const double u = sim.state.u[dof(0, ntn::kUx)];
+  std::printf(
+      "  lift-off at t* = %.4f s; before it |u| <= %.1e m, lowest %.1e m; %.3f s later "
+      "u = %.6f m (closed form %.6f m)\n",
+      t_star, before_worst, below, t, u, expect);
+  EXPECT_LE(before_worst, 1e-15);
+  EXPECT_GE(below, -1e-15);
+  EXPECT_NEAR(u, expect, 2e-3 * expect);
+}
+
+TEST(FixedIf, ASideForceIsHeldExactlyWhilePressedAndFreeOnceLifted) {
+  // A block on a compression-only spring (the normal uz, 1e7 N/m, d_z < 0 pressed) under gravity,
+  // pulled off by c t; its ux is fixed_if negative on uz, with a side force Q on it. Truth, step
+  // by step (the rule itself): while the normal force at t_n is negative, u_x does not move (to
+  // 1e-15 m); otherwise the block moves freely, M (u_{n+1} - 2 u_n + u_{n-1}) / dt^2 = Q - k_el
+  // u_n (the central difference identity, to 1e-9 of Q / M). And it does lift off and slide.
+  const double c = 1e4, Q = 500.0, kn = 1e7, dt = 1e-4;
+  ntn::HysteresisSpec law;
+  law.fixed_if = -1;
+  law.normal = ntn::kUz;
+  block(ntn::HingeBehaviour::kRigidPlastic, law, 0, 0);
+  ntn::ModelSpec<kBlock>& s = sim.spec;
+  s.nodes[0].fixed =
+      static_cast<std::uint8_t>(ntn_test::kFixedAll & ~((1U << ntn::kUx) | (1U << ntn::kUz)));
+  s.hinges[0].behaviour[ntn::kUz] = ntn::HingeBehaviour::kCurve;  // d_z = -u_z (kReversedX)
+  s.hinges[0].curve[ntn::kUz] = 0;
+  s.curves[0] = {0, 3};
+  s.curve_points = {{{-1.0, -kn}, {0.0, 0.0}, {1.0, 0.0}}};
+  s.settings.gravity = {0, 0, kG};  // presses d_z < 0
+  s.loads[0] = {0, ntn::kUx, Q, ntn::kConstant};
+  s.loads[1] = {0, ntn::kUz, -c, 0};
+  {
+    ntn::Model<kBlock>& m = sim.model;  // the static sag, from the lumped mass
+    const ntn_test::EigenNoMalloc guard;
+    ASSERT_TRUE(ntn_test::init_model(s, m).ok());
+    s.nodes[0].u0[ntn::kUz] = m.mass[dof(0, ntn::kUz)] * kG / kn;
+  }
+  start();
+  const double M = mass(), k_el = ntn_test::kSdofElementK;
+  double held_worst = 0, free_worst = 0, u_prev = 0;
+  long held = 0, free = 0;
+  const ntn_test::EigenNoMalloc guard;
+  for (long n = 0; n < 13'000; ++n) {
+    const double u_n = sim.state.u[dof(0, ntn::kUx)];
+    ASSERT_EQ(ntn::step(sim.model, sim.state, sim.scratch, {}), ntn::StepStatus::kOk);
+    const double u_next = sim.state.u[dof(0, ntn::kUx)];
+    const double normal = sim.scratch.outputs[4];  // N at t_n
+    if (normal < 0) {
+      ++held;
+      held_worst = std::fmax(held_worst, std::fabs(u_next - u_n));
+    } else if (n > 0) {
+      ++free;
+      const double a = (u_next - 2 * u_n + u_prev) / (dt * dt);
+      free_worst = std::fmax(free_worst, std::fabs(M * a - (Q - k_el * u_n)) / Q);
+    }
+    u_prev = u_n;
+  }
+  const double t_end = 1.3, u = sim.state.u[dof(0, ntn::kUx)];
+  std::printf(
+      "  %ld steps held (|du| <= %.1e m), %ld free (Newton's law to %.1e of Q); slid "
+      "%.4f m by t = %.1f s\n",
+      held, held_worst, free, free_worst, u, t_end);
+  EXPECT_GT(held, 9000);  // pressed until about t = M g / c = 0.98 s
+  EXPECT_GT(free, 2000);
+  EXPECT_LE(held_worst, 1e-15);
+  EXPECT_LE(free_worst, 1e-9);
+  EXPECT_GT(u, 0.5 * Q / M * 0.25 * 0.25);  // it slid at Q / M for at least the last 0.25 s
+}
+
+// A spring that breaks, run under `method`: the final state, and the break's tick.
+struct Broken {
+  double x = 0, dissipated = 0, force_peak = 0;
+  std::int64_t first = 0;
+  double x_b = 0, v_b = 0;  // u and v_{n+1/2} after the break step
+  long break_step = -1;
+};
+
+Broken break_spring(ntn::HingeMethod method) {
+  const double k = 1e6, F = 5e3, P = 1e4;
+  ntn::HysteresisSpec law;
+  law.rule = ntn::HysteresisRule::kBrittle;
+  law.yield_pos = law.yield_neg = F;
+  block(ntn::HingeBehaviour::kPlastic, law, P, 0);
+  sim.spec.hinges[0].stiffness[ntn::kUx] = k;
+  sim.spec.settings.hinge_method = method;
+  start();
+  Broken r;
+  const ntn_test::EigenNoMalloc guard;
+  for (long n = 0; n < 2'000; ++n) {
+    EXPECT_EQ(ntn::step(sim.model, sim.state, sim.scratch, {}), ntn::StepStatus::kOk);
+    r.force_peak = std::fmax(r.force_peak, std::fabs(sim.scratch.outputs[0]));
+    if (r.break_step < 0 && sim.state.first_slip[0] != 0) {
+      r.break_step = n;
+      r.x_b = sim.state.u[dof(0, ntn::kUx)], r.v_b = sim.state.v[dof(0, ntn::kUx)];
+    }
+  }
+  r.x = sim.state.u[dof(0, ntn::kUx)];
+  r.dissipated = sim.state.dissipated[0];
+  r.first = sim.state.first_slip[0];
+  return r;
+}
+
+TEST(BrittleSpring, BreaksWhenItsForceFirstPassesTheLimitUnderEveryMethod) {
+  // Truth: a mass on a spring k under a suddenly applied P: x = P/k (1 - cos wt) while it holds,
+  // its force k x first reaches F at t_b = arccos(1 - F/P) / w (w = sqrt(k/M)); the step after
+  // which it passes F the spring carries nothing, and the mass then moves under P alone:
+  // M (u_{n+1} - u_n) / dt = v, v grows by P dt / M a step (the soft element: 1e-6 of k).
+  // Tolerances: t_b to one step; the peak force within F (it breaks before it carries more);
+  // the energy it held, (k x_b)^2 / 2k, between F^2 / 2k and (F + k v dt)^2 / 2k (the step's
+  // overshoot); 0.2 s later the free flight to 1e-4 relative (the soft element pulls k_el x / P
+  // = 2e-5 of the load, its integral stays below that). The same bits under every
+  // method (the model has no rigid direction: the spring is the same spring).
+  const double k = 1e6, F = 5e3, P = 1e4, dt = 1e-4;
+  const Broken exact = break_spring(ntn::HingeMethod::kNtnExact);
+  const double w = std::sqrt(k / mass());
+  const double t_b = std::acos(1 - F / P) / w;
+  const double t_seen = static_cast<double>(exact.first - 1) * dt;
+  const double v = P / k * w * std::sin(w * t_b);
+  std::printf(
+      "  broke at t = %.4f s (closed form %.4f s), peak force %.1f N, energy released "
+      "%.4f J (F^2/2k = %.4f J)\n",
+      t_seen, t_b, exact.force_peak, exact.dissipated, F * F / (2 * k));
+  EXPECT_NEAR(t_seen, t_b, dt);
+  EXPECT_LE(exact.force_peak, F);
+  EXPECT_GE(exact.dissipated, F * F / (2 * k));
+  EXPECT_LE(exact.dissipated, (F + k * v * dt) * (F + k * v * dt) / (2 * k));
+  const double tau = static_cast<double>(1999 - exact.break_step) * dt;
+  const double flight = exact.x_b + exact.v_b * tau + 0.5 * P / mass() * tau * (tau + dt);
+  EXPECT_NEAR(exact.x, flight, 1e-4 * exact.x);
+  const auto y = ntn::hil::yielded_directions(sim.model, sim.state);
+  ASSERT_EQ(y.size(), 1U);
+  EXPECT_TRUE(y[0].failed);
+  EXPECT_EQ(y[0].first_slip, t_seen);
+  for (const auto method : {ntn::HingeMethod::kPenalty, ntn::HingeMethod::kNtnPaper}) {
+    const Broken other = break_spring(method);
+    EXPECT_EQ(other.first, exact.first);
+    EXPECT_EQ(other.x, exact.x);
+    EXPECT_EQ(other.dissipated, exact.dissipated);
+  }
+}
+
+}  // namespace
