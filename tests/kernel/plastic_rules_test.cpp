@@ -12,7 +12,9 @@
 // directions (kinematic about y, peak_oriented about z, both degrading past C): their history
 // also holds the excursions and the reloading lines' anchors (State::excursion). And with
 // `rigid_plastic` directions (issue 16: held exactly until they yield, by the slip stage, which
-// solves the hinge's tree): their slip and its first time (State::plastic, first_slip).
+// solves the hinge's tree): their slip and its first time (State::plastic, first_slip); with
+// hardening with the slip (a parallel spring), and as a friction circle (one limit on the
+// resultant moment: the Gauss-Seidel pair step).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -55,7 +57,7 @@ ntn::HysteresisSpec backbone(ntn::HysteresisRule rule, double fb, double dc, dou
   return h;
 }
 
-enum class Law { kBilinear, kBackbones, kRigidPlastic };
+enum class Law { kBilinear, kBackbones, kRigidPlastic, kHardeningSlip, kFrictionCircle };
 
 void build(Law laws = Law::kBilinear) {
   const bool backbones = laws == Law::kBackbones;
@@ -64,13 +66,24 @@ void build(Law laws = Law::kBilinear) {
   spec.hinges[0].dashpot[ntn::kRz] = 20;
   spec.hystereses[0] = {6e3, 4e3, 0.05};
   spec.hystereses[1] = {3e3, 5e3, 0.0};
-  if (laws == Law::kRigidPlastic) {  // rigid until they yield (slip.hpp), in the hinge's tree
+  if (laws == Law::kRigidPlastic || laws == Law::kHardeningSlip ||
+      laws == Law::kFrictionCircle) {  // rigid until they yield (slip.hpp), in the hinge's tree
     for (const int d : {ntn::kRy, ntn::kRz}) {
       const auto k = static_cast<std::size_t>(d);
       spec.hinges[0].behaviour[k] = ntn::HingeBehaviour::kRigidPlastic;
-      spec.hinges[0].stiffness[k] = spec.hinges[0].dashpot[k] = 0;
+      spec.hinges[0].stiffness[k] = laws == Law::kHardeningSlip ? 2e5 : 0.0;  // hardening
+      spec.hinges[0].dashpot[k] = 0;
     }
     spec.hystereses[0] = {6e3, 4e3, 0.0};
+  }
+  if (laws == Law::kFrictionCircle) {  // one limit on the resultant moment (Gauss-Seidel pairs)
+    for (std::size_t i = 0; i < 2; ++i) {
+      spec.hystereses[i] = {};
+      spec.hystereses[i].normal = ntn::kUx;
+      spec.hystereses[i].mu = 0.3;
+      spec.hystereses[i].cohesion = 4e3;
+      spec.hystereses[i].circle = i == 0 ? ntn::kRz : ntn::kRy;
+    }
   }
   if (backbones) {
     spec.hinges[0].dashpot[ntn::kRy] = spec.hinges[0].dashpot[ntn::kRz] = 0;
@@ -210,6 +223,14 @@ TEST(PlasticRules, NoHeapAllocationInASlidingRunWithRigidPlasticDirections) {
 }
 TEST(PlasticRules, RepeatRunsAndCheckpointsMidSlideAreBitIdenticalWithRigidPlasticDirections) {
   repeat_runs_and_checkpoints(Law::kRigidPlastic);
+}
+TEST(PlasticRules, NoHeapAllocationAndBitIdenticalCheckpointsWithHardeningSlip) {
+  no_heap_in_a_yielding_run(Law::kHardeningSlip);
+  repeat_runs_and_checkpoints(Law::kHardeningSlip);
+}
+TEST(PlasticRules, NoHeapAllocationAndBitIdenticalCheckpointsWithAFrictionCircle) {
+  no_heap_in_a_yielding_run(Law::kFrictionCircle);
+  repeat_runs_and_checkpoints(Law::kFrictionCircle);
 }
 
 }  // namespace

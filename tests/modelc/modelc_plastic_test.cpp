@@ -300,6 +300,23 @@ direction = "ry"
       << ntn::modelc::info_text(d);
 }
 
+// The friction circle (issue 16): the pair's laws name each other.
+TEST(ModelcPlastic, FrictionCircleDirectionsNameEachOther) {
+  const auto r = load_model_from_string(
+      model("{ friction = 0.3, normal = \"uz\", circle = \"rx\" }\nrx = { friction = 0.3, "
+            "normal = \"uz\" }",
+            "{ plastic = 5e8, yield = 1e5 }"),
+      "m.toml");
+  ASSERT_TRUE(r.ok()) << format_all(r.errors);
+  const auto& d = *r.model;
+  const ntn::HingeSpec& base = d.hinges[0];
+  const auto& ry = d.hystereses[static_cast<std::size_t>(base.hysteresis[4])];
+  const auto& rx = d.hystereses[static_cast<std::size_t>(base.hysteresis[3])];
+  EXPECT_EQ(ry.circle, 3);
+  EXPECT_EQ(rx.circle, 4);
+  EXPECT_TRUE(ntn::hysteresis_valid(ry, 0.0, 0.0));
+}
+
 // Acceptance limits io, ls, cp: into the law, and the levels they grade (performance_level:
 // 0 no plastic deformation, 1 within IO, 2 within LS, 3 within CP, 4 beyond).
 TEST(ModelcPlastic, AcceptanceLimitsGradeThePeakPlasticDeformation) {
@@ -540,6 +557,34 @@ INSTANTIATE_TEST_SUITE_P(
                 "52:13: error: key 'outputs[0].direction': direction ry of hinge base does not "
                 "stick or slip: a hinge_slip_state channel needs a rigid_plastic, friction, "
                 "fixed_if or failure direction"},
+        BadCase{"CircleIsItself", "{ friction = 0.3, normal = \"uz\", circle = \"ry\" }", kOk, "",
+                "46:48: error: key 'hinges[0].ry.circle': the circle of a friction direction must "
+                "be another friction direction of the hinge with the same friction, cohesion and "
+                "normal (the two share one limit on their resultant): it is this direction"},
+        BadCase{"CircleNotFriction", "{ friction = 0.3, normal = \"uz\", circle = \"rx\" }", kOk,
+                "",
+                "46:48: error: key 'hinges[0].ry.circle': the circle of a friction direction must "
+                "be another friction direction of the hinge with the same friction, cohesion and "
+                "normal (the two share one limit on their resultant): it is not a friction "
+                "direction"},
+        BadCase{"CircleOtherMu",
+                "{ friction = 0.3, normal = \"uz\", circle = \"rx\" }\nrx = { friction = 0.4, "
+                "normal = \"uz\" }",
+                kOk, "",
+                "46:48: error: key 'hinges[0].ry.circle': the circle of a friction direction must "
+                "be another friction direction of the hinge with the same friction, cohesion and "
+                "normal (the two share one limit on their resultant): its friction, cohesion or "
+                "normal differ from this direction's"},
+        BadCase{"CircleTranslationAndRotation",
+                "{ friction = 0.3, normal = \"uz\", circle = \"ux\" }\nux = { friction = 0.3, "
+                "normal = \"uz\" }",
+                kOk, "",
+                "46:48: error: key 'hinges[0].ry.circle': the circle of a friction direction must "
+                "be another friction direction of the hinge with the same friction, cohesion and "
+                "normal (the two share one limit on their resultant): it is a translation and "
+                "this a rotation"},
+        BadCase{"CircleWithoutFriction", "{ rigid_plastic = 1e5, circle = \"rx\" }", kOk, "",
+                "46:38: error: key 'hinges[0].ry.circle': only applies with 'friction'"},
         BadCase{"BackboneAndPlastic",
                 "{ plastic = 1e9, yield = 2e5, backbone = [[0.002, 2e5], [0.03, 2.2e5], [0.03, "
                 "4e4], [0.05, 4e4]] }",

@@ -126,6 +126,7 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
     EXPECT_EQ(x.rule, y.rule) << i;
     EXPECT_EQ(x.normal, y.normal) << i;
     EXPECT_EQ(x.fixed_if, y.fixed_if) << i;
+    EXPECT_EQ(x.circle, y.circle) << i;
     expect_bits(x.mu, y.mu, "mu", i);
     expect_bits(x.cohesion, y.cohesion, "cohesion", i);
     expect_bits(x.yield_pos, y.yield_pos, "yield_pos", i);

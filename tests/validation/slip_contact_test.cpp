@@ -10,7 +10,8 @@
 // 4. A spring that breaks (`linear` + `failure`, HysteresisRule::kBrittle) under every method: a
 //    suddenly applied P > F loads it as P/k (1 - cos wt) until k x first passes F (t_b =
 //    arccos(1 - F/P) / w), then nothing holds the mass; the energy the spring held is dissipated.
-// 5. The penalty method's `failure`: the penalty spring breaks at the same limit.
+// 5. The friction circle: a block pulled obliquely past mu M g slides along the pull at
+//    (P - mu M g) / M where two independent friction directions would hold it.
 // The block: the oscillator of support/plastic_models.hpp (1000 kg at node 0, a soft element of
 // 1 N/m and 1 g to a clamped node), its hinge 0 to the ground with d = +u_x.
 #include <gtest/gtest.h>
@@ -45,6 +46,7 @@ constexpr ntn::Sizes kBlock = [] {
                                        .outputs = 5,
                                        .curves = 1,
                                        .curve_points = 3});
+  z.hystereses = 2;  // the level block's two friction directions
   return z;
 }();
 
@@ -309,6 +311,84 @@ TEST(BrittleSpring, BreaksWhenItsForceFirstPassesTheLimitUnderEveryMethod) {
     EXPECT_EQ(other.first, exact.first);
     EXPECT_EQ(other.x, exact.x);
     EXPECT_EQ(other.dissipated, exact.dissipated);
+  }
+}
+
+// A block on a level support: node 0 on a ground hinge whose z points into the support (x =
+// global x, y = -global y, z = -global z), rigid in uz (the normal) and the rotations, ux and uy
+// friction mu on uz, with or without the circle; gravity -g z; loads[0], loads[1] on ux, uy.
+void level_block(double mu, bool circle, double px, double py) {
+  ntn::HysteresisSpec law;
+  law.normal = ntn::kUz;
+  law.mu = mu;
+  block(ntn::HingeBehaviour::kRigidPlastic, law, 0, 0);
+  ntn::ModelSpec<kBlock>& s = sim.spec;
+  s.nodes[0].fixed = 0;  // the hinge holds it: a support with its own axes
+  s.hinges[0] =
+      ntn_test::hinge(0, ntn::kGround, {1, 0, 0, 0, -1, 0, 0, 0, -1}, ntn_test::released(0));
+  s.hinges[0].behaviour[ntn::kUx] = s.hinges[0].behaviour[ntn::kUy] =
+      ntn::HingeBehaviour::kRigidPlastic;
+  s.hinges[0].hysteresis[ntn::kUx] = 0, s.hinges[0].hysteresis[ntn::kUy] = 1;
+  s.hystereses[0] = s.hystereses[1] = law;
+  if (circle) s.hystereses[0].circle = ntn::kUy, s.hystereses[1].circle = ntn::kUx;
+  s.settings.gravity = {0, 0, -kG};
+  s.loads[0] = {0, ntn::kUx, px, ntn::kConstant};
+  s.loads[1] = {0, ntn::kUy, py, ntn::kConstant};
+}
+
+TEST(FrictionCircle, ABlockPulledObliquelySlidesAlongThePullOnceItPassesTheCircle) {
+  // Truth: isotropic Coulomb friction on a level support holds a block while the horizontal pull
+  // P is below mu M g, in any direction; past it the block slides along P at (P - mu M g) / M.
+  // Pull at 45 degrees, P = 1.2 mu M g: each component is 0.85 mu M g, below the limit of a
+  // direction on its own, so two independent directions (a box) would hold it; the circle lets it
+  // slide (its friction work mu M g times the path, to 1e-9). And P = 0.9 mu M g at 30 degrees:
+  // held by the circle. Tolerance 1e-9 of the expected
+  // acceleration (the soft element's pull over the first 10 steps is below 1e-10 of it); held:
+  // no motion to 1e-15 m.
+  const double mu = 0.3, dt = 1e-4;
+  const double M = [&] {
+    level_block(mu, true, 0, 0);
+    start();
+    return mass();
+  }();
+  const double limit = mu * M * kG;
+  struct Case {
+    double p, angle;
+    bool circle;
+    double expect;  // acceleration along the pull
+  };
+  const double deg = kPi / 180;
+  for (const Case c :
+       {Case{1.2 * limit, 45 * deg, true, (1.2 * limit - limit) / M},
+        Case{1.2 * limit, 45 * deg, false, 0.0}, Case{0.9 * limit, 30 * deg, true, 0.0}}) {
+    level_block(mu, c.circle, c.p * std::cos(c.angle), c.p * std::sin(c.angle));
+    start();
+    double worst = 0, vx = 0, vy = 0, moved = 0;
+    const ntn_test::EigenNoMalloc guard;
+    for (int n = 0; n < 10; ++n) {
+      ASSERT_EQ(ntn::step(sim.model, sim.state, sim.scratch, {}), ntn::StepStatus::kOk);
+      const double nx = sim.state.v[dof(0, ntn::kUx)], ny = sim.state.v[dof(0, ntn::kUy)];
+      if (n >= 1) {
+        const double ax = (nx - vx) / dt, ay = (ny - vy) / dt;  // global x, y
+        worst = std::fmax(worst, std::fabs(ax - c.expect * std::cos(c.angle)));
+        worst = std::fmax(worst, std::fabs(ay - c.expect * std::sin(c.angle)));
+      }
+      vx = nx, vy = ny;
+      moved = std::fmax(moved,
+                        std::hypot(sim.state.u[dof(0, ntn::kUx)], sim.state.u[dof(0, ntn::kUy)]));
+    }
+    std::printf(
+        "  pull %.2f mu M g at %.0f deg, %s: acceleration %.6f m/s^2 expected, error "
+        "%.2e, moved %.2e m\n",
+        c.p / limit, c.angle / deg, c.circle ? "circle" : "box", c.expect, worst, moved);
+    if (c.expect > 0) {
+      EXPECT_LE(worst, 1e-9 * c.expect);
+      // The friction work: the force at the limit along the slide, mu M g times the path.
+      const double work = sim.state.dissipated[0] + sim.state.dissipated[1];
+      EXPECT_NEAR(work, limit * moved, 1e-9 * work);
+    } else {
+      EXPECT_LE(moved, 1e-15);
+    }
   }
 }
 

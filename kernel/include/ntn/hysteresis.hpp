@@ -38,6 +38,7 @@ struct HysteresisData {
   double mu = 0;
   double cohesion = 0;
   int fixed_if = 0;  // -1 (+1): held while N < 0 (N > 0), free otherwise (slip.hpp)
+  int circle = -1;   // friction circle: the other direction of the pair, or -1 (slip.hpp)
 };
 
 // A law the kernel takes for a direction of elastic stiffness k and dashpot c: acceptance limits
@@ -45,7 +46,8 @@ struct HysteresisData {
 // backbone: both envelopes valid (backbone.hpp), yields equal to their B forces, no dashpot (its
 // force must be able to drop to zero), cp within the plastic deformation at E in both senses;
 // brittle: yields > 0 and finite, no hardening, no dashpot; friction: mu, cohesion >= 0 and
-// finite; fixed_if: -1 or +1 with a controlling direction and nothing else.
+// finite, a circle partner other than the normal; fixed_if: -1 or +1 with a controlling
+// direction and nothing else.
 constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
   const auto& l = s.limits;
   const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
@@ -56,8 +58,9 @@ constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
            s.normal >= 0 && s.normal < 6 && s.mu == 0 && s.cohesion == 0 && s.hardening == 0;
   if (s.normal >= 0)  // friction: the yields are not used
     return s.rule == HysteresisRule::kBilinear && s.normal < 6 && s.mu >= 0 && s.mu < 1e300 &&
-           s.cohesion >= 0 && s.cohesion < 1e300 && s.hardening == 0;
-  if (s.normal != -1) return false;
+           s.cohesion >= 0 && s.cohesion < 1e300 && s.hardening == 0 && s.circle >= -1 &&
+           s.circle < 6 && s.circle != s.normal;
+  if (s.normal != -1 || s.circle != -1) return false;
   if (s.rule == HysteresisRule::kBilinear || s.rule == HysteresisRule::kBrittle)
     return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
            s.hardening >= 0 && s.hardening < 1 &&
@@ -102,6 +105,7 @@ inline HysteresisData make_hysteresis(const HysteresisSpec& s, double k) {
   h.rule = s.rule;
   h.normal = s.normal, h.mu = s.mu, h.cohesion = s.cohesion;
   h.fixed_if = s.fixed_if;
+  h.circle = s.circle;
   if (s.rule == HysteresisRule::kKinematic || s.rule == HysteresisRule::kPeakOriented) {
     h.pos = make_envelope(s.backbone_pos);
     h.neg = make_envelope(s.backbone_neg);

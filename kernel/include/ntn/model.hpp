@@ -202,6 +202,16 @@ template <Sizes S>
       if (law.normal >= 0 && (!((h.slip >> k) & 1U) || law.normal == static_cast<int>(k) ||
                               (((h.slip | h.branches) >> law.normal) & 1U)))
         return {InitError::kBadHinge, static_cast<int>(i)};
+      if (law.circle >= 0) {  // the partner: a friction direction of the hinge, the same law
+        const auto c = static_cast<std::size_t>(law.circle);
+        if (c == k || c / 3 != k / 3 || !((h.slip >> c) & 1U) ||
+            static_cast<std::size_t>(h.history[c]) >= S.hystereses)
+          return {InitError::kBadHinge, static_cast<int>(i)};
+        const HysteresisSpec& other = spec.hystereses[static_cast<std::size_t>(h.history[c])];
+        if (other.circle != static_cast<int>(k) || other.normal != law.normal ||
+            other.mu != law.mu || other.cohesion != law.cohesion)
+          return {InitError::kBadHinge, static_cast<int>(i)};
+      }
       slot_used[slot] = 1;
     }
   }

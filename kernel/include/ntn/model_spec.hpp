@@ -203,6 +203,10 @@ struct HysteresisSpec {
   int normal = -1;
   double mu = 0;
   double cohesion = 0;  // N or N m
+  // The friction circle: the other tangential direction (0..5) of the same hinge, a friction
+  // direction with the same normal, mu and cohesion whose `circle` is this one; their one limit
+  // mu max(0, -N) + cohesion bounds the resultant of the two forces. -1: none.
+  int circle = -1;
   // fixed_if (a kRigidPlastic direction, slip.hpp): -1 (+1) when the direction is rigid while
   // the force at t_n of direction `normal` of the same hinge is negative (positive) and free
   // otherwise (RFEM's "fixed if N-"); mu, cohesion and the yields are not used.

@@ -18,7 +18,9 @@
 // changes by more than 1e-12 of its limit. The same inputs give the same bits.
 // The forces a_n receives are the step's f (S 35-37 increments, as the stops' clamp).
 // Friction (HysteresisData::normal): the limit mu max(0, -N) + cohesion, N the normal
-// direction's force at t_n (slip_normals, integrator.hpp). fixed_if (HysteresisData::fixed_if):
+// direction's force at t_n (slip_normals, integrator.hpp); two friction directions of a hinge
+// may share it on their resultant (HysteresisData::circle, the friction circle: solved as a pair
+// by Gauss-Seidel, circle_step). fixed_if (HysteresisData::fixed_if):
 // held with no limit while that force has the given sign, free otherwise (RFEM's "fixed if
 // N-"). Failure (HysteresisRule::kBrittle): the first slide breaks the direction, which is free
 // from the next step on; State::first_slip records when any rigid-plastic direction first slid.
@@ -29,6 +31,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -114,6 +117,77 @@ inline void ldl_solve(const double* A, int n, double* x) {
   }
 }
 
+inline constexpr int kCircleIterations = 32;  // the sliding direction's fixed point, at most
+
+// sqrt(x) for finite x >= 0 without libm (the step calls none): Newton's iteration from half
+// the exponent, arithmetic only, so the same bits on every build (within an ulp of the rounded
+// root).
+inline double root(double x) {
+  if (!(x > 0)) return 0.0;
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const auto exponent = static_cast<std::int64_t>((bits >> 52) & 0x7ff) - 1023;
+  double y = std::bit_cast<double>(static_cast<std::uint64_t>(exponent / 2 + 1023) << 52);
+  for (int i = 0; i < 8; ++i)
+    y = 0.5 * (y + x / y);
+  return y;
+}
+
+// One Gauss-Seidel step of the friction circle of hinge h's directions k and p = the circle of k
+// (k < p): one limit R on the resultant of their forces f = (f_k, f_p). With W the pair's 2 x 2
+// mobility and r = (d - s) / dt^2 what the forces must still do, f + W^-1 r holds both (stick)
+// when it lies within R; else the pair slides, its force at R along the slip it leaves,
+// g = r - W (f_new - f), found by the fixed point f_new = R g / |g| (exact at once when W is
+// isotropic, as for a node's two tangential directions; kCircleIterations at most). Moves the
+// parts once; returns the largest force change relative to R.
+template <Sizes S>
+double circle_step(const Model<S>& m, State<S>& s, Scratch<S>& w, const HingeData& h,
+                   const ClampPart (&parts)[2], std::size_t k, const double* d, bool first) {
+  const auto p =
+      static_cast<std::size_t>(m.hystereses[static_cast<std::size_t>(h.history[k])].circle);
+  const auto sk = static_cast<std::size_t>(h.history[k]),
+             sp = static_cast<std::size_t>(h.history[p]);
+  const double dt2 = m.dt * m.dt;
+  clamp_response(m, w, h, k, parts);
+  const double wkk = clamp_projection(w, h, k), wkp = clamp_projection(w, h, p);
+  clamp_response(m, w, h, p, parts);
+  const double wpp = clamp_projection(w, h, p), wpk = clamp_projection(w, h, k);
+  const double w12 = 0.5 * (wkp + wpk), det = wkk * wpp - w12 * w12;
+  if (first) w.slip_force[sk] = w.slip_force[sp] = 0.0;
+  if (!(wkk > 0) || !(wpp > 0) || !(det > 0)) return 0.0;  // held: nothing can slide
+  double up = 0, down = 0;
+  slip_limits(m.hystereses[sk], s, w, sk, up, down);
+  const double R = up;
+  const double fk = w.slip_force[sk], fp = w.slip_force[sp];
+  const double rk = (d[k] - s.plastic[sk]) / dt2, rp = (d[p] - s.plastic[sp]) / dt2;
+  double nk = fk + (wpp * rk - w12 * rp) / det, np = fp + (wkk * rp - w12 * rk) / det;
+  if (nk * nk + np * np > R * R) {  // it slides: the force at R along the slip it leaves
+    double size = root(nk * nk + np * np);
+    nk *= R / size, np *= R / size;
+    for (int it = 0; it < kCircleIterations; ++it) {
+      const double gk = rk - wkk * (nk - fk) - w12 * (np - fp);
+      const double gp = rp - w12 * (nk - fk) - wpp * (np - fp);
+      size = root(gk * gk + gp * gp);
+      if (!(size > 0)) break;
+      const double ak = R * gk / size, ap = R * gp / size;
+      const double ek = ak - nk, ep = ap - np;
+      const bool settled = (ek < 0 ? -ek : ek) <= 1e-15 * R && (ep < 0 ? -ep : ep) <= 1e-15 * R;
+      nk = ak, np = ap;
+      if (settled) break;
+    }
+  }
+  const double ck = nk - fk, cp = np - fp;
+  if (ck == 0 && cp == 0) return 0.0;
+  w.slip_force[sk] = nk, w.slip_force[sp] = np;
+  clear_impulse(m, parts, w.clamp.impulse.data());
+  add_impulse(h, k, -dt2 * ck, w.clamp.impulse.data());
+  add_impulse(h, p, -dt2 * cp, w.clamp.impulse.data());
+  parts_response(m, parts, w.clamp.impulse.data(), w.clamp.response.data());
+  clamp_move(m, s, w, parts, 1.0, ++w.clamp.events);
+  const double ak = ck < 0 ? -ck : ck, ap = cp < 0 ? -cp : cp;
+  const double change = ak > ap ? ak : ap;
+  return R > 0 ? change / R : change;
+}
+
 // One Gauss-Seidel sweep over the slip directions of slip hinges [begin, end): each one's force
 // moves toward what holds it, within its limits. Returns the largest change of a force relative
 // to its limit.
@@ -135,6 +209,13 @@ double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first, int
       const HysteresisData& law = m.hystereses[slot];
       double d[6];
       hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
+      if (law.circle >= 0) {  // a friction circle: the pair together, from its first direction
+        if (static_cast<std::size_t>(law.circle) > k) {
+          const double rel = circle_step(m, s, w, h, parts, k, d, first);
+          if (rel > largest) largest = rel;
+        }
+        continue;
+      }
       clamp_response(m, w, h, k, parts);
       const double mobility = clamp_projection(w, h, k);  // b^T M_c^-1 b
       if (first) w.slip_force[slot] = 0.0;
@@ -229,6 +310,7 @@ bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, in
       if (!((h.slip >> k) & 1U)) continue;
       if (n == kSlipBlock) return false;
       const auto slot = static_cast<std::size_t>(h.history[k]);
+      if (m.hystereses[slot].circle >= 0) return false;  // a circle is not a box: Gauss-Seidel
       double up = 0, down = 0;
       slip_limits(m.hystereses[slot], s, w, slot, up, down);
       c[n++] = {hi, k, slot, (d[k] - s.plastic[slot]) / dt2, up, down};
@@ -434,7 +516,17 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
         double up = 0, down = 0;
         slip_limits(law, s, w, slot, up, down);
         const bool free = up == 0 && down == 0;
-        s.slip_state[slot] = static_cast<std::int8_t>(free ? 2 : f == up ? 1 : f == -down ? -1 : 0);
+        if (law.circle >= 0) {  // at the circle: the resultant at R (to rounding)
+          const double g = w.slip_force[static_cast<std::size_t>(
+              h.history[static_cast<std::size_t>(law.circle)])];
+          const bool at = f * f + g * g >= up * up * (1 - 1e-12);
+          s.slip_state[slot] = static_cast<std::int8_t>(free ? 2 : !at ? 0 : f < 0 ? -1 : 1);
+        } else {
+          s.slip_state[slot] = static_cast<std::int8_t>(free         ? 2
+                                                        : f == up    ? 1
+                                                        : f == -down ? -1
+                                                                     : 0);
+        }
         if (s.slip_state[slot] == 0) continue;  // it sticks: s stays
         if (!have_d) {
           hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],

@@ -358,7 +358,7 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
       return s + ", .normal = " + lit(h.normal) + ", .fixed_if = " + lit(h.fixed_if) + "}";
     if (h.normal >= 0)
       return s + ", .normal = " + lit(h.normal) + ", .mu = " + lit(h.mu) +
-             ", .cohesion = " + lit(h.cohesion) + "}";
+             ", .cohesion = " + lit(h.cohesion) + ", .circle = " + lit(h.circle) + "}";
     if (h.rule == HysteresisRule::kBilinear) return s + "}";
     const auto points = [](const std::array<CurvePoint, 4>& p) {
       std::string t = "{{";

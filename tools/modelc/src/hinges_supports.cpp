@@ -30,6 +30,41 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
       b.law = {};
     }
   }
+  // The friction circle: the partner a friction direction with the same law; both get the pair.
+  const auto is_friction = [&dirs](std::size_t n) {
+    return dirs[n].kind == HingeBehaviour::kRigidPlastic && dirs[n].law.normal >= 0 &&
+           dirs[n].law.fixed_if == 0;
+  };
+  for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+    if (given[k].law.circle < 0 || !is_friction(k)) continue;
+    const auto c = static_cast<std::size_t>(given[k].law.circle);
+    const HysteresisSpec& a = dirs[k].law;
+    std::string why;
+    if (c == k) {
+      why = "it is this direction";
+    } else if (c == static_cast<std::size_t>(a.normal)) {
+      why = "it is the normal";
+    } else if (c / 3 != k / 3) {
+      why = k < 3 ? "it is a rotation and this a translation"
+                  : "it is a translation and this a rotation";
+    } else if (!is_friction(c)) {
+      why = "it is not a friction direction";
+    } else if (dirs[c].law.normal != a.normal || dirs[c].law.mu != a.mu ||
+               dirs[c].law.cohesion != a.cohesion) {
+      why = "its friction, cohesion or normal differ from this direction's";
+    } else if (given[c].law.circle >= 0 && given[c].law.circle != static_cast<int>(k)) {
+      why = "its own circle names another direction";
+    }
+    if (!why.empty()) {
+      comp.L.error(given[k].circle_at,
+                   "the circle of a friction direction must be another friction direction of the "
+                   "hinge with the same friction, cohesion and normal (the two share one limit on "
+                   "their resultant): " +
+                       why);
+      return false;
+    }
+    dirs[c].law.circle = static_cast<int>(k);
+  }
   const HingeMethod method = comp.d.settings.hinge_method;
   // Direction n is a stop (a rigid branch, by the kernel's rule): its force is the stops'
   // clamp's, known only after the slip stage.

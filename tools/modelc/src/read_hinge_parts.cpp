@@ -232,6 +232,7 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
             "friction",
             "cohesion",
             "normal",
+            "circle",
             "fixed_if",
             "control",
             "failure",
@@ -248,7 +249,7 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     }
   }
   const std::pair<std::string_view, std::string_view> kOnlyWith[] = {
-      {"hardening_stiffness", "rigid_plastic"}, {"control", "fixed_if"}};
+      {"hardening_stiffness", "rigid_plastic"}, {"control", "fixed_if"}, {"circle", "friction"}};
   for (const auto& [k, with] : kOnlyWith) {
     if (tb.has(k) && !tb.has(with)) {
       L.error(tb.where(k), "only applies with '" + std::string(with) + "'");
@@ -292,8 +293,10 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     const auto mu = tb.non_negative("friction", Need::kOptional);
     const auto c = tb.non_negative("cohesion", Need::kOptional);
     const auto normal = tb.choice("normal", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
+    const auto circle = tb.choice("circle", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
     std::array<double, 3> limits{};
-    bool ok = mu && (c || !tb.has("cohesion")) && (normal || !tb.has("normal"));
+    bool ok = mu && (c || !tb.has("cohesion")) && (normal || !tb.has("normal")) &&
+              (circle || !tb.has("circle"));
     ok = read_limits(L, tb, *t, limits) && ok;
     if (tb.has("dashpot")) {
       L.error(tb.where("dashpot"),
@@ -307,6 +310,8 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     b.law.cohesion = c.value_or(0.0);
     b.law.limits = limits;
     b.normal_at = tb.has("normal") ? tb.where("normal") : b.at;
+    b.law.circle = circle.value_or(-1);
+    if (circle) b.circle_at = tb.where("circle");
     return b;
   }
   if (tb.has("fixed_if")) {

@@ -65,7 +65,8 @@ struct BehaviourIn {
   HysteresisSpec law;         // kPlastic, kRigidPlastic: its law (friction: mu, normal)
   Where at;                   // the value that set it (for curve errors)
   Where normal_at;            // friction, fixed_if: its `normal` / `control` key (or the value)
-  int stop = 0;  // fixed_if on its own force: -1 (+1) a stop against d < 0 (d > 0) at d = 0
+  int stop = 0;     // fixed_if on its own force: -1 (+1) a stop against d < 0 (d > 0) at d = 0
+  Where circle_at;  // friction: its `circle` key
 };
 using Behaviours = std::array<BehaviourIn, kDofsPerNode>;
 
