@@ -11,6 +11,7 @@
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "pinned_joint_model.hpp"
+#include "slip_connections_model.hpp"
 #include "spec_compare.hpp"
 #include "support/init_model.hpp"
 #include NTN_MODEL_HEADER
@@ -53,6 +54,7 @@ ntn::Model<cant::kSizes> g_cant;
 ntn::Model<hb::kSizes> g_hinged;
 ntn::Model<ntn::models::pinned_joint::kSizes> g_pinned;
 ntn::Model<ntn::models::backbone_portal::kSizes> g_backbone;
+ntn::Model<ntn::models::slip_connections::kSizes> g_slip;
 
 template <ntn::Sizes S, std::size_t M>
 void check(const ntn::ModelSpec<S>& spec, std::string_view source,
@@ -104,6 +106,25 @@ TEST(GeneratedHeader, BackbonePortalMatchesFileAndInitializes) {
   static_assert(bp::kSpec.hystereses[1].backbone_neg[2].force == 2.0e4);
   check(bp::kSpec, bp::kSourceFile, bp::kInputNames, bp::kOutputNames, bp::kOutputUnits,
         bp::kMemberNames, g_backbone);
+}
+
+// Issue 16's connections (friction circle, hardening with the slip, a spring that breaks,
+// fixed_if with a control and on its own force) in the header, bit for bit as the file reads.
+TEST(GeneratedHeader, SlipConnectionsMatchFileAndInitialize) {
+  namespace sc = ntn::models::slip_connections;
+  static_assert(sc::kSizes.hystereses == 5);
+  static_assert(sc::kSizes.curves == 2);  // "contact" and the stop fixed_if makes
+  check(sc::kSpec, sc::kSourceFile, sc::kInputNames, sc::kOutputNames, sc::kOutputUnits,
+        sc::kMemberNames, g_slip);
+  int brittle = 0, circles = 0, fixed_if = 0;
+  for (const auto& h : sc::kSpec.hystereses) {
+    brittle += h.rule == ntn::HysteresisRule::kBrittle ? 1 : 0;
+    circles += h.circle >= 0 ? 1 : 0;
+    fixed_if += h.fixed_if != 0 ? 1 : 0;
+  }
+  EXPECT_EQ(brittle, 1);
+  EXPECT_EQ(circles, 2);
+  EXPECT_EQ(fixed_if, 1);
 }
 
 // The compiler's mechanisms are the DOFs the kernel holds at zero (DESIGN §7.1): the pinned

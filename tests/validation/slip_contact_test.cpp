@@ -4,7 +4,9 @@
 //    t = pi sqrt(m / H) and sticks there; the force while sliding is Y + H x.
 // 2. fixed_if on its own force (a one-sided stop at d = 0): a block resting on its support under
 //    gravity, pulled off by a ramp c t: it stays put while the reaction would be compression and
-//    lifts off at t* = m g / c, flying as c (t - t*)^3 / 6m after: the support never pulls.
+//    lifts off at t* = m g / c, flying as c (t - t*)^3 / 6m after: the support never pulls. And
+//    a propped cantilever (a model file through the compiler) lifting off its prop when the
+//    propped cantilever's reaction would turn to tension.
 // 3. fixed_if with a control: a block pressed onto a compression-only spring holds a side force
 //    exactly while the spring is compressed and accelerates at H / m once it lifts off.
 // 4. A spring that breaks (`linear` + `failure`, HysteresisRule::kBrittle) under every method: a
@@ -18,9 +20,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
+#include "propped_liftoff_model.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
 #include "support/init_model.hpp"
@@ -181,6 +185,53 @@ TEST(FixedIf, ABlockOnItsSupportLiftsOffWhenTheReactionWouldTurnToTension) {
   EXPECT_LE(before_worst, 1e-15);
   EXPECT_GE(below, -1e-15);
   EXPECT_NEAR(u, expect, 2e-3 * expect);
+}
+
+TEST(FixedIf, AProppedCantileverLiftsOffItsPropWhenTheReactionWouldTurnToTension) {
+  // tests/validation/propped_liftoff.toml, compiled by the model compiler (its fixed_if becomes
+  // the stop). Truth: the propped cantilever's reaction under point loads P_i at a_i from the
+  // clamp, R = sum P_i a_i^2 (3L - a_i) / 2L^3 (exact for the Euler-Bernoulli elements under
+  // their lumped weights), so with the upward load P = c (t - 2) at the prop the reaction
+  // R_0 - P turns to tension at t* = 2 + R_0 / c; after it the free cantilever's tip rises by
+  // (P - R_0) / (3 E I / L^3). Tolerances: the damped beam follows the ramp a little late, by
+  // about 2 zeta / omega = 4 ms at the free cantilever's first mode (omega = 94 rad/s, zeta about
+  // 0.2), so t* is seen within 6 ms (the gap read against 1e-7 m adds 1e-4 s) and the lifted tip
+  // is 0.3 % short of the static rise at t = 5 s (within 1 %); before t*, no gap and no
+  // penetration to 1e-12 m (the stop lands d on 0).
+  namespace pl = ntn::models::propped_liftoff;
+  constexpr ntn::Sizes S = pl::kSizes;
+  const auto m = std::make_unique<ntn::Model<S>>();
+  const auto st = std::make_unique<ntn::State<S>>();
+  const auto w = std::make_unique<ntn::Scratch<S>>();
+  ASSERT_TRUE(ntn_test::init_model(pl::kSpec, *m).ok());
+  const double L = 4.0, EI = 210e9 * 1943e-8, c = 200.0;
+  double R0 = 0;
+  for (std::size_t n = 0; n < S.nodes; ++n) {
+    const double a = pl::kSpec.nodes[n].x;
+    R0 += m->mass[dof(static_cast<int>(n), ntn::kUz)] * kG * a * a * (3 * L - a) / (2 * L * L * L);
+  }
+  const double t_star = 2.0 + R0 / c;
+  ntn::initial_state(*m, *st);
+  ASSERT_EQ(ntn::start(*m, *st, *w, {}), ntn::StepStatus::kOk);
+  const long steps = std::lround(5.0 / m->dt);
+  double before = 0, lowest = 0, t_lift = -1;
+  for (long n = 0; n < steps; ++n) {
+    ASSERT_EQ(ntn::step(*m, *st, *w, {}), ntn::StepStatus::kOk);
+    const double t = static_cast<double>(n) * m->dt, gap = w->outputs[0];  // at t_n
+    if (t < t_star - 0.005) before = std::fmax(before, std::fabs(gap));
+    lowest = std::fmin(lowest, gap);
+    if (t_lift < 0 && gap > 1e-7) t_lift = t;
+  }
+  const double rise = (c * 3.0 - R0) / (3 * EI / (L * L * L));
+  const double tip = st->u[dof(1, ntn::kUz)];  // node 2 of the file: model node 1
+  std::printf(
+      "  R_0 = %.3f N: lift-off at t* = %.4f s, seen at %.4f s; before it |gap| <= %.1e m, "
+      "lowest %.1e m; at t = 5 s the tip at %.6e m (free cantilever %.6e m)\n",
+      R0, t_star, t_lift, before, lowest, tip, rise);
+  EXPECT_NEAR(t_lift, t_star, 6e-3);
+  EXPECT_LE(before, 1e-12);
+  EXPECT_GE(lowest, -1e-12);
+  EXPECT_NEAR(tip, rise, 0.01 * rise);
 }
 
 TEST(FixedIf, ASideForceIsHeldExactlyWhilePressedAndFreeOnceLifted) {
