@@ -36,13 +36,7 @@ using ntn_test::stop_joint::kPlay;
 using ntn_test::stop_joint::kRightEnd;
 using ntn_test::stop_joint::kSizes;
 
-struct Sim {
-  ntn::ModelSpec<kSizes> spec;
-  ntn::Model<kSizes> model;
-  ntn::State<kSizes> state;
-  ntn::Scratch<kSizes> scratch;
-};
-Sim sim;
+ntn_test::Sim<kSizes> sim;
 
 void build(ntn::HingeMethod method) {
   auto& s = sim.spec;

@@ -31,13 +31,7 @@
 
 namespace {
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 
 struct Measured {
   double frequency_error = 1;  // measured omega / omega_h - 1

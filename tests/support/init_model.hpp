@@ -7,8 +7,19 @@
 #include <memory>
 
 #include "ntn/model.hpp"
+#include "ntn/state.hpp"
 
 namespace ntn_test {
+
+// A model's spec and its Model, State and Scratch together (the tests keep one in static
+// storage: a large model's do not fit the stack).
+template <ntn::Sizes S>
+struct Sim {
+  ntn::ModelSpec<S> spec;
+  ntn::Model<S> model;
+  ntn::State<S> state;
+  ntn::Scratch<S> scratch;
+};
 
 template <ntn::Sizes S>
 [[nodiscard]] ntn::InitStatus init_model(const ntn::ModelSpec<S>& spec, ntn::Model<S>& model) {

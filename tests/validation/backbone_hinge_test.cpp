@@ -118,13 +118,7 @@ TEST(BackboneLaw, PlasticWorkAlongAStraightBoundIsExact) {
 // is set before each step, the hinge-spring stage brings the history to d_n = u_n.
 constexpr ntn::Sizes kOsc = ntn_test::sdof_sizes({.outputs = 4});
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 
 struct Series {
   std::vector<double> d, f, dp, dissipated;

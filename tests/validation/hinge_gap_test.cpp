@@ -30,13 +30,7 @@ constexpr double kPlay = 1e-3;  // m
 constexpr std::array<ntn::CurvePoint, 4> kGap{
     {{-1.1e-3, -1e9}, {-kPlay, 0.0}, {kPlay, 0.0}, {1.1e-3, 1e9}}};
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 
 template <ntn::Sizes S>
 void add_gap_curve(ntn::ModelSpec<S>& s) {

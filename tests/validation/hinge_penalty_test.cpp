@@ -38,13 +38,7 @@ using B = ntn::HingeBehaviour;
 constexpr ntn_test::Section kMember = ntn_test::rectangle(0.08, 0.12);
 constexpr ntn_test::Section kColumn = ntn_test::rectangle(0.15, 0.15);
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 
 // A triangle pulse (time function 0) at node n in all six directions, scaled by f.
 template <ntn::Sizes S>

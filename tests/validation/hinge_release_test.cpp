@@ -47,13 +47,7 @@ constexpr ntn::Sizes kPortal{.nodes = 12, .elements = 10, .hinges = 1};
 
 constexpr std::uint8_t kReleaseRy = 1U << ntn::kRy;
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 
 Sim<kBeam> beam, beam2;
 Sim<kPortal> portal;

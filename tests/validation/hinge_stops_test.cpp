@@ -56,13 +56,7 @@ constexpr ntn::Sizes kSizes{.nodes = 9,
                             .curve_points = 4};
 constexpr long kPulseSteps = 2000, kSteps = 40000;
 
-struct Sim {
-  ntn::ModelSpec<kSizes> spec;
-  ntn::Model<kSizes> model;
-  ntn::State<kSizes> state;
-  ntn::Scratch<kSizes> scratch;
-};
-Sim sim;
+ntn_test::Sim<kSizes> sim;
 
 void build(ntn::HingeMethod method) {
   auto& s = sim.spec;

@@ -43,13 +43,7 @@ constexpr double kPi = 3.14159265358979323846;
 const double kOmega = std::sqrt(kSdofK / kSdofMass);  // rad/s
 const double kPeriod = 2 * kPi / kOmega;              // s
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 
 // Oscillator with one nodal load at the mass (constant: from t = 0 on) and one force input at it;
 // channels: the hinge's force, deformation, plastic deformation, dissipated energy.

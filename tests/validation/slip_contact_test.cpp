@@ -54,13 +54,7 @@ constexpr ntn::Sizes kBlock = [] {
   return z;
 }();
 
-struct Sim {
-  ntn::ModelSpec<kBlock> spec;
-  ntn::Model<kBlock> model;
-  ntn::State<kBlock> state;
-  ntn::Scratch<kBlock> scratch;
-};
-Sim sim;
+ntn_test::Sim<kBlock> sim;
 
 // The oscillator with hinge 0's ux `behaviour` (its law in slot 0), load 0 = `p` on ux
 // (constant) and load 1 = `c` t on ux (c = 0: none).

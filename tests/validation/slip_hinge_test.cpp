@@ -53,13 +53,7 @@ constexpr ntn::Sizes kBlock = [] {
   return z;
 }();
 
-template <ntn::Sizes S>
-struct Sim {
-  ntn::ModelSpec<S> spec;
-  ntn::Model<S> model;
-  ntn::State<S> state;
-  ntn::Scratch<S> scratch;
-};
+using ntn_test::Sim;
 Sim<kBlock> sim;
 
 ntn::InitStatus build(double yield, double spring, double dt,

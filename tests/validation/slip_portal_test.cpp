@@ -16,12 +16,11 @@
 #include <memory>
 #include <string_view>
 
+#include "el_centro_run.hpp"
 #include "ntn/hil/energy.hpp"
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
 #include "portal_slip_model.hpp"
-#include "record.hpp"
-#include "support/init_model.hpp"
 
 namespace {
 
@@ -35,16 +34,11 @@ std::size_t channel(std::string_view name) {
 }
 
 TEST(SlipPortal, BasesSlideByCoulombsLawAndTheEnergyBalanceCloses) {
-  const ntn::io::ReadResult rec =
-      ntn::io::read_at2(std::string(NTN_CONFIG_DIR) + "/ground-motions/elCentro.AT2");
-  ASSERT_TRUE(rec.record) << (rec.error ? rec.error->format() : "");
-  const ntn::io::Record& r = *rec.record;  // in g, the model's input unit
-  const auto m = std::make_unique<ntn::Model<kS>>();
-  const auto s = std::make_unique<ntn::State<kS>>();
-  const auto w = std::make_unique<ntn::Scratch<kS>>();
-  ASSERT_TRUE(ntn_test::init_model(portal::kSpec, *m).ok());
-  ntn::initial_state(*m, *s);
-  ASSERT_EQ(ntn::start(*m, *s, *w, {r.at(0.0)}), ntn::StepStatus::kOk);
+  ntn_test::ElCentroRun<kS> run;
+  ASSERT_TRUE(run.start(portal::kSpec));
+  const auto& m = run.model;
+  const auto& s = run.state;
+  const auto& w = run.scratch;
   ntn::hil::EnergyBalance<kS> e;
   e.begin(*m, *s);
   const double mu = 0.2, slip_moment = 35e3;
@@ -57,8 +51,7 @@ TEST(SlipPortal, BasesSlideByCoulombsLawAndTheEnergyBalanceCloses) {
   double last_slide = 0;
   long sliding = 0;
   for (long n = 0; n < steps; ++n) {
-    const double t = static_cast<double>(n) * m->dt;
-    ASSERT_EQ(ntn::step(*m, *s, *w, {r.at(t)}), ntn::StepStatus::kOk);
+    ASSERT_EQ(run.step(n), ntn::StepStatus::kOk);
     e.after_step(*m, *s, *w);
     worst = std::fmax(worst, std::fabs(e.residual()));
     const auto& o = w->outputs;
