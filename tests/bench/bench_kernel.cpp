@@ -2,6 +2,11 @@
 // (ntn::step, beam_force: f = R^T K_L R u per element) against a stored-global-matrix
 // formulation written here (per element a stored 12x12 K_e = T^T K_L T, f = K_e u_e) with the
 // same load, acceleration, output and update stages. Frames of ~10 to ~30 000 elements.
+// The peer (issue 17, item 5): a plain central-difference program written here with Eigen's
+// sparse K u (the global stiffness assembled from the same element matrices, with and without
+// its exact zeros pruned), lumped mass, mass-proportional damping and the same loads, on the
+// same frames and on the OpenSees frame_scaling grids (6 m bays, 3.5 m storeys, one element
+// per member: 1 064 and 10 101 elements).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -13,6 +18,9 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+
+#include <Eigen/SparseCore>
+#include <vector>
 
 #include "frame_models.hpp"
 
@@ -145,10 +153,80 @@ StepStatus step_stored(const Model<S>& m, const StoredBeams<S>& sb, State<S>& s,
   return accepted ? StepStatus::kOk : StepStatus::kInputHeld;
 }
 
+// ---- The peer: a plain Eigen sparse K u central-difference program. -------------------------
+
+// Its whole state: K (row-major, CSR), u, v, F and the per-DOF load, damping and 1/mass.
+struct SparsePeer {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> K;
+  Eigen::VectorXd u, v, f, load, damping, inv_mass;
+  double dt = 0;
+};
+
+// K = sum of the elements' K_e = T^T K_L T (beam_global_stiffness), exact zeros pruned or kept;
+// P_j = m_j g_d (gravity and the ground acceleration, from the kernel's first step's load_g),
+// C = alpha M, 1/m_j (0 on supported DOFs). The kernel's model only lends its data.
+template <Sizes S>
+void build_peer(const Model<S>& m, const std::array<double, kDofsPerNode>& load_g, bool prune,
+                SparsePeer& p) {
+  const auto n = static_cast<Eigen::Index>(Model<S>::kDofs);
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(144 * S.elements);
+  for (const BeamData& b : m.beams) {
+    const Matrix12 Ke = beam_global_stiffness(b);
+    int dofs[12];
+    for (int d = 0; d < 6; ++d) {
+      dofs[d] = kDofsPerNode * b.node_i + d;
+      dofs[d + 6] = kDofsPerNode * b.node_j + d;
+    }
+    for (std::size_t r = 0; r < 12; ++r) {
+      for (std::size_t c = 0; c < 12; ++c)
+        t.emplace_back(dofs[r], dofs[c], Ke[12 * r + c]);
+    }
+  }
+  p.K.resize(n, n);
+  p.K.setFromTriplets(t.begin(), t.end());
+  if (prune) p.K.prune(0.0);
+  p.K.makeCompressed();
+  p.u = p.v = p.f = p.load = p.damping = p.inv_mass = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const bool held = (m.fixed[k / kDofsPerNode] >> (k % kDofsPerNode)) & 1U;
+    p.load(j) = m.mass[k] * load_g[k % kDofsPerNode];
+    p.damping(j) = m.alpha * m.mass[k];
+    p.inv_mass(j) = held || !(m.mass[k] > 0) ? 0.0 : 1.0 / m.mass[k];
+  }
+  p.dt = m.dt;
+}
+
+// From rest, as the kernel's start: v_{-1/2} = -dt/2 a_0.
+void peer_start(SparsePeer& p) {
+  p.u.setZero(), p.v.setZero();
+  p.f.noalias() = p.K * p.u;
+  for (Eigen::Index j = 0; j < p.u.size(); ++j)
+    p.v(j) = -0.5 * p.dt * (p.load(j) - p.f(j)) * p.inv_mass(j);
+}
+
+// One step: F = K u, a = (P - F - C v) / m, v += dt a, u += dt v.
+void peer_step(SparsePeer& p) {
+  p.f.noalias() = p.K * p.u;
+  const double dt = p.dt;
+  for (Eigen::Index j = 0; j < p.u.size(); ++j) {
+    const double a = (p.load(j) - p.f(j) - p.damping(j) * p.v(j)) * p.inv_mass(j);
+    p.v(j) += dt * a;
+    p.u(j) += dt * p.v(j);
+  }
+}
+
 // ---- Models, built once per grid into static storage. --------------------------------------
 
-enum class Formulation { kOnTheFly, kStored };
+enum class Formulation { kOnTheFly, kStored, kSparse, kSparsePruned };
 
+// Ground acceleration held at (0.10 g, 0.05 g) plus gravity: every DOF moves from the first
+// steps on, so no subnormal numbers slow the timed loop.
+inline constexpr std::array<double, kInputs> kGround{0.10, 0.05};
+inline constexpr int kWarmupSteps = 100;
+
+// Set when a benchmark reports an error, so that the exit code (and the CTest entry) fails.
 template <Grid G>
 const Model<sizes_of(G)>& model_of() {
   static constexpr Sizes S = sizes_of(G);
@@ -178,17 +256,44 @@ const StoredBeams<sizes_of(G)>& stored_of() {
   return static_instance<StoredBeams<S>>();
 }
 
-// Ground acceleration held at (0.10 g, 0.05 g) plus gravity: every DOF moves from the first
-// steps on, so no subnormal numbers slow the timed loop.
-inline constexpr std::array<double, kInputs> kGround{0.10, 0.05};
-inline constexpr int kWarmupSteps = 100;
-
-// Set when a benchmark reports an error, so that the exit code (and the CTest entry) fails.
 bool g_failed = false;
 
 void fail(benchmark::State& bs, const char* why) {
   g_failed = true;
   bs.SkipWithError(why);
+}
+
+// The peer of grid G (pruned or not), built once, from rest; `difference` (set once) is its
+// largest |u_peer - u_kernel| over the largest |u_kernel| after 500 steps from rest.
+template <Grid G, bool kPrune>
+SparsePeer& peer_of(double* difference = nullptr) {
+  static constexpr Sizes S = sizes_of(G);
+  static SparsePeer peer;
+  static double diff = [] {
+    const Model<S>& m = model_of<G>();
+    State<S>& s = static_instance<State<S>, 3>();
+    Scratch<S>& w = static_instance<Scratch<S>>();
+    s.u.fill(0.0), s.v.fill(0.0), s.held_inputs.fill(0.0);
+    s.tick = 0, s.inputs_held = 0, s.faults = 0;
+    (void)start(m, s, w, kGround);
+    (void)step(m, s, w, kGround);  // load_g of the held ground acceleration
+    build_peer(m, w.load_g, kPrune, peer);
+    s.u.fill(0.0), s.v.fill(0.0), s.tick = 0;
+    (void)start(m, s, w, kGround);
+    peer_start(peer);
+    for (int k = 0; k < 500; ++k) {
+      (void)step(m, s, w, kGround);
+      peer_step(peer);
+    }
+    double d = 0, scale = 0;
+    for (std::size_t j = 0; j < s.u.size(); ++j) {
+      d = std::max(d, std::fabs(peer.u(static_cast<Eigen::Index>(j)) - s.u[j]));
+      scale = std::max(scale, std::fabs(s.u[j]));
+    }
+    return scale > 0 ? d / scale : INFINITY;
+  }();
+  if (difference != nullptr) *difference = diff;
+  return peer;
 }
 
 template <Sizes S>
@@ -281,6 +386,33 @@ void bm_step(benchmark::State& bs) {
   }
 }
 
+// The peer's step, timed like bm_step: per element-step, allocations counted, and checked
+// against the kernel (the same K u in another order: rounding only).
+template <Grid G, bool kPrune>
+void bm_peer(benchmark::State& bs) {
+  static constexpr Sizes S = sizes_of(G);
+  double diff = 0;
+  SparsePeer& p = peer_of<G, kPrune>(&diff);
+  peer_start(p);
+  for (int k = 0; k < kWarmupSteps; ++k)
+    peer_step(p);
+  const std::uint64_t allocs_before = g_allocations.load(std::memory_order_relaxed);
+  for (auto _ : bs)
+    peer_step(p);
+  const std::uint64_t allocs = g_allocations.load(std::memory_order_relaxed) - allocs_before;
+  if (allocs != 0) fail(bs, "heap allocation in the timed loop");
+  if (!p.u.allFinite()) fail(bs, "the peer diverged");
+  const double element_steps = static_cast<double>(bs.iterations()) * S.elements;
+  bs.counters["elements"] = S.elements;
+  bs.counters["nonzeros"] = static_cast<double>(p.K.nonZeros());
+  bs.counters["ns_per_element_step"] =
+      benchmark::Counter(element_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bs.counters["allocs"] = static_cast<double>(allocs);
+  bs.counters["rel_diff_vs_otf"] = diff;
+  // The same stiffness, loads and scheme: only the order of K u's sums differs.
+  if (!(diff < 1e-9)) fail(bs, "the peer disagrees with the kernel");
+}
+
 // The benchmark frames: ~10, ~100, ~1 000, ~10 000, ~30 000 and ~100 000 elements.
 inline constexpr Grid kFrame12{.nx = 1, .ny = 1, .storeys = 1, .col_div = 1, .beam_div = 2};
 inline constexpr Grid kFrame104{.nx = 2, .ny = 1, .storeys = 4, .col_div = 2, .beam_div = 2};
@@ -289,6 +421,20 @@ inline constexpr Grid kFrame9900{.nx = 8, .ny = 8, .storeys = 11, .col_div = 4, 
 inline constexpr Grid kFrame30008{.nx = 10, .ny = 10, .storeys = 22, .col_div = 4, .beam_div = 4};
 // Beyond the last-level cache for both formulations (32 MiB L3 on the reference machine).
 inline constexpr Grid kFrame99960{.nx = 16, .ny = 16, .storeys = 30, .col_div = 4, .beam_div = 4};
+// The OpenSees frame_scaling grids (issue 17): one element per member, 6 x 6 bays x 8 storeys
+// and 12 x 12 bays x 21 storeys.
+inline constexpr Grid kScaling1064{.nx = 6, .ny = 6, .storeys = 8, .col_div = 1, .beam_div = 1};
+inline constexpr Grid kScaling10101{.nx = 12, .ny = 12, .storeys = 21, .col_div = 1, .beam_div = 1};
+
+// The peer of grid G, pruned and not (its K of 144 entries per element: up to ~30 000 elements).
+template <Grid G>
+void register_peer() {
+  const std::string n = std::to_string(element_count(G));
+  benchmark::RegisterBenchmark(("step/sparse_peer/elements:" + n).c_str(), bm_peer<G, false>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/sparse_peer_pruned/elements:" + n).c_str(), bm_peer<G, true>)
+      ->Unit(benchmark::kMicrosecond);
+}
 
 template <Grid G>
 void register_frame() {
@@ -312,6 +458,12 @@ int main(int argc, char** argv) {
   register_frame<kFrame9900>();
   register_frame<kFrame30008>();
   register_frame<kFrame99960>();
+  register_frame<kScaling1064>();
+  register_frame<kScaling10101>();
+  register_peer<kFrame975>();
+  register_peer<kFrame9900>();
+  register_peer<kScaling1064>();
+  register_peer<kScaling10101>();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
