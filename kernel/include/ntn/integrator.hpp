@@ -220,17 +220,23 @@ double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k
   return d[k];
 }
 
-// The relative velocity of hinge direction k at t_n, from v_n = v_{n-1/2} + dt/2 a_n at its nodes.
+// The velocity of DOF j at t_n, v_n = v_{n-1/2} + dt/2 a_n: the velocity channels' and the hinge
+// velocity's.
+template <Sizes S>
+double velocity_at_tn(const Model<S>& m, const State<S>& s, const Scratch<S>& w, std::size_t j) {
+  return s.v[j] + 0.5 * m.dt * w.a[j];
+}
+
+// The relative velocity of hinge direction k at t_n, from v_n at its nodes.
 template <Sizes S>
 double hinge_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w, int hinge, int k) {
   const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
   const bool ground = h.node2 == kGround;
   double v1[6], v2[6], d_dot[6];
   for (std::size_t c = 0; c < kDofsPerNode; ++c) {
-    const auto j1 = static_cast<std::size_t>(kDofsPerNode * h.node1) + c;
-    v1[c] = s.v[j1] + 0.5 * m.dt * w.a[j1];
-    const std::size_t j2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2) + c;
-    v2[c] = ground ? 0.0 : s.v[j2] + 0.5 * m.dt * w.a[j2];
+    v1[c] = velocity_at_tn(m, s, w, static_cast<std::size_t>(kDofsPerNode * h.node1) + c);
+    v2[c] = ground ? 0.0
+                   : velocity_at_tn(m, s, w, static_cast<std::size_t>(kDofsPerNode * h.node2) + c);
   }
   hinge_relative(h, v1, ground ? nullptr : v2, d_dot);
   return d_dot[k];
@@ -250,7 +256,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         value = s.u[j];
         break;
       case OutputKind::kVelocity:
-        value = s.v[j] + 0.5 * m.dt * w.a[j];
+        value = velocity_at_tn(m, s, w, j);
         break;
       case OutputKind::kAcceleration:
         value = w.a[j];
