@@ -100,10 +100,11 @@ struct StoredBeams {
 
 template <Sizes S>
 void build_stored(const Model<S>& m, StoredBeams<S>& out) {
-  for (std::size_t e = 0; e < m.beams.size(); ++e) {
-    out.beams[e].node_i = m.beams[e].node_i;
-    out.beams[e].node_j = m.beams[e].node_j;
-    out.beams[e].K = beam_global_stiffness(m.beams[e]);
+  for (std::size_t e = 0; e < S.elements; ++e) {
+    const BeamData b = m.beam(e);
+    out.beams[e].node_i = b.node_i;
+    out.beams[e].node_j = b.node_j;
+    out.beams[e].K = beam_global_stiffness(b);
   }
 }
 
@@ -171,7 +172,8 @@ void build_peer(const Model<S>& m, const std::array<double, kDofsPerNode>& load_
   const auto n = static_cast<Eigen::Index>(Model<S>::kDofs);
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(144 * S.elements);
-  for (const BeamData& b : m.beams) {
+  for (std::size_t e = 0; e < S.elements; ++e) {
+    const BeamData b = m.beam(e);
     const Matrix12 Ke = beam_global_stiffness(b);
     int dofs[12];
     for (int d = 0; d < 6; ++d) {
@@ -219,7 +221,9 @@ void peer_step(SparsePeer& p) {
 
 // ---- Models, built once per grid into static storage. --------------------------------------
 
-enum class Formulation { kOnTheFly, kStored, kSparse, kSparsePruned };
+// kOnTheFly: the kernel's step (its SIMD element pass); kScalar: the same with the scalar
+// reference element pass (element_pass.hpp: the same bits).
+enum class Formulation { kOnTheFly, kScalar, kStored, kSparse, kSparsePruned };
 
 // Ground acceleration held at (0.10 g, 0.05 g) plus gravity: every DOF moves from the first
 // steps on, so no subnormal numbers slow the timed loop.
@@ -305,7 +309,7 @@ void reset(State<S>& s) {
 // One step of either formulation; `sb` is used (and must be set) by the stored one only.
 template <Formulation F, Sizes S>
 StepStatus advance(const Model<S>& m, const StoredBeams<S>* sb, State<S>& s, Scratch<S>& w) {
-  if constexpr (F == Formulation::kOnTheFly) {
+  if constexpr (F == Formulation::kOnTheFly || F == Formulation::kScalar) {
     return step(m, s, w, kGround);
   } else {
     return step_stored(m, *sb, s, w, kGround);
@@ -342,7 +346,9 @@ void bm_step(benchmark::State& bs) {
   static constexpr Sizes S = sizes_of(G);
   State<S>& s = static_instance<State<S>>();
   Scratch<S>& w = static_instance<Scratch<S>>();
-  const Model<S>& m = model_of<G>();
+  (void)model_of<G>();
+  Model<S>& m = static_instance<Model<S>>();  // built by model_of; only its element pass is set
+  m.element_pass = F == Formulation::kScalar ? ElementPass::kScalar : ElementPass::kSimd;
   // The on-the-fly runs never build (or touch) the stored matrices.
   const StoredBeams<S>* sb = F == Formulation::kStored ? &stored_of<G>() : nullptr;
 
@@ -363,7 +369,7 @@ void bm_step(benchmark::State& bs) {
   // Bytes the step streams through: per element its data, per node u, v, F, a and the model's
   // mass and 1/mass (6 doubles per DOF; P_n and C = alpha M are computed in the residual pass).
   constexpr double kElementBytes =
-      F == Formulation::kOnTheFly ? sizeof(BeamData) : sizeof(StoredBeam);
+      F == Formulation::kStored ? sizeof(StoredBeam) : sizeof(BeamData);
   constexpr double kWorkingSet =
       kElementBytes * S.elements + 6.0 * sizeof(double) * kDofsPerNode * S.nodes;
 
@@ -442,6 +448,9 @@ void register_frame() {
   benchmark::RegisterBenchmark(("step/on_the_fly/elements:" + n).c_str(),
                                bm_step<G, Formulation::kOnTheFly>)
       ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/on_the_fly_scalar/elements:" + n).c_str(),
+                               bm_step<G, Formulation::kScalar>)
+      ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark(("step/stored_matrix/elements:" + n).c_str(),
                                bm_step<G, Formulation::kStored>)
       ->Unit(benchmark::kMicrosecond);
@@ -464,6 +473,7 @@ int main(int argc, char** argv) {
   register_peer<kFrame9900>();
   register_peer<kScaling1064>();
   register_peer<kScaling10101>();
+  benchmark::AddCustomContext("element_pass", ntn::element_pass_target());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

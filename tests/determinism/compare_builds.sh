@@ -2,7 +2,8 @@
 # compare_builds.sh: builds ntn-run-<model> (tests/determinism/runner) with every compiler and
 # flag set it can — g++ and clang++, at -O0, -O2, -O3, each without and with -march=native —
 # each in its own directory under WORK, runs it on RECORD and compares the printed output hash
-# and the CSV byte for byte with the reference runner of the main build.
+# and the CSV byte for byte with the reference runner of the main build: once by the SIMD element
+# pass (each build's widest vectors) and once by the scalar reference (--element-pass scalar).
 #   compare_builds.sh SOURCE_DIR MODEL_DIR MODEL_NAME REFERENCE_RUNNER RECORD WORK
 # A compiler that is not installed is reported and left out (at least one must be there).
 set -euo pipefail
@@ -10,8 +11,10 @@ src=$1 model_dir=$2 model=$3 ref=$4 record=$5 work=$6
 mkdir -p "$work"
 trap 'rm -f "$work"/*.csv' EXIT
 
-run() { # run BINARY CSV -> prints the "output hash ..." line
-  "$1" -q --input "ag_x=$record" --out "$2" | grep 'output hash'
+run() { # run BINARY CSV [OPTION...] -> prints the "output hash ..." line
+  local bin=$1 csv=$2
+  shift 2
+  "$bin" -q --input "ag_x=$record" --out "$csv" "$@" | grep 'output hash'
 }
 
 ref_hash=$(run "$ref" "$work/reference.csv")
@@ -36,14 +39,16 @@ for cxx in g++ clang++; do
         continue
       }
       built=$((built + 1))
-      hash=$(run "$dir/ntn-run-$model" "$work/$name.csv")
-      if [ "$hash" = "$ref_hash" ] && cmp -s "$work/reference.csv" "$work/$name.csv"; then
-        echo "same  $name:$hash ($(($(date +%s) - start)) s)"
-      else
-        echo "DIFF  $name:$hash (reference$ref_hash)"
-        cmp "$work/reference.csv" "$work/$name.csv" | head -1 || true
-        fail=1
-      fi
+      for pass in simd scalar; do
+        hash=$(run "$dir/ntn-run-$model" "$work/$name.csv" --element-pass "$pass")
+        if [ "$hash" = "$ref_hash" ] && cmp -s "$work/reference.csv" "$work/$name.csv"; then
+          echo "same  $name ($pass):$hash ($(($(date +%s) - start)) s)"
+        else
+          echo "DIFF  $name ($pass):$hash (reference$ref_hash)"
+          cmp "$work/reference.csv" "$work/$name.csv" | head -1 || true
+          fail=1
+        fi
+      done
     done
   done
 done

@@ -21,7 +21,7 @@ ref_hash=$(run "$ref")
 dir=$work/aarch64
 cmake -S "$src/tests/determinism/runner" -B "$dir" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_TOOLCHAIN_FILE="$src/tools/cmake/aarch64-linux-gnu.cmake" -DNTN_SOURCE_DIR="$src" \
-  -DNTN_MODEL_DIR="$model_dir" -DNTN_MODEL_NAME="$model" >"$dir.log" 2>&1
+  -DNTN_MODEL_DIR="$model_dir" -DNTN_MODEL_NAME="$model" -DNTN_SIMD=STATIC >"$dir.log" 2>&1
 cmake --build "$dir" -j2 >>"$dir.log" 2>&1 || { echo "FAIL: cross build (see $dir.log)"; exit 1; }
 file "$dir/ntn-run-$model" 2>/dev/null || true
 csv=$work/aarch64.csv

@@ -206,7 +206,7 @@ FreeRun run_free_element(double factor, long steps) {
     }
     // The elastic force K u_n (Scratch::f holds beta K v_{n-1/2} too when beta > 0).
     double fe[12];
-    ntn::beam_force(one_model.beams[0], u_n.data(), u_n.data() + 6, fe, fe + 6);
+    ntn::beam_force(one_model.beam(0), u_n.data(), u_n.data() + 6, fe, fe + 6);
     double e = 0;
     for (std::size_t j = 0; j < 12; ++j) {
       const double v = 0.5 * (v_prev[j] + one_state.v[j]);

@@ -109,6 +109,7 @@ int main(int argc, char** argv) {
   std::string sampling_name = "step";
   bool quiet = false;
   bool flags = false;
+  std::string element_pass = "simd";
   app.add_option("-i,--input", input_args,
                  "NAME=FILE: feed input channel NAME from a record (AT2 or CSV; "
                  "FILE:COLUMN picks a CSV column; values are converted to the input's unit)");
@@ -125,6 +126,10 @@ int main(int argc, char** argv) {
                "ntn-hil writes it");
   app.add_option("--summary-json", json_path, "also write the summary as JSON");
   app.add_flag("-q,--quiet", quiet, "print only errors and the output hash");
+  app.add_option("--element-pass", element_pass,
+                 "simd (default: the widest vectors this CPU has) or scalar (the reference): the "
+                 "same bits either way")
+      ->check(CLI::IsMember({"simd", "scalar"}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -192,6 +197,8 @@ int main(int argc, char** argv) {
                  ntn::to_string(st.error), st.where);
     return 1;
   }
+  g_model.element_pass =
+      element_pass == "scalar" ? ntn::ElementPass::kScalar : ntn::ElementPass::kSimd;
   const double dt = g_model.dt;
   // The step count as a checked integer: compared as a double before any conversion or
   // allocation, and a run of no step at all is refused (it would report nothing as success).
@@ -294,6 +301,9 @@ int main(int argc, char** argv) {
     }
     std::printf("  size        %zu nodes, %zu elements, %zu hinges, %zu DOFs\n", kS.nodes,
                 kS.elements, kS.hinges, 6 * kS.nodes);
+    std::printf(
+        "  elements    %s pass (%s)\n", element_pass.c_str(),
+        g_model.element_pass == ntn::ElementPass::kSimd ? ntn::element_pass_target() : "reference");
     std::string governing;
     if (stable.governing_hinge >= 0) {
       governing = "hinge " + std::to_string(stable.governing_hinge) + ", direction " +

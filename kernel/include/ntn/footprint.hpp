@@ -52,7 +52,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   const std::size_t dofs = kDofsPerNode * s.nodes;
   const std::size_t hinge_nodes = s.hinges > 0 ? s.nodes : 0;  // Model::kHingeNodes
   detail::Layout l;
-  l.array<BeamData>(s.elements);                // beams
+  l.array<BeamBlock>(beam_blocks(s.elements));  // beams
   l.array<double>(dofs);                        // mass
   l.array<double>(dofs);                        // inv_mass
   l.array<double>(dofs);                        // damping
@@ -108,6 +108,7 @@ constexpr std::size_t model_footprint(const Sizes& s) {
   l.scalar<ClampRule>();                        // clamp
   l.scalar<double>();                           // inv_dt
   l.scalar<Substeps>();                         // substeps
+  l.scalar<ElementPass>();                      // element_pass
   return l.size();
 }
 

@@ -94,38 +94,13 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
 // same pass: F_n = sum T^T K_L T (u_n + beta v_{n-1/2}), the velocity lagged as the mass-
 // proportional part's (S 3). So the reactions and the NTN constraint forces, which come from F_n,
 // include the elements' damping forces; the element-force output channels (K_L T u_n) do not.
-// beta = 0 runs the elastic loop alone, unchanged (the same bits).
+// beta = 0 runs the elastic loop alone, unchanged (the same bits). The path, scalar or SIMD, is
+// the model's (Model::element_pass): the same bits either way (element_pass.hpp).
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   w.f.fill(0.0);
-  if (m.beta != 0.0) {
-    const double beta = m.beta;
-    for (const BeamData& b : m.beams) {
-      double ui[6], uj[6], fi[6], fj[6];
-      const auto i = static_cast<std::size_t>(kDofsPerNode * b.node_i);
-      const auto j = static_cast<std::size_t>(kDofsPerNode * b.node_j);
-      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
-        ui[d] = s.u[i + d] + beta * s.v[i + d];
-        uj[d] = s.u[j + d] + beta * s.v[j + d];
-      }
-      beam_force(b, ui, uj, fi, fj);
-      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
-        w.f[i + d] += fi[d];
-        w.f[j + d] += fj[d];
-      }
-    }
-    return;
-  }
-  for (const BeamData& b : m.beams) {
-    double fi[6], fj[6];
-    const auto i = static_cast<std::size_t>(kDofsPerNode * b.node_i);
-    const auto j = static_cast<std::size_t>(kDofsPerNode * b.node_j);
-    beam_force(b, &s.u[i], &s.u[j], fi, fj);
-    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
-      w.f[i + d] += fi[d];
-      w.f[j + d] += fj[d];
-    }
-  }
+  ntn::element_forces(m.element_pass, m.beams.data(), S.elements, s.u.data(), s.v.data(), m.beta,
+                      w.f.data());
 }
 
 // A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
@@ -291,7 +266,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         value = o.dof < 3 ? w.a[j] + w.ground[static_cast<std::size_t>(o.dof)] : w.a[j];
         break;
       case OutputKind::kElementForce: {
-        const BeamData& b = m.beams[static_cast<std::size_t>(o.element)];
+        const BeamData b = m.beam(static_cast<std::size_t>(o.element));
         const auto f = beam_local_end_forces(b, &s.u[static_cast<std::size_t>(6 * b.node_i)],
                                              &s.u[static_cast<std::size_t>(6 * b.node_j)]);
         value = f[static_cast<std::size_t>(6 * o.end + o.dof)];

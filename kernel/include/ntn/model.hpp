@@ -10,6 +10,7 @@
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
+#include "ntn/element_pass.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
 #include "ntn/hysteresis.hpp"
@@ -24,7 +25,8 @@ struct Model {
   static constexpr Sizes kSizes = S;
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
 
-  std::array<BeamData, S.elements> beams{};
+  // The elements, kBeamLanes to a block in the model's order (element_pass.hpp): beam(e) is one.
+  std::array<BeamBlock, beam_blocks(S.elements)> beams{};
   std::array<double, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
   // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
@@ -103,6 +105,11 @@ struct Model {
   // once at init: every driver and test reads N here (count 0 and the reason when dt does not
   // divide the frame; the model compiler refuses such a model).
   Substeps substeps;
+  // The element pass's path: the SIMD one where the build has it (the same bits as the scalar
+  // reference, element_pass.hpp). Not part of the model file: a driver or a test may switch it.
+  ElementPass element_pass = ElementPass::kSimd;
+
+  BeamData beam(std::size_t e) const { return lane(beams[e / kBeamLanes], e % kBeamLanes); }
 };
 
 // What init() works in and then drops: kept out of the constant Model.
@@ -267,10 +274,11 @@ template <Sizes S>
                                          spec.nodes[static_cast<std::size_t>(e.node_j)], e);
     if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, where};
     if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, where};
-    BeamData& b = model.beams[i];
+    BeamData b;
     b.node_i = e.node_i, b.node_j = e.node_j;
     b.rotation = g.rotation;
     b.k = beam_stiffness(e, g.length);
+    set_lane(model.beams[i / kBeamLanes], i % kBeamLanes, b);
   }
 
   const SpecView v = view(spec);

@@ -334,7 +334,7 @@ std::string info_text(const ModelDescription& m) {
                                   mem.per_curve_point * z.curve_points;
   const std::size_t rest =
       mem.total - mem.per_element * z.elements - mem.per_node * z.nodes - hinge_bytes;
-  line("", "per element " + std::to_string(mem.per_element) + " B (ntn::BeamData) x " +
+  line("", "per element " + std::to_string(mem.per_element) + " B (ntn::BeamBlock / 4) x " +
                std::to_string(z.elements) + " = " + std::to_string(mem.per_element * z.elements) +
                " B");
   line("", "per node " + std::to_string(mem.per_node) +

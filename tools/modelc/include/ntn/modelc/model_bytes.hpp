@@ -13,7 +13,7 @@ struct MemoryFootprint {
   std::size_t state = 0;        // sizeof(State<S>)
   std::size_t scratch = 0;      // sizeof(Scratch<S>)
   std::size_t total = 0;        // the three together
-  std::size_t per_element = 0;  // marginal bytes of one more element (BeamData)
+  std::size_t per_element = 0;  // bytes per element (BeamData's fields, in blocks of kBeamLanes)
   std::size_t per_node = 0;     // marginal bytes of one more node (8 DOF arrays + fixed + list)
   std::size_t per_hinge = 0;    // marginal bytes of one more hinge (HingeData + forest slots)
   std::size_t per_node_with_hinges = 0;  // extra per node in a model with hinges

@@ -1,0 +1,129 @@
+// The element pass F_n = sum T^T K_L T u_n (S 2, DESIGN §4) over elements stored in blocks of
+// kBeamLanes, one element per lane (structure of arrays), so that one vector instruction does the
+// same operation for kBeamLanes elements. Two paths compute it:
+//   - the scalar reference: beam_force() (beam.hpp) element by element, in the model's order;
+//   - the SIMD path (kernel/src/element_pass.cpp, Highway, the CPU's widest vectors picked at
+//     run time): beam_force's operations in beam_force's order in every lane (IEEE products and
+//     sums, no contraction, nothing skipped), the end forces then added to the nodes lane by
+//     lane in the model's element order.
+// So both give the same bits, on every build (tests/kernel/element_pass_test.cpp). A build
+// without NTN_SIMD (embedded, cross builds) has the scalar path alone.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "ntn/beam.hpp"
+#include "ntn/model_spec.hpp"
+
+namespace ntn {
+
+inline constexpr std::size_t kBeamLanes = 4;  // elements per block: one AVX2 vector of doubles
+
+constexpr std::size_t beam_blocks(std::size_t elements) {
+  return (elements + kBeamLanes - 1) / kBeamLanes;
+}
+
+// kBeamLanes elements, field by field (BeamData's fields, lane l of each). Lanes past the model's
+// last element have zero stiffness and DOF offset 0; the pass computes them and adds them nowhere.
+struct alignas(64) BeamBlock {
+  using Lanes = std::array<double, kBeamLanes>;
+  std::array<std::int32_t, kBeamLanes> dof_i{};  // kDofsPerNode * node_i
+  std::array<std::int32_t, kBeamLanes> dof_j{};  // kDofsPerNode * node_j
+  std::array<Lanes, 9> rotation{};               // BeamData::rotation[k], lane by lane
+  Lanes axial{};
+  Lanes torsion{};
+  std::array<Lanes, 4> xy{};
+  std::array<Lanes, 4> xz{};
+};
+static_assert(sizeof(BeamBlock) == kBeamLanes * sizeof(BeamData), "one BeamData per lane");
+
+inline void set_lane(BeamBlock& blk, std::size_t l, const BeamData& b) {
+  blk.dof_i[l] = kDofsPerNode * b.node_i;
+  blk.dof_j[l] = kDofsPerNode * b.node_j;
+  for (std::size_t k = 0; k < 9; ++k)
+    blk.rotation[k][l] = b.rotation[k];
+  blk.axial[l] = b.k.axial;
+  blk.torsion[l] = b.k.torsion;
+  for (std::size_t k = 0; k < 4; ++k) {
+    blk.xy[k][l] = b.k.xy[k];
+    blk.xz[k][l] = b.k.xz[k];
+  }
+}
+
+inline BeamData lane(const BeamBlock& blk, std::size_t l) {
+  BeamData b;
+  b.node_i = blk.dof_i[l] / kDofsPerNode;
+  b.node_j = blk.dof_j[l] / kDofsPerNode;
+  for (std::size_t k = 0; k < 9; ++k)
+    b.rotation[k] = blk.rotation[k][l];
+  b.k.axial = blk.axial[l];
+  b.k.torsion = blk.torsion[l];
+  for (std::size_t k = 0; k < 4; ++k) {
+    b.k.xy[k] = blk.xy[k][l];
+    b.k.xz[k] = blk.xz[k][l];
+  }
+  return b;
+}
+
+// Which path the step's element pass takes (Model::element_pass). kSimd falls back to the scalar
+// reference in a build without NTN_SIMD.
+enum class ElementPass : std::uint8_t { kSimd, kScalar };
+
+namespace detail {
+
+// The scalar reference: f += the elements' forces at u (+ beta v when beta != 0), in order.
+inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements, const double* u,
+                                  const double* v, double beta, double* f) {
+  for (std::size_t e = 0; e < elements; ++e) {
+    const BeamBlock& blk = blocks[e / kBeamLanes];
+    const std::size_t l = e % kBeamLanes;
+    const BeamData b = lane(blk, l);
+    const auto i = static_cast<std::size_t>(blk.dof_i[l]);
+    const auto j = static_cast<std::size_t>(blk.dof_j[l]);
+    double fi[6], fj[6];
+    if (beta != 0.0) {
+      double ui[6], uj[6];
+      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+        ui[d] = u[i + d] + beta * v[i + d];
+        uj[d] = u[j + d] + beta * v[j + d];
+      }
+      beam_force(b, ui, uj, fi, fj);
+    } else {
+      beam_force(b, &u[i], &u[j], fi, fj);
+    }
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      f[i + d] += fi[d];
+      f[j + d] += fj[d];
+    }
+  }
+}
+
+#if defined(NTN_SIMD)
+// kernel/src/element_pass.cpp: the same, kBeamLanes elements at a time.
+void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
+                         const double* v, double beta, double* f);
+#endif
+
+}  // namespace detail
+
+// The instruction set the SIMD path runs on here ("AVX2", "SSE4", "NEON", ...), or "scalar" in a
+// build without NTN_SIMD. Not for step(): for reports.
+const char* element_pass_target();
+
+// f += the elements' forces at u (+ beta v), by the chosen path.
+inline void element_forces(ElementPass path, const BeamBlock* blocks, std::size_t elements,
+                           const double* u, const double* v, double beta, double* f) {
+#if defined(NTN_SIMD)
+  if (path == ElementPass::kSimd) {
+    detail::element_forces_simd(blocks, elements, u, v, beta, f);
+    return;
+  }
+#else
+  (void)path;
+#endif
+  detail::element_forces_scalar(blocks, elements, u, v, beta, f);
+}
+
+}  // namespace ntn

@@ -1,0 +1,268 @@
+// The SIMD element pass (element_pass.hpp): beam_force() (beam.hpp) in every lane of a block, with
+// Highway's portable vectors compiled for each instruction set it knows and the widest the CPU has
+// picked at run time (dynamic dispatch). Every line below is one line of beam_force in the same
+// order: IEEE products, sums and negations lane by lane (the build has -ffp-contract=off, and
+// Highway's Mul/Add/Sub/Neg are never fused), so each lane's forces are the scalar path's bits.
+// The end forces are then added to the nodes lane by lane, in the model's element order.
+
+#include "ntn/element_pass.hpp"
+
+#if !defined(NTN_SIMD)
+
+namespace ntn {
+const char* element_pass_target() {
+  return "scalar";
+}
+}  // namespace ntn
+
+#else
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "element_pass.cpp"  // NOLINT: Highway re-includes this file per target
+#include <hwy/foreach_target.h>                // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace ntn::detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// At most one block per vector: on AVX-512 the block's 4 lanes take a 256-bit vector, on 128-bit
+// sets (SSE4, NEON) a block is two vectors.
+using D = hn::CappedTag<double, kBeamLanes>;
+using V = hn::Vec<D>;
+
+// rotate_to_local: l = R g, rows of R.
+HWY_INLINE void to_local(const V* R, const V* g, V* l) {
+  l[0] = hn::Add(hn::Add(hn::Mul(R[0], g[0]), hn::Mul(R[1], g[1])), hn::Mul(R[2], g[2]));
+  l[1] = hn::Add(hn::Add(hn::Mul(R[3], g[0]), hn::Mul(R[4], g[1])), hn::Mul(R[5], g[2]));
+  l[2] = hn::Add(hn::Add(hn::Mul(R[6], g[0]), hn::Mul(R[7], g[1])), hn::Mul(R[8], g[2]));
+}
+
+// rotate_to_global: g = R^T l.
+HWY_INLINE void to_global(const V* R, const V* l, V* g) {
+  g[0] = hn::Add(hn::Add(hn::Mul(R[0], l[0]), hn::Mul(R[3], l[1])), hn::Mul(R[6], l[2]));
+  g[1] = hn::Add(hn::Add(hn::Mul(R[1], l[0]), hn::Mul(R[4], l[1])), hn::Mul(R[7], l[2]));
+  g[2] = hn::Add(hn::Add(hn::Mul(R[2], l[0]), hn::Mul(R[5], l[1])), hn::Mul(R[8], l[2]));
+}
+
+// beam_force from the global displacements ug [u_i, theta_i, u_j, theta_j] (one vector per DOF,
+// lanes [first, first + Lanes) of the block) to the global end forces g, in the same order.
+HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug, V* g) {
+  const D d;
+  V R[9];
+  for (std::size_t k = 0; k < 9; ++k)
+    R[k] = hn::LoadU(d, blk.rotation[k].data() + first);
+  V dl[12];  // beam_local_displacements
+  to_local(R, ug, dl), to_local(R, ug + 3, dl + 3), to_local(R, ug + 6, dl + 6);
+  to_local(R, ug + 9, dl + 9);
+
+  // beam_local_force
+  V f[12];
+  const V n = hn::Mul(hn::LoadU(d, blk.axial.data() + first), hn::Sub(dl[6], dl[0]));
+  const V t = hn::Mul(hn::LoadU(d, blk.torsion.data() + first), hn::Sub(dl[9], dl[3]));
+  f[0] = hn::Neg(n), f[6] = n, f[3] = hn::Neg(t), f[9] = t;
+  const V p0 = hn::LoadU(d, blk.xy[0].data() + first), p1 = hn::LoadU(d, blk.xy[1].data() + first);
+  const V p2 = hn::LoadU(d, blk.xy[2].data() + first), p3 = hn::LoadU(d, blk.xy[3].data() + first);
+  const V dv = hn::Sub(dl[1], dl[7]);
+  f[1] = hn::Add(hn::Mul(p0, dv), hn::Mul(p1, hn::Add(dl[5], dl[11])));
+  f[7] = hn::Neg(f[1]);
+  f[5] = hn::Add(hn::Add(hn::Mul(p1, dv), hn::Mul(p2, dl[5])), hn::Mul(p3, dl[11]));
+  f[11] = hn::Add(hn::Add(hn::Mul(p1, dv), hn::Mul(p3, dl[5])), hn::Mul(p2, dl[11]));
+  const V q0 = hn::LoadU(d, blk.xz[0].data() + first), q1 = hn::LoadU(d, blk.xz[1].data() + first);
+  const V q2 = hn::LoadU(d, blk.xz[2].data() + first), q3 = hn::LoadU(d, blk.xz[3].data() + first);
+  const V dw = hn::Sub(dl[2], dl[8]);
+  f[2] = hn::Sub(hn::Mul(q0, dw), hn::Mul(q1, hn::Add(dl[4], dl[10])));
+  f[8] = hn::Neg(f[2]);
+  // -q1 * dw: the scalar code negates q1, then multiplies
+  const V mq1 = hn::Neg(q1);
+  f[4] = hn::Add(hn::Add(hn::Mul(mq1, dw), hn::Mul(q2, dl[4])), hn::Mul(q3, dl[10]));
+  f[10] = hn::Add(hn::Add(hn::Mul(mq1, dw), hn::Mul(q3, dl[4])), hn::Mul(q2, dl[10]));
+
+  // rotate_to_global, end by end
+  to_global(R, f, g), to_global(R, f + 3, g + 3), to_global(R, f + 6, g + 6);
+  to_global(R, f + 9, g + 9);
+}
+
+// Any vector width: the displacements gathered DOF by DOF, the end forces stored per lane and
+// added to the nodes by scalar sums.
+HWY_INLINE void block_gather(const BeamBlock& blk, std::size_t lanes, const double* u,
+                             const double* v, double beta, double* f) {
+  const D d;
+  const hn::Rebind<std::int32_t, D> d32;
+  const hn::Rebind<std::int64_t, D> d64;
+  alignas(64) double fi[6][kBeamLanes];
+  alignas(64) double fj[6][kBeamLanes];
+  for (std::size_t first = 0; first < kBeamLanes; first += hn::Lanes(d)) {
+    const auto ii = hn::PromoteTo(d64, hn::LoadU(d32, blk.dof_i.data() + first));
+    const auto jj = hn::PromoteTo(d64, hn::LoadU(d32, blk.dof_j.data() + first));
+    V ug[12];
+    for (int c = 0; c < 6; ++c) {
+      ug[c] = hn::GatherIndex(d, u + c, ii);
+      ug[6 + c] = hn::GatherIndex(d, u + c, jj);
+    }
+    if (beta != 0.0) {
+      const V b = hn::Set(d, beta);
+      for (int c = 0; c < 6; ++c) {
+        ug[c] = hn::Add(ug[c], hn::Mul(b, hn::GatherIndex(d, v + c, ii)));
+        ug[6 + c] = hn::Add(ug[6 + c], hn::Mul(b, hn::GatherIndex(d, v + c, jj)));
+      }
+    }
+    V g[12];
+    lane_forces(blk, first, ug, g);
+    for (std::size_t c = 0; c < 6; ++c) {
+      hn::StoreU(g[c], d, fi[c] + first);
+      hn::StoreU(g[6 + c], d, fj[c] + first);
+    }
+  }
+  for (std::size_t l = 0; l < lanes; ++l) {  // element order, as the scalar pass
+    const auto i = static_cast<std::size_t>(blk.dof_i[l]);
+    const auto j = static_cast<std::size_t>(blk.dof_j[l]);
+    for (std::size_t c = 0; c < 6; ++c) {
+      f[i + c] += fi[c][l];
+      f[j + c] += fj[c][l];
+    }
+  }
+}
+
+#if HWY_TARGET != HWY_SCALAR
+// 4 x 4 transpose: r[l] holds 4 values of lane l, c[k] value k of every lane (and back).
+HWY_INLINE void transpose4(const V* r, V* c) {
+  const D d;
+  const V t0 = hn::InterleaveLower(d, r[0], r[1]);  // r0[0] r1[0] r0[2] r1[2]
+  const V t1 = hn::InterleaveUpper(d, r[0], r[1]);  // r0[1] r1[1] r0[3] r1[3]
+  const V t2 = hn::InterleaveLower(d, r[2], r[3]);
+  const V t3 = hn::InterleaveUpper(d, r[2], r[3]);
+  c[0] = hn::ConcatLowerLower(d, t2, t0);
+  c[1] = hn::ConcatLowerLower(d, t3, t1);
+  c[2] = hn::ConcatUpperUpper(d, t2, t0);
+  c[3] = hn::ConcatUpperUpper(d, t3, t1);
+}
+
+// One node end's 6 DOFs of the 4 lanes, DOF by DOF: x[dof[l] + c] into out[c], lane l.
+HWY_INLINE void load_end(const double* x, const std::int32_t* dof, V* out) {
+  const D d;
+  const hn::Half<D> dh;
+  V r[4];
+  for (std::size_t l = 0; l < 4; ++l)
+    r[l] = hn::LoadU(d, x + dof[l]);  // DOFs 0..3
+  transpose4(r, out);
+  // DOFs 4, 5: lanes 0 and 2 in one vector, 1 and 3 in another, then interleaved
+  const V a = hn::Combine(d, hn::LoadU(dh, x + dof[2] + 4), hn::LoadU(dh, x + dof[0] + 4));
+  const V b = hn::Combine(d, hn::LoadU(dh, x + dof[3] + 4), hn::LoadU(dh, x + dof[1] + 4));
+  out[4] = hn::InterleaveLower(d, a, b);
+  out[5] = hn::InterleaveUpper(d, a, b);
+}
+
+// Vectors of 4 (AVX2, AVX-512): the displacements loaded node by node and transposed, the end
+// forces transposed back and added to the nodes 4 or 2 DOFs at a time. Lane l's two ends are
+// added before lane l + 1's, so every DOF sums its elements in the model's order.
+template <bool kBeta>
+HWY_INLINE void block_transpose(const BeamBlock& blk, std::size_t lanes, const double* u,
+                                const double* v, double beta, double* f) {
+  const D d;
+  V ug[12];
+  load_end(u, blk.dof_i.data(), ug);
+  load_end(u, blk.dof_j.data(), ug + 6);
+  if constexpr (kBeta) {
+    const V b = hn::Set(d, beta);
+    V vg[12];
+    load_end(v, blk.dof_i.data(), vg);
+    load_end(v, blk.dof_j.data(), vg + 6);
+    for (std::size_t c = 0; c < 12; ++c)
+      ug[c] = hn::Add(ug[c], hn::Mul(b, vg[c]));
+  }
+  V g[12];
+  lane_forces(blk, 0, ug, g);
+  if (lanes == kBeamLanes) {
+    // lane by lane, node i then node j: interleaving two calls keeps each lane's order
+    V gi[4], gj[4];
+    transpose4(g, gi);
+    transpose4(g + 6, gj);
+    const hn::Half<D> dh;
+    const V ai = hn::InterleaveLower(d, g[4], g[5]), bi = hn::InterleaveUpper(d, g[4], g[5]);
+    const V aj = hn::InterleaveLower(d, g[10], g[11]), bj = hn::InterleaveUpper(d, g[10], g[11]);
+    const hn::Vec<hn::Half<D> > hi[4] = {hn::LowerHalf(dh, ai), hn::LowerHalf(dh, bi),
+                                         hn::UpperHalf(dh, ai), hn::UpperHalf(dh, bi)};
+    const hn::Vec<hn::Half<D> > hj[4] = {hn::LowerHalf(dh, aj), hn::LowerHalf(dh, bj),
+                                         hn::UpperHalf(dh, aj), hn::UpperHalf(dh, bj)};
+    for (std::size_t l = 0; l < 4; ++l) {
+      double* p = f + blk.dof_i[l];
+      hn::StoreU(hn::Add(hn::LoadU(d, p), gi[l]), d, p);
+      hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi[l]), dh, p + 4);
+      double* q = f + blk.dof_j[l];
+      hn::StoreU(hn::Add(hn::LoadU(d, q), gj[l]), d, q);
+      hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj[l]), dh, q + 4);
+    }
+  } else {
+    alignas(64) double fi[6][kBeamLanes];
+    alignas(64) double fj[6][kBeamLanes];
+    for (std::size_t c = 0; c < 6; ++c) {
+      hn::Store(g[c], d, fi[c]);
+      hn::Store(g[6 + c], d, fj[c]);
+    }
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const auto i = static_cast<std::size_t>(blk.dof_i[l]);
+      const auto j = static_cast<std::size_t>(blk.dof_j[l]);
+      for (std::size_t c = 0; c < 6; ++c) {
+        f[i + c] += fi[c][l];
+        f[j + c] += fj[c][l];
+      }
+    }
+  }
+}
+
+#endif  // HWY_TARGET != HWY_SCALAR
+
+void ElementForces(const BeamBlock* blocks, std::size_t elements, const double* u, const double* v,
+                   double beta, double* f) {
+  const std::size_t num_blocks = beam_blocks(elements);
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
+    for (std::size_t b = 0; b < num_blocks; ++b) {
+      const std::size_t lanes = b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes;
+      if (beta != 0.0) {
+        block_transpose<true>(blocks[b], lanes, u, v, beta, f);
+      } else {
+        block_transpose<false>(blocks[b], lanes, u, v, beta, f);
+      }
+    }
+    return;
+  }
+#endif
+  for (std::size_t b = 0; b < num_blocks; ++b) {
+    const std::size_t lanes = b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes;
+    block_gather(blocks[b], lanes, u, v, beta, f);
+  }
+}
+
+std::int64_t Target() {
+  return HWY_TARGET;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ntn::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace ntn {
+namespace detail {
+
+HWY_EXPORT(ElementForces);
+HWY_EXPORT(Target);
+
+void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
+                         const double* v, double beta, double* f) {
+  HWY_DYNAMIC_DISPATCH(ElementForces)(blocks, elements, u, v, beta, f);
+}
+
+}  // namespace detail
+
+const char* element_pass_target() {
+  return hwy::TargetName(HWY_DYNAMIC_DISPATCH(detail::Target)());
+}
+
+}  // namespace ntn
+#endif  // HWY_ONCE
+
+#endif  // NTN_SIMD

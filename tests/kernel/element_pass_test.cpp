@@ -1,0 +1,234 @@
+// The element pass's two paths (element_pass.hpp, issue 17): the SIMD path gives the scalar
+// reference's bits on every instruction set this CPU has, for any element count (partial last
+// blocks), shared nodes (the sums' order), stiffness-proportional damping, and exact and negative
+// zeros (the sign of zero is part of the bits); and both give beam_force()'s forces element by
+// element. Then whole runs: the same states step after step.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ntn/element_pass.hpp"
+#include "ntn/integrator.hpp"
+#include "support/frames.hpp"
+#include "support/init_model.hpp"
+
+#if defined(NTN_SIMD)
+#include <hwy/highway.h>
+#include <hwy/targets.h>
+#endif
+
+namespace {
+
+using ntn::BeamBlock;
+using ntn::BeamData;
+
+// A random element set: rotations with exact zeros and -0.0 mixed in (axis-aligned members have
+// them), stiffness across orders of magnitude, nodes drawn from a few so that elements share them.
+struct Elements {
+  std::vector<BeamData> beams;
+  std::vector<BeamBlock> blocks;
+  std::vector<double> u, v;
+};
+
+double pick(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> x(-1.0, 1.0);
+  switch (rng() % 8) {
+    case 0:
+      return 0.0;
+    case 1:
+      return -0.0;
+    case 2:
+      return 1.0;
+    default:
+      return x(rng);
+  }
+}
+
+Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> mag(3.0, 9.0);
+  Elements e;
+  for (std::size_t k = 0; k < count; ++k) {
+    BeamData b;
+    b.node_i = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(nodes));
+    do {
+      b.node_j = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(nodes));
+    } while (b.node_j == b.node_i);
+    for (double& r : b.rotation)
+      r = pick(rng);
+    auto stiff = [&] { return std::pow(10.0, mag(rng)); };
+    b.k.axial = stiff(), b.k.torsion = stiff();
+    for (std::size_t c = 0; c < 4; ++c)
+      b.k.xy[c] = stiff(), b.k.xz[c] = stiff();
+    e.beams.push_back(b);
+  }
+  e.blocks.resize(ntn::beam_blocks(count));
+  for (std::size_t k = 0; k < count; ++k)
+    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], k % ntn::kBeamLanes, e.beams[k]);
+  const auto dofs = static_cast<std::size_t>(ntn::kDofsPerNode * nodes);
+  e.u.resize(dofs), e.v.resize(dofs);
+  for (std::size_t j = 0; j < dofs; ++j)
+    e.u[j] = 1e-3 * pick(rng), e.v[j] = pick(rng);
+  return e;
+}
+
+// f starts at `f0`: the pass adds to it (the kernel's starts at +0.0, which turns every -0.0 sum
+// into +0.0; -0.0 keeps the signs visible).
+std::vector<double> forces(const Elements& e, ntn::ElementPass path, double beta, double f0 = 0.0) {
+  std::vector<double> f(e.u.size(), f0);
+  ntn::element_forces(path, e.blocks.data(), e.beams.size(), e.u.data(), e.v.data(), beta,
+                      f.data());
+  return f;
+}
+
+// beam_force() on the BeamData themselves, element by element (the kernel's pass before blocks).
+std::vector<double> reference(const Elements& e, double beta) {
+  std::vector<double> f(e.u.size(), 0.0);
+  for (const BeamData& b : e.beams) {
+    const auto i = static_cast<std::size_t>(6 * b.node_i),
+               j = static_cast<std::size_t>(6 * b.node_j);
+    double ui[6], uj[6], fi[6], fj[6];
+    for (std::size_t d = 0; d < 6; ++d) {
+      ui[d] = beta != 0.0 ? e.u[i + d] + beta * e.v[i + d] : e.u[i + d];
+      uj[d] = beta != 0.0 ? e.u[j + d] + beta * e.v[j + d] : e.u[j + d];
+    }
+    ntn::beam_force(b, ui, uj, fi, fj);
+    for (std::size_t d = 0; d < 6; ++d)
+      f[i + d] += fi[d], f[j + d] += fj[d];
+  }
+  return f;
+}
+
+// Bit for bit, the sign of zero included (== would call -0.0 and 0.0 equal).
+::testing::AssertionResult same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    if (std::bit_cast<std::uint64_t>(a[j]) != std::bit_cast<std::uint64_t>(b[j])) {
+      return ::testing::AssertionFailure() << "DOF " << j << ": " << a[j] << " vs " << b[j];
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+constexpr std::size_t kCounts[] = {1, 2, 3, 4, 5, 7, 8, 9, 63, 64, 65, 400};
+
+TEST(ElementPass, ScalarPathIsBeamForceInOrder) {
+  for (const std::size_t n : kCounts) {
+    const Elements e = random_elements(n, 6, 100 + n);
+    for (const double beta : {0.0, 2e-3}) {
+      EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kScalar, beta), reference(e, beta)))
+          << n << " elements, beta " << beta;
+    }
+  }
+}
+
+TEST(ElementPass, ZerosKeepTheirSign) {
+  // Displacements +-0 and forces summed onto -0.0: every product is +-0, and each sum's sign
+  // depends on the operations and their order.
+  // Five elements on their own nodes, rotations the identity with -0.0 off the diagonal (a
+  // product with +-0 keeps a sign), displacements -0.0.
+  Elements e = random_elements(5, 10, 7);
+  for (std::size_t k = 0; k < e.beams.size(); ++k) {
+    e.beams[k].node_i = static_cast<std::int32_t>(2 * k);
+    e.beams[k].node_j = static_cast<std::int32_t>(2 * k + 1);
+    e.beams[k].rotation = {1.0, -0.0, -0.0, -0.0, 1.0, -0.0, -0.0, -0.0, 1.0};
+    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], k % ntn::kBeamLanes, e.beams[k]);
+  }
+  for (double& x : e.u)
+    x = -0.0;
+  const std::vector<double> f = forces(e, ntn::ElementPass::kScalar, 0.0, -0.0);
+  int negative = 0, positive = 0;
+  for (double x : f)
+    (std::signbit(x) ? negative : positive) += 1;
+  ASSERT_GT(negative, 0) << "the case must have both signs of zero to mean anything";
+  ASSERT_GT(positive, 0);
+  EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kSimd, 0.0, -0.0), f));
+}
+
+#if defined(NTN_SIMD)
+
+// Every instruction set this CPU runs that Highway compiled the pass for (the dispatch picks the
+// widest; the others are what other machines get): each gives the scalar bits.
+std::vector<std::int64_t> targets_here() {
+  std::vector<std::int64_t> out;
+  const std::int64_t here = hwy::SupportedTargets() & HWY_TARGETS;
+  for (std::int64_t t = 1; t != 0 && t <= here; t <<= 1) {
+    if ((here & t) != 0) out.push_back(t);
+  }
+  return out;
+}
+
+class EveryTarget : public ::testing::Test {
+ protected:
+  void TearDown() override {
+    hwy::SetSupportedTargetsForTest(0);  // back to what the CPU has
+    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+  }
+};
+
+TEST_F(EveryTarget, SimdPathGivesTheScalarBits) {
+  const std::vector<std::int64_t> targets = targets_here();
+  ASSERT_FALSE(targets.empty());
+  for (const std::int64_t t : targets) {
+    hwy::SetSupportedTargetsForTest(t);
+    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+    ASSERT_STREQ(ntn::element_pass_target(), hwy::TargetName(t)) << "the dispatch must take it";
+    for (const std::size_t n : kCounts) {
+      const Elements e = random_elements(n, n < 8 ? 3 : 40, n);
+      for (const double beta : {0.0, 2e-3}) {
+        EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kSimd, beta),
+                              forces(e, ntn::ElementPass::kScalar, beta)))
+            << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
+      }
+    }
+  }
+}
+
+TEST(ElementPass, DispatchTakesAVectorSetWhereTheCpuHasOne) {
+  const std::string name = ntn::element_pass_target();
+  RecordProperty("element_pass", name);
+#if HWY_ARCH_X86_64
+  // x86-64 has SSE2 at least: Highway's 128-bit or wider sets, never the scalar fallback
+  EXPECT_NE(name, "SCALAR");
+  EXPECT_NE(name, "EMU128");
+#endif
+}
+
+#endif  // NTN_SIMD
+
+// The feature frame (every load and channel kind) with Rayleigh damping beta K: runs by the two
+// paths have the same states at every step.
+TEST(ElementPass, RunsHaveTheSameStatesStepByStep) {
+  constexpr auto S = ntn_test::kFeatureSizes;
+  static ntn_test::Sim<S> a, b;
+  for (const double beta : {0.0, 1e-4}) {
+    ASSERT_TRUE(ntn_test::feature_frame(a.spec));
+    a.spec.settings.beta = beta;
+    a.spec.settings.dt = 0.5 * ntn::stable_time_step(ntn::view(a.spec)).dt_stable;
+    ASSERT_TRUE(ntn_test::init_model(a.spec, a.model).ok());
+    ASSERT_TRUE(ntn_test::init_model(a.spec, b.model).ok());
+    a.model.element_pass = ntn::ElementPass::kSimd;
+    b.model.element_pass = ntn::ElementPass::kScalar;
+    ntn::initial_state(a.model, a.state), ntn::initial_state(b.model, b.state);
+    std::array<double, S.inputs> in{};
+    (void)ntn::start(a.model, a.state, a.scratch, in);
+    (void)ntn::start(b.model, b.state, b.scratch, in);
+    for (long n = 0; n < 3000; ++n) {
+      for (std::size_t c = 0; c < S.inputs; ++c)
+        in[c] = ntn_test::input_sample(static_cast<int>(c), n);
+      (void)ntn::step(a.model, a.state, a.scratch, in);
+      (void)ntn::step(b.model, b.state, b.scratch, in);
+      ASSERT_EQ(std::memcmp(a.state.u.data(), b.state.u.data(), sizeof(a.state.u)), 0)
+          << "step " << n << ", beta " << beta;
+      ASSERT_EQ(std::memcmp(a.state.v.data(), b.state.v.data(), sizeof(a.state.v)), 0);
+    }
+  }
+}
+
+}  // namespace
