@@ -30,6 +30,7 @@
 #include "ntn/hil/sampling.hpp"
 #include "ntn/hil/schedule.hpp"
 #include "ntn/hil/udp.hpp"
+#include "ntn/hil/worker_team.hpp"
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
 #include "record.hpp"
@@ -45,7 +46,8 @@ ntn::Model<kS> g_model;
 ntn::InitWorkspace<kS> g_init_work;  // what init() works in (static: no heap, little stack)
 ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
-ntn::State<kS> g_checkpoint;  // the end of the last good frame (the loop's safe state)
+ntn::State<kS> g_checkpoint;    // the end of the last good frame (the loop's safe state)
+ntn::TeamWork<kS> g_team_work;  // the multi-core step's partition and end forces (--threads)
 
 // SIGINT / SIGTERM: the handler only records the signal; the loop ends after the frame it is in
 // (LoopConfig::stop), and the program flushes the CSV, the log and the JSON and says so.
@@ -373,7 +375,7 @@ int hil_main(int argc, char** argv) {
   std::string clock_name = "real", out_path, json_path, log_path, replay_path, sampling_name;
   double duration = -1, first_wait_s = 10;
   std::int64_t frames = -1;
-  int listen_port = -1, reply_port = 0, cpu = -1;
+  int listen_port = -1, reply_port = 0, cpu = -1, threads = 1;
   bool interpolate = false, fifo = false, mlock = false, quiet = false;
   run->add_option("-i,--input", input_args, "NAME=FILE: feed an input from a record (AT2, CSV)");
   run->add_option("--listen", listen_port, "take inputs as UDP packets on 127.0.0.1:PORT")
@@ -410,6 +412,11 @@ int hil_main(int argc, char** argv) {
   run->add_flag("--mlock", mlock, "mlockall (falls back with a warning)");
   run->add_option("--cpu", cpu, "pin to this CPU (falls back with a warning)")
       ->check(ntn::cli::Integer(0, std::numeric_limits<int>::max()));
+  run->add_option("--threads", threads,
+                  "workers of the multi-core step, made before the loop (1 = the loop's thread "
+                  "alone; with --cpu C, worker k is pinned to CPU C + k): the same bits for any "
+                  "number")
+      ->check(ntn::cli::Integer(1, ntn::kMaxTeam));
   run->add_flag("-q,--quiet", quiet, "print only warnings, errors and the output hash");
   replay->add_option("log", replay_path, "log written by run --record")->required();
   try {
@@ -613,6 +620,13 @@ int hil_main(int argc, char** argv) {
     for (const std::string& w : ntn::hil::apply_real_time({fifo, 80, mlock, cpu}))
       std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
+  // The multi-core step's workers, made (and pinned) before the loop, and its partition.
+  ntn::hil::WorkerTeam workers({threads, virtual_clock ? -1 : cpu});
+  for (const std::string& w : workers.warnings())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const ntn::Team team = workers.team();
+  const bool with_team = threads > 1 && ntn::prepare_team(g_model, threads, g_team_work);
+  const ntn::Team* team_ptr = with_team ? &team : nullptr;
   ntn::hil::FrameTimes times;
   times.reserve(std::min(frames, kTimedFrames));
   // The port is bound only now, after every allocation, mlockall and the scheduler change: a
@@ -642,7 +656,7 @@ int hil_main(int argc, char** argv) {
       source.first_wait_ns = static_cast<std::int64_t>(first_wait_s * 1e9);
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
                                   log_path.empty() ? nullptr : &recorder, config, alarms, times,
-                                  &g_checkpoint);
+                                  &g_checkpoint, team_ptr, &g_team_work);
       udp_timeouts = source.timeouts;
       first_frame = source.first_frame;
       first_waited_ns = source.waited_ns;
@@ -650,7 +664,7 @@ int hil_main(int argc, char** argv) {
       ntn::hil::RecordSource source(records, gate, period, g_model.dt);
       result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source, sink,
                                   log_path.empty() ? nullptr : &recorder, config, alarms, times,
-                                  &g_checkpoint);
+                                  &g_checkpoint, team_ptr, &g_team_work);
     }
   };
   if (virtual_clock) {

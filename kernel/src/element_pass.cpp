@@ -84,15 +84,13 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug
   to_global(R, f + 9, g + 9);
 }
 
-// Any vector width: the displacements gathered DOF by DOF, the end forces stored per lane and
-// added to the nodes by scalar sums.
-HWY_INLINE void block_gather(const BeamBlock& blk, std::size_t lanes, const double* u,
-                             const double* v, double beta, double* f) {
+// Any vector width: the displacements gathered DOF by DOF, the end forces stored lane by lane
+// into fi, fj [DOF][lane].
+HWY_INLINE void block_gather(const BeamBlock& blk, const double* u, const double* v, double beta,
+                             double (*fi)[kBeamLanes], double (*fj)[kBeamLanes]) {
   const D d;
   const hn::Rebind<std::int32_t, D> d32;
   const hn::Rebind<std::int64_t, D> d64;
-  alignas(64) double fi[6][kBeamLanes];
-  alignas(64) double fj[6][kBeamLanes];
   for (std::size_t first = 0; first < kBeamLanes; first += hn::Lanes(d)) {
     const auto ii = hn::PromoteTo(d64, hn::LoadU(d32, blk.dof_i.data() + first));
     const auto jj = hn::PromoteTo(d64, hn::LoadU(d32, blk.dof_j.data() + first));
@@ -115,12 +113,28 @@ HWY_INLINE void block_gather(const BeamBlock& blk, std::size_t lanes, const doub
       hn::StoreU(g[6 + c], d, fj[c] + first);
     }
   }
+}
+
+// The first `lanes` lanes' end forces fi, fj [DOF][lane] added to the nodes, element by element.
+HWY_INLINE void add_lanes(const BeamBlock& blk, std::size_t lanes, const double (*fi)[kBeamLanes],
+                          const double (*fj)[kBeamLanes], double* f) {
   for (std::size_t l = 0; l < lanes; ++l) {  // element order, as the scalar pass
     const auto i = static_cast<std::size_t>(blk.dof_i[l]);
     const auto j = static_cast<std::size_t>(blk.dof_j[l]);
     for (std::size_t c = 0; c < 6; ++c) {
       f[i + c] += fi[c][l];
       f[j + c] += fj[c][l];
+    }
+  }
+}
+
+// ... or stored element by element: fe[12 l + c], node i's DOFs c < 6, then node j's.
+HWY_INLINE void store_lanes(const double (*fi)[kBeamLanes], const double (*fj)[kBeamLanes],
+                            double* fe) {
+  for (std::size_t l = 0; l < kBeamLanes; ++l) {
+    for (std::size_t c = 0; c < 6; ++c) {
+      fe[12 * l + c] = fi[c][l];
+      fe[12 * l + 6 + c] = fj[c][l];
     }
   }
 }
@@ -154,12 +168,11 @@ HWY_INLINE void load_end(const double* x, const std::int32_t* dof, V* out) {
   out[5] = hn::InterleaveUpper(d, a, b);
 }
 
-// Vectors of 4 (AVX2, AVX-512): the displacements loaded node by node and transposed, the end
-// forces transposed back and added to the nodes 4 or 2 DOFs at a time. Lane l's two ends are
-// added before lane l + 1's, so every DOF sums its elements in the model's order.
+// Vectors of 4 (AVX2, AVX-512): the displacements loaded node by node and transposed into lanes,
+// then the end forces g [DOF] of the 4 lanes.
 template <bool kBeta>
-HWY_INLINE void block_transpose(const BeamBlock& blk, std::size_t lanes, const double* u,
-                                const double* v, double beta, double* f) {
+HWY_INLINE void block_transpose(const BeamBlock& blk, const double* u, const double* v, double beta,
+                                V* g) {
   const D d;
   V ug[12];
   load_end(u, blk.dof_i.data(), ug);
@@ -172,43 +185,85 @@ HWY_INLINE void block_transpose(const BeamBlock& blk, std::size_t lanes, const d
     for (std::size_t c = 0; c < 12; ++c)
       ug[c] = hn::Add(ug[c], hn::Mul(b, vg[c]));
   }
-  V g[12];
   lane_forces(blk, 0, ug, g);
-  if (lanes == kBeamLanes) {
-    // lane by lane, node i then node j: interleaving two calls keeps each lane's order
-    V gi[4], gj[4];
-    transpose4(g, gi);
-    transpose4(g + 6, gj);
-    const hn::Half<D> dh;
-    const V ai = hn::InterleaveLower(d, g[4], g[5]), bi = hn::InterleaveUpper(d, g[4], g[5]);
-    const V aj = hn::InterleaveLower(d, g[10], g[11]), bj = hn::InterleaveUpper(d, g[10], g[11]);
-    const hn::Vec<hn::Half<D> > hi[4] = {hn::LowerHalf(dh, ai), hn::LowerHalf(dh, bi),
-                                         hn::UpperHalf(dh, ai), hn::UpperHalf(dh, bi)};
-    const hn::Vec<hn::Half<D> > hj[4] = {hn::LowerHalf(dh, aj), hn::LowerHalf(dh, bj),
-                                         hn::UpperHalf(dh, aj), hn::UpperHalf(dh, bj)};
-    for (std::size_t l = 0; l < 4; ++l) {
-      double* p = f + blk.dof_i[l];
-      hn::StoreU(hn::Add(hn::LoadU(d, p), gi[l]), d, p);
-      hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi[l]), dh, p + 4);
-      double* q = f + blk.dof_j[l];
-      hn::StoreU(hn::Add(hn::LoadU(d, q), gj[l]), d, q);
-      hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj[l]), dh, q + 4);
-    }
-  } else {
+}
+
+// The end forces g [DOF] of one node end transposed back, lane by lane: DOFs 0..3 in r[l], DOFs
+// 4, 5 in h[l].
+HWY_INLINE void rows(const V* g, V* r, hn::Vec<hn::Half<D> >* h) {
+  const D d;
+  const hn::Half<D> dh;
+  transpose4(g, r);
+  const V a = hn::InterleaveLower(d, g[4], g[5]), b = hn::InterleaveUpper(d, g[4], g[5]);
+  h[0] = hn::LowerHalf(dh, a), h[1] = hn::LowerHalf(dh, b);
+  h[2] = hn::UpperHalf(dh, a), h[3] = hn::UpperHalf(dh, b);
+}
+
+// A whole block's end forces added to the nodes 4 and 2 DOFs at a time. Lane l's two ends are
+// added before lane l + 1's, so every DOF sums its elements in the model's order.
+HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
+  const D d;
+  const hn::Half<D> dh;
+  V ri[4], rj[4];
+  hn::Vec<hn::Half<D> > hi[4], hj[4];
+  rows(g, ri, hi);
+  rows(g + 6, rj, hj);
+  for (std::size_t l = 0; l < 4; ++l) {
+    double* p = f + blk.dof_i[l];
+    hn::StoreU(hn::Add(hn::LoadU(d, p), ri[l]), d, p);
+    hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi[l]), dh, p + 4);
+    double* q = f + blk.dof_j[l];
+    hn::StoreU(hn::Add(hn::LoadU(d, q), rj[l]), d, q);
+    hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj[l]), dh, q + 4);
+  }
+}
+
+// ... or stored element by element: fe[12 l + c].
+HWY_INLINE void store_rows(const V* g, double* fe) {
+  const D d;
+  const hn::Half<D> dh;
+  V ri[4], rj[4];
+  hn::Vec<hn::Half<D> > hi[4], hj[4];
+  rows(g, ri, hi);
+  rows(g + 6, rj, hj);
+  for (std::size_t l = 0; l < 4; ++l) {
+    hn::StoreU(ri[l], d, fe + 12 * l);
+    hn::StoreU(hi[l], dh, fe + 12 * l + 4);
+    hn::StoreU(rj[l], d, fe + 12 * l + 6);
+    hn::StoreU(hj[l], dh, fe + 12 * l + 10);
+  }
+}
+
+template <bool kBeta>
+HWY_INLINE void forces_transpose(const BeamBlock* blocks, std::size_t elements, const double* u,
+                                 const double* v, double beta, double* f) {
+  const D d;
+  const std::size_t full = elements / kBeamLanes;
+  for (std::size_t b = 0; b < full; ++b) {
+    V g[12];
+    block_transpose<kBeta>(blocks[b], u, v, beta, g);
+    add_rows(blocks[b], g, f);
+  }
+  if (const std::size_t lanes = elements - full * kBeamLanes; lanes > 0) {
+    V g[12];
+    block_transpose<kBeta>(blocks[full], u, v, beta, g);
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
     for (std::size_t c = 0; c < 6; ++c) {
       hn::Store(g[c], d, fi[c]);
       hn::Store(g[6 + c], d, fj[c]);
     }
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const auto i = static_cast<std::size_t>(blk.dof_i[l]);
-      const auto j = static_cast<std::size_t>(blk.dof_j[l]);
-      for (std::size_t c = 0; c < 6; ++c) {
-        f[i + c] += fi[c][l];
-        f[j + c] += fj[c][l];
-      }
-    }
+    add_lanes(blocks[full], lanes, fi, fj, f);
+  }
+}
+
+template <bool kBeta>
+HWY_INLINE void end_forces_transpose(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                                     const double* u, const double* v, double beta, double* fe) {
+  for (std::size_t b = first; b < last; ++b) {
+    V g[12];
+    block_transpose<kBeta>(blocks[b], u, v, beta, g);
+    store_rows(g, fe + 12 * kBeamLanes * b);
   }
 }
 
@@ -216,23 +271,42 @@ HWY_INLINE void block_transpose(const BeamBlock& blk, std::size_t lanes, const d
 
 void ElementForces(const BeamBlock* blocks, std::size_t elements, const double* u, const double* v,
                    double beta, double* f) {
-  const std::size_t num_blocks = beam_blocks(elements);
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
-    for (std::size_t b = 0; b < num_blocks; ++b) {
-      const std::size_t lanes = b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes;
-      if (beta != 0.0) {
-        block_transpose<true>(blocks[b], lanes, u, v, beta, f);
-      } else {
-        block_transpose<false>(blocks[b], lanes, u, v, beta, f);
-      }
+    if (beta != 0.0) {
+      forces_transpose<true>(blocks, elements, u, v, beta, f);
+    } else {
+      forces_transpose<false>(blocks, elements, u, v, beta, f);
     }
     return;
   }
 #endif
+  const std::size_t num_blocks = beam_blocks(elements);
   for (std::size_t b = 0; b < num_blocks; ++b) {
-    const std::size_t lanes = b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes;
-    block_gather(blocks[b], lanes, u, v, beta, f);
+    alignas(64) double fi[6][kBeamLanes];
+    alignas(64) double fj[6][kBeamLanes];
+    block_gather(blocks[b], u, v, beta, fi, fj);
+    add_lanes(blocks[b], b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes, fi, fj, f);
+  }
+}
+
+void ElementEndForces(const BeamBlock* blocks, std::size_t first, std::size_t last, const double* u,
+                      const double* v, double beta, double* fe) {
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
+    if (beta != 0.0) {
+      end_forces_transpose<true>(blocks, first, last, u, v, beta, fe);
+    } else {
+      end_forces_transpose<false>(blocks, first, last, u, v, beta, fe);
+    }
+    return;
+  }
+#endif
+  for (std::size_t b = first; b < last; ++b) {
+    alignas(64) double fi[6][kBeamLanes];
+    alignas(64) double fj[6][kBeamLanes];
+    block_gather(blocks[b], u, v, beta, fi, fj);
+    store_lanes(fi, fj, fe + 12 * kBeamLanes * b);
   }
 }
 
@@ -249,11 +323,17 @@ namespace ntn {
 namespace detail {
 
 HWY_EXPORT(ElementForces);
+HWY_EXPORT(ElementEndForces);
 HWY_EXPORT(Target);
 
 void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
                          const double* v, double beta, double* f) {
   HWY_DYNAMIC_DISPATCH(ElementForces)(blocks, elements, u, v, beta, f);
+}
+
+void element_end_forces_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                             const double* u, const double* v, double beta, double* fe) {
+  HWY_DYNAMIC_DISPATCH(ElementEndForces)(blocks, first, last, u, v, beta, fe);
 }
 
 }  // namespace detail

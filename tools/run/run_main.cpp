@@ -30,6 +30,7 @@
 #include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/hil/sampling.hpp"
+#include "ntn/hil/worker_team.hpp"
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
 #include "record.hpp"
@@ -45,6 +46,7 @@ ntn::Model<kS> g_model;
 ntn::InitWorkspace<kS> g_init_work;  // what init() works in (static: no heap, little stack)
 ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
+ntn::TeamWork<kS> g_team_work;  // the multi-core step's partition and end forces (--threads)
 
 struct Peak {
   double value = 0;  // largest |value|
@@ -110,6 +112,7 @@ int main(int argc, char** argv) {
   bool quiet = false;
   bool flags = false;
   std::string element_pass = "simd";
+  int threads = 1;
   app.add_option("-i,--input", input_args,
                  "NAME=FILE: feed input channel NAME from a record (AT2 or CSV; "
                  "FILE:COLUMN picks a CSV column; values are converted to the input's unit)");
@@ -130,6 +133,10 @@ int main(int argc, char** argv) {
                  "simd (default: the widest vectors this CPU has) or scalar (the reference): the "
                  "same bits either way")
       ->check(CLI::IsMember({"simd", "scalar"}));
+  app.add_option("--threads", threads,
+                 "workers of the multi-core step (1 = the caller's thread alone): the same bits "
+                 "for any number")
+      ->check(ntn::cli::Integer(1, ntn::kMaxTeam));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -263,9 +270,14 @@ int main(int argc, char** argv) {
   ntn::hil::VirtualClock clock;
   ntn::hil::FrameTimes times;  // not kept: no latency on the virtual clock
 
+  // The workers are made before the run (and the partition built): none is made in the loop.
+  ntn::hil::WorkerTeam workers({threads, -1});
+  const ntn::Team team = workers.team();
+  const bool with_team = threads > 1 && ntn::prepare_team(g_model, threads, g_team_work);
   const auto t0 = std::chrono::steady_clock::now();
-  const ntn::hil::LoopResult result = ntn::hil::run_loop(g_model, g_state, g_scratch, clock, source,
-                                                         sink, nullptr, config, alarms, times);
+  const ntn::hil::LoopResult result = ntn::hil::run_loop(
+      g_model, g_state, g_scratch, clock, source, sink, nullptr, config, alarms, times,
+      static_cast<ntn::State<kS>*>(nullptr), with_team ? &team : nullptr, &g_team_work);
   // At least 1 ns: a run of one step on a coarse clock must not print an infinite speed.
   const double wall =
       std::max(1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

@@ -100,10 +100,37 @@ inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements,
   }
 }
 
+// The scalar reference of the multi-core pass (team.hpp): the end forces of the elements of blocks
+// [first, last), stored element by element, fe[12 e + c] (node i's DOFs c < 6, then node j's),
+// for whole blocks (the lanes past the model's last element are computed and never read).
+inline void element_end_forces_scalar(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                                      const double* u, const double* v, double beta, double* fe) {
+  for (std::size_t e = first * kBeamLanes; e < last * kBeamLanes; ++e) {
+    const BeamBlock& blk = blocks[e / kBeamLanes];
+    const std::size_t l = e % kBeamLanes;
+    const BeamData b = lane(blk, l);
+    const auto i = static_cast<std::size_t>(blk.dof_i[l]);
+    const auto j = static_cast<std::size_t>(blk.dof_j[l]);
+    double* out = fe + 12 * e;
+    if (beta != 0.0) {
+      double ui[6], uj[6];
+      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+        ui[d] = u[i + d] + beta * v[i + d];
+        uj[d] = u[j + d] + beta * v[j + d];
+      }
+      beam_force(b, ui, uj, out, out + 6);
+    } else {
+      beam_force(b, &u[i], &u[j], out, out + 6);
+    }
+  }
+}
+
 #if defined(NTN_SIMD)
 // kernel/src/element_pass.cpp: the same, kBeamLanes elements at a time.
 void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
                          const double* v, double beta, double* f);
+void element_end_forces_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                             const double* u, const double* v, double beta, double* fe);
 #endif
 
 }  // namespace detail
@@ -124,6 +151,21 @@ inline void element_forces(ElementPass path, const BeamBlock* blocks, std::size_
   (void)path;
 #endif
   detail::element_forces_scalar(blocks, elements, u, v, beta, f);
+}
+
+// The end forces of blocks [first, last) into fe[12 e + c], by the chosen path.
+inline void element_end_forces(ElementPass path, const BeamBlock* blocks, std::size_t first,
+                               std::size_t last, const double* u, const double* v, double beta,
+                               double* fe) {
+#if defined(NTN_SIMD)
+  if (path == ElementPass::kSimd) {
+    detail::element_end_forces_simd(blocks, first, last, u, v, beta, fe);
+    return;
+  }
+#else
+  (void)path;
+#endif
+  detail::element_end_forces_scalar(blocks, first, last, u, v, beta, fe);
 }
 
 }  // namespace ntn

@@ -17,6 +17,7 @@
 #include "ntn/slip.hpp"
 #include "ntn/state.hpp"
 #include "ntn/status.hpp"
+#include "ntn/team.hpp"
 
 namespace ntn {
 
@@ -294,21 +295,117 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
   }
 }
 
-// v_{n+1/2} = v_{n-1/2} + dt a_n, u_{n+1} = u_n + dt v_{n+1/2} (S 5-7, constant dt).
-// Returns false when a velocity is non-finite.
+// v_{n+1/2} = v_{n-1/2} + dt a_n, u_{n+1} = u_n + dt v_{n+1/2} (S 5-7, constant dt) for DOFs
+// [first, last). Returns false when a velocity is non-finite.
 template <Sizes S>
-bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
+bool update_dofs(const Model<S>& m, State<S>& s, const Scratch<S>& w, std::size_t first,
+                 std::size_t last) {
   const double dt = m.dt;  // a local: stores to s.v, s.u may alias m.dt, which blocks vectorizing
   // The check is a select into a double, not `ok &= finite(v)`: GCC vectorizes no loop with a
   // bool reduction, and this is a pass over every DOF.
   double bad = 0;
-  for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
+  for (std::size_t j = first; j < last; ++j) {
     const double v = s.v[j] + dt * w.a[j];
     s.v[j] = v;
     s.u[j] += dt * v;
     bad = finite(v) ? bad : 1.0;
   }
   return bad == 0;
+}
+
+template <Sizes S>
+bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
+  return update_dofs(m, s, w, 0, Model<S>::kDofs);
+}
+
+// The team's phases (team.hpp): what one worker k does of the step.
+template <Sizes S>
+struct TeamStep {
+  const Model<S>* m;
+  State<S>* s;
+  Scratch<S>* w;
+  TeamWork<S>* t;
+};
+
+// A: the end forces of worker k's element blocks.
+template <Sizes S>
+void team_end_forces(void* arg, int k) {
+  const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
+  const auto first = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k)]);
+  const auto last = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k) + 1]);
+  element_end_forces(c.m->element_pass, c.m->beams.data(), first, last, c.s->u.data(),
+                     c.s->v.data(), c.m->beta, c.t->end_forces.data());
+}
+
+// B: F_n at worker k's nodes; without hinges their residual and accelerations too.
+template <Sizes S>
+void team_node_forces(void* arg, int k) {
+  const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
+  const auto first = static_cast<std::size_t>(c.t->node_split[static_cast<std::size_t>(k)]);
+  const auto last = static_cast<std::size_t>(c.t->node_split[static_cast<std::size_t>(k) + 1]);
+  for (std::size_t n = first; n < last; ++n)
+    gather_node(*c.t, n, c.w->f.data());
+  if constexpr (S.hinges == 0) {
+    residual_nodes(*c.m, *c.s, *c.w, c.m->inv_mass.data(), c.w->a.data(), first, last);
+  }
+}
+
+// C (no hinges): the update of worker k's DOFs.
+template <Sizes S>
+void team_update(void* arg, int k) {
+  const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
+  const auto n = static_cast<std::size_t>(k);
+  const auto first = static_cast<std::size_t>(kDofsPerNode * c.t->node_split[n]);
+  const auto last = static_cast<std::size_t>(kDofsPerNode * c.t->node_split[n + 1]);
+  c.t->bad[n] = update_dofs(*c.m, *c.s, *c.w, first, last) ? 0.0 : 1.0;
+}
+
+// The stages of step(): on the caller's thread alone (team == nullptr), or with the team's
+// phases in place of the element pass and, without hinges, of the residual and the update.
+template <Sizes S>
+[[nodiscard]] StepStatus step_on(const Model<S>& m, State<S>& s, Scratch<S>& w,
+                                 const std::array<double, S.inputs>& in, const Team* team,
+                                 TeamWork<S>* work) {
+  constexpr bool kTeamResidual = S.hinges == 0;  // phases B and C take the residual and update
+  // A team whose partition is for another size runs nothing: the step is the caller's alone (the
+  // same bits).
+  if (team != nullptr && (work == nullptr || team->size != work->size)) team = nullptr;
+  TeamStep<S> c{&m, &s, &w, work};
+  const bool accepted = accept_inputs(m, s, in);  // inputs: hold bad values (§8)
+  const double t = static_cast<double>(s.tick) * m.dt;
+  apply_loads(m, s, w, t);  // loads P_n: M g, -M iota a_g, nodal loads, inputs (§5)
+  if (team == nullptr) {
+    element_forces(m, s, w);  // element forces F_n = sum T^T K_L T u_n (+ beta v) (§4)
+  } else {
+    team->run(team->self, team_end_forces<S>, &c);
+    team->run(team->self, team_node_forces<S>, &c);
+  }
+  hinge_springs(m, s, w);  // hinge springs: F_n += B^T f_L (§7)
+  if (team != nullptr && kTeamResidual) {
+    residual_slots(m, s, w, m.inv_mass.data(), w.a.data());  // the rest of the residual stage
+  } else {
+    residual_stage(m, s, w);  // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
+  }
+  ntn_coupling(m, s, w);       // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
+  slip_normals(m, s, w);       // friction: the normal forces N at t_n (slip.hpp)
+  sample_outputs(m, s, w, t);  // outputs: the channels at t_n
+  bool finite = true;
+  if (team != nullptr && kTeamResidual) {
+    team->run(team->self, team_update<S>, &c);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
+    for (int k = 0; k < work->size; ++k)
+      finite = finite && work->bad[static_cast<std::size_t>(k)] == 0.0;
+  } else {
+    finite = update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
+  }
+  hinge_stops(m, s, w);   // stops: slip directions held or slid, rigid branches clamped
+  slip_outputs(m, s, w);  // the slip directions' forces at t_n and states into their channels
+  constraint_projection(m, s, w);  // constraint projection: S 27-37, §7.1
+  ++s.tick;
+  if (!finite) {
+    s.faults |= kFaultDiverged;
+    return StepStatus::kDiverged;
+  }
+  return accepted ? StepStatus::kOk : StepStatus::kInputHeld;
 }
 
 }  // namespace detail
@@ -360,25 +457,16 @@ template <Sizes S>
 template <Sizes S>
 [[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w,
                               const std::array<double, S.inputs>& in) {
-  const bool accepted = detail::accept_inputs(m, s, in);  // inputs: hold bad values (§8)
-  const double t = static_cast<double>(s.tick) * m.dt;
-  detail::apply_loads(m, s, w, t);     // loads P_n: M g, -M iota a_g, nodal loads, inputs (§5)
-  detail::element_forces(m, s, w);     // element forces F_n = sum T^T K_L T u_n (+ beta v) (§4)
-  detail::hinge_springs(m, s, w);      // hinge springs: F_n += B^T f_L (§7)
-  detail::residual_stage(m, s, w);     // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
-  detail::ntn_coupling(m, s, w);       // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
-  detail::slip_normals(m, s, w);       // friction: the normal forces N at t_n (slip.hpp)
-  detail::sample_outputs(m, s, w, t);  // outputs: the channels at t_n
-  const bool finite = detail::update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
-  detail::hinge_stops(m, s, w);  // stops: slip directions held or slid, rigid branches clamped
-  slip_outputs(m, s, w);  // the slip directions' forces at t_n and states into their channels
-  detail::constraint_projection(m, s, w);  // constraint projection: S 27-37, §7.1
-  ++s.tick;
-  if (!finite) {
-    s.faults |= kFaultDiverged;
-    return StepStatus::kDiverged;
-  }
-  return accepted ? StepStatus::kOk : StepStatus::kInputHeld;
+  return detail::step_on<S>(m, s, w, in, nullptr, nullptr);
+}
+
+// The same step with a team of workers (team.hpp): the same bits for any team size. `work` was
+// built by prepare_team() for this model and team.size workers.
+template <Sizes S>
+[[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w,
+                              const std::array<double, S.inputs>& in, const Team& team,
+                              TeamWork<S>& work) {
+  return detail::step_on<S>(m, s, w, in, &team, &work);
 }
 
 }  // namespace ntn

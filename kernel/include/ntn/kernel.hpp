@@ -16,4 +16,5 @@
 #include "ntn/residual.hpp"
 #include "ntn/state.hpp"
 #include "ntn/status.hpp"
+#include "ntn/team.hpp"
 #include "ntn/time_step.hpp"

@@ -26,17 +26,17 @@ double external_load(const Model<S>& m, const Scratch<S>& w, std::size_t j) {
 
 namespace detail {
 
-// R_n - C v_{n-1/2} = P_n - F_n - alpha M v_{n-1/2} (S 2-3) into out[j] for every DOF, times
-// scale[j] (or not: kScaled false), in one pass: P_n = m g_d on the fly (C = alpha M likewise:
-// the same products as Model::damping), then the load slots again with their whole P_n.
+// R_n - C v_{n-1/2} = P_n - F_n - alpha M v_{n-1/2} (S 2-3) into out[j] for the DOFs of nodes
+// [first, last), times scale[j] (or not: kScaled false): P_n = m g_d on the fly (C = alpha M
+// likewise: the same products as Model::damping). The load slots are residual_slots()'.
 template <Sizes S, bool kScaled = true>
-void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
-              double* out) {
+void residual_nodes(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
+                    double* out, std::size_t first, std::size_t last) {
   const double alpha = m.alpha;
   double g[kDofsPerNode];  // locals: the stores to `out` may alias the model and the scratch
   for (std::size_t d = 0; d < kDofsPerNode; ++d)
     g[d] = w.load_g[d];
-  for (std::size_t n = 0; n < Model<S>::kDofs; n += kDofsPerNode) {
+  for (std::size_t n = kDofsPerNode * first; n < kDofsPerNode * last; n += kDofsPerNode) {
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       const std::size_t j = n + d;
       const double r = (m.mass[j] * g[d] - w.f[j]) - (alpha * m.mass[j]) * s.v[j];
@@ -47,6 +47,13 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
       }
     }
   }
+}
+
+// The load slots' DOFs again, with their whole P_n (after residual_nodes() of every node).
+template <Sizes S, bool kScaled = true>
+void residual_slots(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
+                    double* out) {
+  const double alpha = m.alpha;
   for (int k = 0; k < m.num_slots; ++k) {
     const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
     const double r =
@@ -57,6 +64,14 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
       out[j] = r;
     }
   }
+}
+
+// R_n - C v_{n-1/2} into out[j] for every DOF (times scale[j] when kScaled), in one pass.
+template <Sizes S, bool kScaled = true>
+void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
+              double* out) {
+  residual_nodes<S, kScaled>(m, s, w, scale, out, 0, S.nodes);
+  residual_slots<S, kScaled>(m, s, w, scale, out);
 }
 
 // R_n - C v_{n-1/2} at the six DOFs of one node, as the outputs recompute it (with

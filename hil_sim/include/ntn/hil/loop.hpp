@@ -126,11 +126,14 @@ std::int64_t source_epoch_ns(const Source& source) {
 // `checkpoint`, when given, holds the state at the end of the last good frame (at the start
 // before frame 0); after a divergence `state` is set back to it, so the run can be inspected or
 // restarted from there. It is caller storage, as `state`: no heap, no large stack frame.
+// `team` and `team_work`, when given (prepare_team() for team->size workers), run every kernel
+// step with the team (the multi-core step, ntn/team.hpp): the same bits as without.
 // Nothing here allocates after the vectors in `times` were reserved.
 template <Sizes S, class Clock, class Source, class Sink>
 LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch, Clock& clock,
                     Source& source, Sink& sink, Recorder* recorder, const LoopConfig& config,
-                    std::span<Alarm> alarms, FrameTimes& times, State<S>* checkpoint = nullptr) {
+                    std::span<Alarm> alarms, FrameTimes& times, State<S>* checkpoint = nullptr,
+                    const Team* team = nullptr, TeamWork<S>* team_work = nullptr) {
   LoopResult result;
   result.kinetic_limit =
       config.kinetic_limit < 0 ? kinetic_energy_limit(model) : config.kinetic_limit;
@@ -186,7 +189,9 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
         } else {
           step_in = current;
         }
-        const StepStatus st = step(model, state, scratch, step_in);
+        const StepStatus st = team != nullptr && team_work != nullptr
+                                  ? step(model, state, scratch, step_in, *team, *team_work)
+                                  : step(model, state, scratch, step_in);
         if constexpr (requires { sink.after_step(state, scratch); }) {
           sink.after_step(state, scratch);
         }

@@ -1,0 +1,118 @@
+// The multi-core step (issue 17, item 4): step(m, s, w, in, team, work) does what step(m, s, w, in)
+// does, with the element pass and (in models without hinges) the residual and the update spread
+// over a team of workers that the caller made before the run (hil_sim's WorkerTeam: threads,
+// pinned where permitted). The kernel creates no thread and takes no lock: it hands the team a
+// job and a fixed partition.
+//
+// The same bits for any number of workers. The single-core pass adds each element's end forces
+// to its nodes in element order, starting from +0.0 (element_pass.hpp). The team's pass:
+//   A. each worker computes the end forces of its fixed range of element blocks and stores them
+//      element by element (TeamWork::end_forces): a function of u (and v) alone;
+//   B. each worker sums, for its fixed range of nodes, the stored end forces of every element at
+//      that node in element order (TeamWork::incidence, built in element order), starting from
+//      +0.0: the very sums of the single-core pass, operation for operation. In a model without
+//      hinges the residual and the accelerations of the same nodes follow (DOF by DOF, as
+//      residual() does them);
+//   C. (no hinges) each worker updates its DOFs' v and u (update(), DOF by DOF).
+// Between the phases the team's run() returns only when every worker has finished. Everything
+// else stays on the caller's thread, in the single-core order.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "ntn/element_pass.hpp"
+#include "ntn/model.hpp"
+
+namespace ntn {
+
+inline constexpr int kMaxTeam = 16;  // workers, the caller's thread included
+
+// A team of workers made by the caller. run(self, job, arg) calls job(arg, k) once for every
+// worker k = 0 .. size - 1 (k = 0 may be the caller's own thread) and returns when all have
+// returned. No allocation, no lock in run() (hil_sim's WorkerTeam: atomics).
+struct Team {
+  int size = 1;
+  void (*run)(void* self, void (*job)(void* arg, int worker), void* arg) = nullptr;
+  void* self = nullptr;
+};
+
+// What the team's step needs besides the model: the end forces of every element, the elements at
+// every node (in element order) and the fixed partition. Caller-owned (static), built once by
+// prepare_team().
+template <Sizes S>
+struct TeamWork {
+  static constexpr std::size_t kBlocks = beam_blocks(S.elements);
+  // fe[12 e + c]: element e's force on node i's DOF c (c < 6), then on node j's; whole blocks.
+  std::array<double, 12 * kBeamLanes * kBlocks> end_forces{};
+  // The elements at node n: incidence[node_start[n] .. node_start[n + 1]), each the offset
+  // 12 e + 6 end into end_forces, in element order.
+  std::array<std::int32_t, S.nodes + 1> node_start{};
+  std::array<std::int32_t, 2 * S.elements> incidence{};
+  // Worker k: element blocks [block_split[k], block_split[k + 1]), nodes [node_split[k], ...).
+  std::array<std::int32_t, kMaxTeam + 1> block_split{};
+  std::array<std::int32_t, kMaxTeam + 1> node_split{};
+  std::array<double, kMaxTeam> bad{};  // per worker: 1 when a velocity of its DOFs is not finite
+  int size = 0;                        // workers the partition is for
+};
+
+// Builds the incidence lists and the partition for a team of `size` workers (1..kMaxTeam):
+// element blocks and nodes in equal contiguous ranges. False for a size out of range.
+template <Sizes S>
+[[nodiscard]] bool prepare_team(const Model<S>& m, int size, TeamWork<S>& t) {
+  if (size < 1 || size > kMaxTeam) return false;
+  t.size = size;
+  t.node_start.fill(0);
+  for (std::size_t e = 0; e < S.elements; ++e) {
+    const BeamBlock& blk = m.beams[e / kBeamLanes];
+    const std::size_t l = e % kBeamLanes;
+    ++t.node_start[static_cast<std::size_t>(blk.dof_i[l] / kDofsPerNode) + 1];
+    ++t.node_start[static_cast<std::size_t>(blk.dof_j[l] / kDofsPerNode) + 1];
+  }
+  for (std::size_t n = 0; n < S.nodes; ++n)
+    t.node_start[n + 1] += t.node_start[n];  // node_start[n + 1]: the end of node n's list
+  // Filled from the back, elements last to first: each list ends up in element order, and
+  // node_start[n + 1] moves down to the start of node n's list (no second array).
+  for (std::size_t e = S.elements; e-- > 0;) {
+    const BeamBlock& blk = m.beams[e / kBeamLanes];
+    const std::size_t l = e % kBeamLanes;
+    const std::int32_t ends[2] = {blk.dof_i[l] / kDofsPerNode, blk.dof_j[l] / kDofsPerNode};
+    for (std::size_t end = 2; end-- > 0;) {
+      const auto n = static_cast<std::size_t>(ends[end]);
+      t.incidence[static_cast<std::size_t>(--t.node_start[n + 1])] =
+          static_cast<std::int32_t>(12 * e + 6 * end);
+    }
+  }
+  for (std::size_t n = 0; n < S.nodes; ++n)
+    t.node_start[n] = t.node_start[n + 1];
+  t.node_start[S.nodes] = static_cast<std::int32_t>(2 * S.elements);
+  const auto blocks = static_cast<std::int64_t>(TeamWork<S>::kBlocks);
+  const auto nodes = static_cast<std::int64_t>(S.nodes);
+  for (int k = 0; k <= size; ++k) {
+    t.block_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(blocks * k / size);
+    t.node_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(nodes * k / size);
+  }
+  return true;
+}
+
+namespace detail {
+
+// Node n's internal force F_n from the stored end forces, in element order from +0.0: the
+// single-core pass's sums.
+template <Sizes S>
+void gather_node(const TeamWork<S>& t, std::size_t n, double* f) {
+  double x[kDofsPerNode] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const auto first = static_cast<std::size_t>(t.node_start[n]);
+  const auto last = static_cast<std::size_t>(t.node_start[n + 1]);
+  for (std::size_t k = first; k < last; ++k) {
+    const double* fe = &t.end_forces[static_cast<std::size_t>(t.incidence[k])];
+    for (std::size_t d = 0; d < kDofsPerNode; ++d)
+      x[d] += fe[d];
+  }
+  for (std::size_t d = 0; d < kDofsPerNode; ++d)
+    f[kDofsPerNode * n + d] = x[d];
+}
+
+}  // namespace detail
+}  // namespace ntn

@@ -1,0 +1,70 @@
+// The multi-core step (kernel/include/ntn/team.hpp, hil_sim's WorkerTeam): the same states, bit
+// for bit, as the single-core step for teams of 1, 2, 3 and 4 workers, in a model without hinges
+// (the team also takes the residual and the update) and with hinges (the element pass only).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+
+#include "ntn/hil/worker_team.hpp"
+#include "ntn/kernel.hpp"
+#include "support/frames.hpp"
+#include "support/init_model.hpp"
+
+namespace {
+
+constexpr auto S = ntn_test::kFeatureSizes;
+
+TEST(Team, SameBitsForAnyNumberOfWorkers) {
+  static ntn_test::Sim<S> ref, par;
+  static ntn::TeamWork<S> work;
+  for (const double beta : {0.0, 1e-4}) {
+    ASSERT_TRUE(ntn_test::feature_frame(ref.spec));
+    ref.spec.settings.beta = beta;
+    ref.spec.settings.dt = 0.5 * ntn::stable_time_step(ntn::view(ref.spec)).dt_stable;
+    ASSERT_TRUE(ntn_test::init_model(ref.spec, ref.model).ok());
+    ASSERT_TRUE(ntn_test::init_model(ref.spec, par.model).ok());
+    for (int size = 1; size <= 4; ++size) {
+      ntn::hil::WorkerTeam workers({size, -1});
+      const ntn::Team team = workers.team();
+      ASSERT_TRUE(ntn::prepare_team(par.model, size, work));
+      ntn::initial_state(ref.model, ref.state), ntn::initial_state(par.model, par.state);
+      std::array<double, S.inputs> in{};
+      (void)ntn::start(ref.model, ref.state, ref.scratch, in);
+      (void)ntn::start(par.model, par.state, par.scratch, in);
+      for (long n = 0; n < 400; ++n) {
+        for (std::size_t c = 0; c < S.inputs; ++c)
+          in[c] = ntn_test::input_sample(static_cast<int>(c), n);
+        (void)ntn::step(ref.model, ref.state, ref.scratch, in);
+        (void)ntn::step(par.model, par.state, par.scratch, in, team, work);
+        ASSERT_EQ(std::memcmp(ref.state.u.data(), par.state.u.data(), sizeof(ref.state.u)), 0)
+            << size << " workers, step " << n << ", beta " << beta;
+        ASSERT_EQ(std::memcmp(ref.state.v.data(), par.state.v.data(), sizeof(ref.state.v)), 0);
+        ASSERT_EQ(std::memcmp(ref.scratch.outputs.data(), par.scratch.outputs.data(),
+                              sizeof(ref.scratch.outputs)),
+                  0);
+      }
+    }
+  }
+}
+
+TEST(Team, PartitionCoversEveryBlockAndNodeOnce) {
+  static ntn_test::Sim<S> sim;
+  static ntn::TeamWork<S> work;
+  ASSERT_TRUE(ntn_test::feature_frame(sim.spec));
+  ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok());
+  EXPECT_FALSE(ntn::prepare_team(sim.model, 0, work));
+  EXPECT_FALSE(ntn::prepare_team(sim.model, ntn::kMaxTeam + 1, work));
+  ASSERT_TRUE(ntn::prepare_team(sim.model, 3, work));
+  EXPECT_EQ(work.block_split[0], 0);
+  EXPECT_EQ(work.block_split[3], static_cast<int>(ntn::TeamWork<S>::kBlocks));
+  EXPECT_EQ(work.node_split[3], static_cast<int>(S.nodes));
+  EXPECT_EQ(work.node_start[S.nodes], static_cast<int>(2 * S.elements));
+  for (std::size_t n = 0; n < S.nodes; ++n) {  // each list in element order
+    for (auto k = work.node_start[n] + 1; k < work.node_start[n + 1]; ++k)
+      EXPECT_LT(work.incidence[static_cast<std::size_t>(k - 1)],
+                work.incidence[static_cast<std::size_t>(k)]);
+  }
+}
+
+}  // namespace
