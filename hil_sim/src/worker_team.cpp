@@ -44,6 +44,13 @@ WorkerTeam::WorkerTeam(const WorkerTeamOptions& options)
     : size_(std::clamp(options.size, 1, ntn::kMaxTeam)), spin_(std::max(options.spin, 0)) {
   threads_.reserve(static_cast<std::size_t>(size_ - 1));
   const int cpus = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  if (size_ > cpus) {
+    // Every phase ends when its last worker does: a worker waiting for a CPU stalls the step for
+    // a scheduler slice, many times per step (measured: several times slower than one worker).
+    warnings_.push_back(std::to_string(size_) + " workers on " + std::to_string(cpus) +
+                        " CPUs: each phase of the step waits for a worker that has no CPU; "
+                        "expect a much slower step than with --threads " + std::to_string(cpus));
+  }
   for (int k = 1; k < size_; ++k) {
     threads_.emplace_back([this, k] { work(k); });
     if (options.first_cpu < 0) continue;

@@ -8,6 +8,7 @@
 
 #include "ntn/hil/worker_team.hpp"
 #include "ntn/kernel.hpp"
+#include "support/alloc_counter.hpp"
 #include "support/frames.hpp"
 #include "support/init_model.hpp"
 
@@ -46,6 +47,30 @@ TEST(Team, SameBitsForAnyNumberOfWorkers) {
       }
     }
   }
+}
+
+// The workers' threads are made before the run (their only allocations); preparing the team's
+// partition and every step with the team, in both team shapes (with the residual and update in
+// the team, and the element pass alone), allocate nothing.
+TEST(Team, NoAllocationInPrepareOrStep) {
+  static ntn_test::Sim<S> sim;
+  static ntn::TeamWork<S> work;
+  ASSERT_TRUE(ntn_test::feature_frame(sim.spec));
+  ASSERT_TRUE(ntn_test::init_model(sim.spec, sim.model).ok());
+  ntn::hil::WorkerTeam workers({3, -1});
+  const ntn::Team team = workers.team();
+  const ntn_test::AllocationScope scope;
+  ASSERT_TRUE(ntn::prepare_team(sim.model, 3, work));
+  ntn::initial_state(sim.model, sim.state);
+  std::array<double, S.inputs> in{};
+  (void)ntn::start(sim.model, sim.state, sim.scratch, in);
+  for (long n = 0; n < 2000; ++n) {
+    for (std::size_t c = 0; c < S.inputs; ++c)
+      in[c] = ntn_test::input_sample(static_cast<int>(c), n);
+    ASSERT_EQ(ntn::step(sim.model, sim.state, sim.scratch, in, team, work), ntn::StepStatus::kOk);
+  }
+  EXPECT_EQ(scope.counts().allocations, 0U);
+  EXPECT_EQ(scope.counts().deallocations, 0U);
 }
 
 TEST(Team, PartitionCoversEveryBlockAndNodeOnce) {

@@ -272,6 +272,8 @@ int main(int argc, char** argv) {
 
   // The workers are made before the run (and the partition built): none is made in the loop.
   ntn::hil::WorkerTeam workers({threads, -1});
+  for (const std::string& w : workers.warnings())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
   const ntn::Team team = workers.team();
   const bool with_team = threads > 1 && ntn::prepare_team(g_model, threads, g_team_work);
   const auto t0 = std::chrono::steady_clock::now();
