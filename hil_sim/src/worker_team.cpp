@@ -49,7 +49,8 @@ WorkerTeam::WorkerTeam(const WorkerTeamOptions& options)
     // a scheduler slice, many times per step (measured: several times slower than one worker).
     warnings_.push_back(std::to_string(size_) + " workers on " + std::to_string(cpus) +
                         " CPUs: each phase of the step waits for a worker that has no CPU; "
-                        "expect a much slower step than with --threads " + std::to_string(cpus));
+                        "expect a much slower step than with --threads " +
+                        std::to_string(cpus));
   }
   for (int k = 1; k < size_; ++k) {
     threads_.emplace_back([this, k] { work(k); });

@@ -199,39 +199,43 @@ HWY_INLINE void rows(const V* g, V* r, hn::Vec<hn::Half<D> >* h) {
   h[2] = hn::UpperHalf(dh, a), h[3] = hn::UpperHalf(dh, b);
 }
 
+// A block's end forces g [DOF] transposed back and handed to out(l, ri, hi, rj, hj), lane by lane
+// in the model's element order: node i's DOFs 0..3 in ri and 4, 5 in hi, node j's in rj, hj.
+template <class Out>
+HWY_INLINE void each_lane(const V* g, Out out) {
+  V ri[4], rj[4];
+  hn::Vec<hn::Half<D> > hi[4], hj[4];
+  rows(g, ri, hi);
+  rows(g + 6, rj, hj);
+  for (std::size_t l = 0; l < 4; ++l)
+    out(l, ri[l], hi[l], rj[l], hj[l]);
+}
+
 // A whole block's end forces added to the nodes 4 and 2 DOFs at a time. Lane l's two ends are
 // added before lane l + 1's, so every DOF sums its elements in the model's order.
 HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
   const D d;
   const hn::Half<D> dh;
-  V ri[4], rj[4];
-  hn::Vec<hn::Half<D> > hi[4], hj[4];
-  rows(g, ri, hi);
-  rows(g + 6, rj, hj);
-  for (std::size_t l = 0; l < 4; ++l) {
+  each_lane(g, [&](std::size_t l, V ri, auto hi, V rj, auto hj) {
     double* p = f + blk.dof_i[l];
-    hn::StoreU(hn::Add(hn::LoadU(d, p), ri[l]), d, p);
-    hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi[l]), dh, p + 4);
+    hn::StoreU(hn::Add(hn::LoadU(d, p), ri), d, p);
+    hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi), dh, p + 4);
     double* q = f + blk.dof_j[l];
-    hn::StoreU(hn::Add(hn::LoadU(d, q), rj[l]), d, q);
-    hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj[l]), dh, q + 4);
-  }
+    hn::StoreU(hn::Add(hn::LoadU(d, q), rj), d, q);
+    hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj), dh, q + 4);
+  });
 }
 
 // ... or stored element by element: fe[12 l + c].
 HWY_INLINE void store_rows(const V* g, double* fe) {
   const D d;
   const hn::Half<D> dh;
-  V ri[4], rj[4];
-  hn::Vec<hn::Half<D> > hi[4], hj[4];
-  rows(g, ri, hi);
-  rows(g + 6, rj, hj);
-  for (std::size_t l = 0; l < 4; ++l) {
-    hn::StoreU(ri[l], d, fe + 12 * l);
-    hn::StoreU(hi[l], dh, fe + 12 * l + 4);
-    hn::StoreU(rj[l], d, fe + 12 * l + 6);
-    hn::StoreU(hj[l], dh, fe + 12 * l + 10);
-  }
+  each_lane(g, [&](std::size_t l, V ri, auto hi, V rj, auto hj) {
+    hn::StoreU(ri, d, fe + 12 * l);
+    hn::StoreU(hi, dh, fe + 12 * l + 4);
+    hn::StoreU(rj, d, fe + 12 * l + 6);
+    hn::StoreU(hj, dh, fe + 12 * l + 10);
+  });
 }
 
 template <bool kBeta>

@@ -22,6 +22,7 @@
 #include "frame_models.hpp"
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/loop.hpp"
+#include "ntn/hil/worker_team.hpp"
 
 namespace ntn::bench {
 namespace {
@@ -35,6 +36,7 @@ struct Options {
   int cpu = -1;
   int max_elements = 1 << 30;
   bool screen = true;  // skip the real-time run when a short virtual-clock trial cannot hold
+  int threads = 1;     // workers of the multi-core step (the loop's thread is one)
 };
 
 struct Row {
@@ -80,7 +82,7 @@ double frac(std::int64_t ns, double period) {
 }
 
 template <Grid G>
-Row run_size(const Options& o) {
+Row run_size(const Options& o, hil::WorkerTeam& workers) {
   constexpr Sizes S = sizes_of(G);
   Row row;
   row.elements = S.elements, row.nodes = S.nodes;
@@ -101,6 +103,11 @@ Row run_size(const Options& o) {
   }
   auto& state = static_instance<State<S>>();
   auto& scratch = static_instance<Scratch<S>>();
+  // The multi-core step: the workers were made before the first size, the partition is this
+  // model's (none with one thread: the single-core step).
+  auto& work = static_instance<TeamWork<S>>();
+  const Team team = workers.team();
+  const Team* team_ptr = o.threads > 1 && prepare_team(model, o.threads, work) ? &team : nullptr;
   hil::LoopConfig config;
   config.period = o.period;
   config.substeps = row.substeps;
@@ -115,7 +122,8 @@ Row run_size(const Options& o) {
     vc.frames = static_cast<std::int64_t>(std::llround(1.0 / o.period));
     vt.reserve(vc.frames);
     state = State<S>{};
-    (void)hil::run_loop(model, state, scratch, vclock, source, sink, nullptr, vc, no_alarms, vt);
+    (void)hil::run_loop(model, state, scratch, vclock, source, sink, nullptr, vc, no_alarms, vt,
+                        static_cast<State<S>*>(nullptr), team_ptr, &work);
     row.screen50 = frac(hil::percentile(vt.compute_ns, 50), o.period);
     if (row.screen50 > 0.5) return row;  // p50 > 0.5 already: p99.9 <= 0.5 cannot hold
   }
@@ -126,7 +134,8 @@ Row run_size(const Options& o) {
   state = State<S>{};
   hil::RealClock clock;
   const hil::LoopResult r =
-      hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config, no_alarms, times);
+      hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config, no_alarms, times,
+                    static_cast<State<S>*>(nullptr), team_ptr, &work);
   row.ran = true;
   row.frames = r.frames;
   row.diverged = r.diverged_frame >= 0;
@@ -200,7 +209,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--period", o.period, "frame period, s")->check(CLI::PositiveNumber);
   app.add_flag("--held", o.held, "inputs held at (0.10 g, 0.05 g) instead of two sines");
-  app.add_option("--cpu", o.cpu, "pin to this CPU");
+  app.add_option("--cpu", o.cpu, "pin to this CPU (and worker k to the k-th next one)");
+  app.add_option("--threads", o.threads, "workers of the multi-core step (1: single-core)")
+      ->check(CLI::Range(1, ntn::kMaxTeam));
   app.add_option("--max-elements", o.max_elements, "skip larger frames");
   bool no_fifo = false, no_mlock = false, no_screen = false;
   app.add_flag("--no-fifo", no_fifo, "do not ask for SCHED_FIFO");
@@ -212,9 +223,14 @@ int main(int argc, char** argv) {
 
   for (const std::string& w : ntn::hil::apply_real_time({o.fifo, o.priority, o.mlock, o.cpu}))
     std::fprintf(stderr, "warning: %s\n", w.c_str());
-  std::printf("# period %g ms, %g s per size, %s inputs, SCHED_FIFO %s, mlockall %s\n",
+  // Made (and pinned after the loop's CPU) before any run: no thread is made in the loop.
+  ntn::hil::WorkerTeam workers({o.threads, o.cpu});
+  for (const std::string& w : workers.warnings())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  std::printf("# period %g ms, %g s per size, %s inputs, SCHED_FIFO %s, mlockall %s, %d thread%s\n",
               o.period * 1e3, o.duration, o.held ? "held" : "sine ground-motion",
-              o.fifo ? "asked" : "off", o.mlock ? "asked" : "off");
+              o.fifo ? "asked" : "off", o.mlock ? "asked" : "off", o.threads,
+              o.threads == 1 ? "" : "s");
   std::printf("# load average before: %s\n", loadavg().c_str());
   print_header();
   std::vector<Row> rows;
@@ -222,16 +238,16 @@ int main(int argc, char** argv) {
     print_row(r);
     rows.push_back(r);
   };
-  go(run_size<kG48>(o));
-  go(run_size<kG252>(o));
-  go(run_size<kG975>(o));
-  go(run_size<kG1950>(o));
-  go(run_size<kG2535>(o));
-  go(run_size<kG2925>(o));
-  go(run_size<kG3315>(o));
-  go(run_size<kG3900>(o));
-  go(run_size<kG4896>(o));
-  go(run_size<kG9900>(o));
+  go(run_size<kG48>(o, workers));
+  go(run_size<kG252>(o, workers));
+  go(run_size<kG975>(o, workers));
+  go(run_size<kG1950>(o, workers));
+  go(run_size<kG2535>(o, workers));
+  go(run_size<kG2925>(o, workers));
+  go(run_size<kG3315>(o, workers));
+  go(run_size<kG3900>(o, workers));
+  go(run_size<kG4896>(o, workers));
+  go(run_size<kG9900>(o, workers));
   std::printf("# load average after: %s\n", loadavg().c_str());
   int best = -1;
   bool diverged = false;

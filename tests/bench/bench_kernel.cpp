@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "frame_models.hpp"
+#include "ntn/hil/worker_team.hpp"
 
 // ---- Allocation counter: every operator new in this executable is counted. ----------------
 
@@ -223,7 +224,19 @@ void peer_step(SparsePeer& p) {
 
 // kOnTheFly: the kernel's step (its SIMD element pass); kScalar: the same with the scalar
 // reference element pass (element_pass.hpp: the same bits).
-enum class Formulation { kOnTheFly, kScalar, kStored, kSparse, kSparsePruned };
+enum class Formulation { kOnTheFly, kScalar, kStored, kSparse, kSparsePruned, kTeam1, kTeam2 };
+
+// The multi-core step's workers (hil_sim's WorkerTeam), made once before the first timed loop
+// that uses them: a team of 1 (the team's phases on this thread alone) and of 2.
+template <int kSize>
+hil::WorkerTeam& workers() {
+  static hil::WorkerTeam team({kSize, -1});
+  return team;
+}
+
+constexpr int team_size(Formulation f) {
+  return f == Formulation::kTeam2 ? 2 : 1;
+}
 
 // Ground acceleration held at (0.10 g, 0.05 g) plus gravity: every DOF moves from the first
 // steps on, so no subnormal numbers slow the timed loop.
@@ -311,6 +324,9 @@ template <Formulation F, Sizes S>
 StepStatus advance(const Model<S>& m, const StoredBeams<S>* sb, State<S>& s, Scratch<S>& w) {
   if constexpr (F == Formulation::kOnTheFly || F == Formulation::kScalar) {
     return step(m, s, w, kGround);
+  } else if constexpr (F == Formulation::kTeam1 || F == Formulation::kTeam2) {
+    static const Team team = workers<team_size(F)>().team();
+    return step(m, s, w, kGround, team, static_instance<TeamWork<S>>());
   } else {
     return step_stored(m, *sb, s, w, kGround);
   }
@@ -351,6 +367,13 @@ void bm_step(benchmark::State& bs) {
   m.element_pass = F == Formulation::kScalar ? ElementPass::kScalar : ElementPass::kSimd;
   // The on-the-fly runs never build (or touch) the stored matrices.
   const StoredBeams<S>* sb = F == Formulation::kStored ? &stored_of<G>() : nullptr;
+
+  if constexpr (F == Formulation::kTeam1 || F == Formulation::kTeam2) {
+    if (!prepare_team(m, team_size(F), static_instance<TeamWork<S>>())) {
+      fail(bs, "prepare_team failed");
+      return;
+    }
+  }
 
   reset(s);
   (void)start(m, s, w, kGround);
@@ -454,6 +477,15 @@ void register_frame() {
   benchmark::RegisterBenchmark(("step/stored_matrix/elements:" + n).c_str(),
                                bm_step<G, Formulation::kStored>)
       ->Unit(benchmark::kMicrosecond);
+  // The multi-core step: wall-clock time (the CPU time is the calling thread's alone).
+  benchmark::RegisterBenchmark(("step/threads:1/elements:" + n).c_str(),
+                               bm_step<G, Formulation::kTeam1>)
+      ->Unit(benchmark::kMicrosecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark(("step/threads:2/elements:" + n).c_str(),
+                               bm_step<G, Formulation::kTeam2>)
+      ->Unit(benchmark::kMicrosecond)
+      ->UseRealTime();
 }
 
 }  // namespace

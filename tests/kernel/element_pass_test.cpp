@@ -16,6 +16,7 @@
 
 #include "ntn/element_pass.hpp"
 #include "ntn/integrator.hpp"
+#include "support/every_target.hpp"
 #include "support/frames.hpp"
 #include "support/init_model.hpp"
 
@@ -153,31 +154,13 @@ TEST(ElementPass, ZerosKeepTheirSign) {
 
 #if defined(NTN_SIMD)
 
-// Every instruction set this CPU runs that Highway compiled the pass for (the dispatch picks the
-// widest; the others are what other machines get): each gives the scalar bits.
-std::vector<std::int64_t> targets_here() {
-  std::vector<std::int64_t> out;
-  const std::int64_t here = hwy::SupportedTargets() & HWY_TARGETS;
-  for (std::int64_t t = 1; t != 0 && t <= here; t <<= 1) {
-    if ((here & t) != 0) out.push_back(t);
-  }
-  return out;
-}
-
-class EveryTarget : public ::testing::Test {
- protected:
-  void TearDown() override {
-    hwy::SetSupportedTargetsForTest(0);  // back to what the CPU has
-    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
-  }
-};
+using ntn_test::EveryTarget;
 
 TEST_F(EveryTarget, SimdPathGivesTheScalarBits) {
-  const std::vector<std::int64_t> targets = targets_here();
+  const std::vector<std::int64_t> targets = ntn_test::targets_here();
   ASSERT_FALSE(targets.empty());
   for (const std::int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+    ntn_test::use_target(t);
     ASSERT_STREQ(ntn::element_pass_target(), hwy::TargetName(t)) << "the dispatch must take it";
     for (const std::size_t n : kCounts) {
       const Elements e = random_elements(n, n < 8 ? 3 : 40, n);

@@ -67,8 +67,8 @@ inline BeamData lane(const BeamBlock& blk, std::size_t l) {
   return b;
 }
 
-// Which path the step's element pass takes (Model::element_pass). kSimd falls back to the scalar
-// reference in a build without NTN_SIMD.
+// Which path the step's element pass and DOF pass (dof_pass.hpp) take (Model::element_pass). kSimd
+// falls back to the scalar reference in a build without NTN_SIMD.
 enum class ElementPass : std::uint8_t { kSimd, kScalar };
 
 namespace detail {

@@ -1,6 +1,8 @@
 // Fixed-step central difference (DESIGN §5, seed S 1-8) as a fixed pipeline of stages, step():
 // inputs -> loads -> element forces -> hinge springs -> residual -> NTN coupling -> outputs ->
-// update -> stops -> constraint projection. The hinge method's stages are hinge_methods.hpp's.
+// update -> stops -> constraint projection. The hinge method's stages are hinge_methods.hpp's. A
+// model without hinges fuses the residual and the update into one pass after the outputs
+// (dof_pass.hpp).
 #pragma once
 
 #include <algorithm>
@@ -218,6 +220,20 @@ double hinge_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w,
   return d_dot[k];
 }
 
+// A model without hinges: a_n at the DOFs whose channels read it (velocity, acceleration), before
+// residual_update() computes it everywhere with u and v: the outputs come first.
+template <Sizes S>
+void output_accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  for (std::size_t c = 0; c < S.outputs; ++c) {
+    const OutputSpec& o = m.outputs[c];
+    if (o.kind != OutputKind::kVelocity && o.kind != OutputKind::kAcceleration &&
+        o.kind != OutputKind::kAbsoluteAcceleration)
+      continue;
+    const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
+    w.a[j] = acceleration_at(m, s, w, j);
+  }
+}
+
 // Output channels at t_n: u_n, v_n = v_{n-1/2} + dt/2 a_n, a_n, end forces from u_n.
 template <Sizes S>
 void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
@@ -295,27 +311,20 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
   }
 }
 
-// v_{n+1/2} = v_{n-1/2} + dt a_n, u_{n+1} = u_n + dt v_{n+1/2} (S 5-7, constant dt) for DOFs
-// [first, last). Returns false when a velocity is non-finite.
+// v_{n+1/2} = v_{n-1/2} + dt a_n, u_{n+1} = u_n + dt v_{n+1/2} (S 5-7, constant dt) for every
+// DOF, after the NTN coupling (a model without hinges: residual_update). Returns false when a
+// velocity is non-finite.
 template <Sizes S>
-bool update_dofs(const Model<S>& m, State<S>& s, const Scratch<S>& w, std::size_t first,
-                 std::size_t last) {
+bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
   const double dt = m.dt;  // a local: stores to s.v, s.u may alias m.dt, which blocks vectorizing
   // The check is a select into a double, not `ok &= finite(v)`: GCC vectorizes no loop with a
   // bool reduction, and this is a pass over every DOF.
   double bad = 0;
-  for (std::size_t j = first; j < last; ++j) {
-    const double v = s.v[j] + dt * w.a[j];
-    s.v[j] = v;
-    s.u[j] += dt * v;
+  for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
+    const double v = advance(dt, w.a[j], s.v[j], s.u[j]);
     bad = finite(v) ? bad : 1.0;
   }
   return bad == 0;
-}
-
-template <Sizes S>
-bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
-  return update_dofs(m, s, w, 0, Model<S>::kDofs);
 }
 
 // The team's phases (team.hpp): what one worker k does of the step.
@@ -337,7 +346,7 @@ void team_end_forces(void* arg, int k) {
                      c.s->v.data(), c.m->beta, c.t->end_forces.data());
 }
 
-// B: F_n at worker k's nodes; without hinges their residual and accelerations too.
+// B: F_n at worker k's nodes.
 template <Sizes S>
 void team_node_forces(void* arg, int k) {
   const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
@@ -345,28 +354,27 @@ void team_node_forces(void* arg, int k) {
   const auto last = static_cast<std::size_t>(c.t->node_split[static_cast<std::size_t>(k) + 1]);
   for (std::size_t n = first; n < last; ++n)
     gather_node(*c.t, n, c.w->f.data());
-  if constexpr (S.hinges == 0) {
-    residual_nodes(*c.m, *c.s, *c.w, c.m->inv_mass.data(), c.w->a.data(), first, last);
-  }
 }
 
-// C (no hinges): the update of worker k's DOFs.
+// C (no hinges): the residual, accelerations and update of worker k's nodes (the DOF pass).
 template <Sizes S>
 void team_update(void* arg, int k) {
   const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
   const auto n = static_cast<std::size_t>(k);
-  const auto first = static_cast<std::size_t>(kDofsPerNode * c.t->node_split[n]);
-  const auto last = static_cast<std::size_t>(kDofsPerNode * c.t->node_split[n + 1]);
-  c.t->bad[n] = update_dofs(*c.m, *c.s, *c.w, first, last) ? 0.0 : 1.0;
+  const auto first = static_cast<std::size_t>(c.t->node_split[n]);
+  const auto last = static_cast<std::size_t>(c.t->node_split[n + 1]);
+  c.t->bad[n] = residual_update(*c.m, *c.s, *c.w, first, last) ? 0.0 : 1.0;
 }
 
 // The stages of step(): on the caller's thread alone (team == nullptr), or with the team's
-// phases in place of the element pass and, without hinges, of the residual and the update.
+// phases in place of the element pass and, without hinges, of the DOF pass. A model without
+// hinges has no coupled DOF: its residual, accelerations and update are one pass over the DOFs
+// (residual_update), after the outputs, which compute the few a_n they read themselves.
 template <Sizes S>
 [[nodiscard]] StepStatus step_on(const Model<S>& m, State<S>& s, Scratch<S>& w,
                                  const std::array<double, S.inputs>& in, const Team* team,
                                  TeamWork<S>* work) {
-  constexpr bool kTeamResidual = S.hinges == 0;  // phases B and C take the residual and update
+  constexpr bool kFused = S.hinges == 0;  // the DOF pass (dof_pass.hpp)
   // A team whose partition is for another size runs nothing: the step is the caller's alone (the
   // same bits).
   if (team != nullptr && (work == nullptr || team->size != work->size)) team = nullptr;
@@ -381,19 +389,23 @@ template <Sizes S>
     team->run(team->self, team_node_forces<S>, &c);
   }
   hinge_springs(m, s, w);  // hinge springs: F_n += B^T f_L (§7)
-  if (team != nullptr && kTeamResidual) {
-    residual_slots(m, s, w, m.inv_mass.data(), w.a.data());  // the rest of the residual stage
+  if constexpr (kFused) {
+    output_accelerations(m, s, w);  // a_n where the outputs read it (S 2-4)
   } else {
     residual_stage(m, s, w);  // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
+    ntn_coupling(m, s, w);    // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
   }
-  ntn_coupling(m, s, w);       // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
   slip_normals(m, s, w);       // friction: the normal forces N at t_n (slip.hpp)
   sample_outputs(m, s, w, t);  // outputs: the channels at t_n
   bool finite = true;
-  if (team != nullptr && kTeamResidual) {
-    team->run(team->self, team_update<S>, &c);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
-    for (int k = 0; k < work->size; ++k)
-      finite = finite && work->bad[static_cast<std::size_t>(k)] == 0.0;
+  if constexpr (kFused) {  // residual, a_n and update: v_{n+1/2}, u_{n+1} (S 2-7)
+    if (team != nullptr) {
+      team->run(team->self, team_update<S>, &c);
+      for (int k = 0; k < work->size; ++k)
+        finite = finite && work->bad[static_cast<std::size_t>(k)] == 0.0;
+    } else {
+      finite = residual_update(m, s, w, 0, S.nodes);
+    }
   } else {
     finite = update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
   }

@@ -359,15 +359,31 @@ template <Sizes S>
 
   model.alpha = spec.settings.alpha;
   model.beta = spec.settings.beta;
-  // Load slots, in order of first use (nodal loads, then force inputs).
+  // Load slots: each DOF with a nodal load or a force input once, in increasing DOF order (the DOF
+  // pass meets them node by node: residual_update). A slot sums its loads, then its inputs, in
+  // the model's order whatever its number.
   model.num_slots = 0;
-  auto slot_of = [&](int dof) {
-    for (int k = 0; k < model.num_slots; ++k) {
-      if (model.slot_dof[static_cast<std::size_t>(k)] == dof) return k;
-    }
-    model.slot_dof[static_cast<std::size_t>(model.num_slots)] = dof;
-    return model.num_slots++;
+  auto add_slot = [&](int dof) {
+    int k = 0;
+    while (k < model.num_slots && model.slot_dof[static_cast<std::size_t>(k)] < dof)
+      ++k;
+    if (k < model.num_slots && model.slot_dof[static_cast<std::size_t>(k)] == dof) return;
+    for (int i = model.num_slots; i > k; --i)
+      model.slot_dof[static_cast<std::size_t>(i)] = model.slot_dof[static_cast<std::size_t>(i - 1)];
+    model.slot_dof[static_cast<std::size_t>(k)] = dof;
+    ++model.num_slots;
   };
+  auto slot_of = [&](int dof) {
+    int k = 0;
+    while (model.slot_dof[static_cast<std::size_t>(k)] != dof)
+      ++k;
+    return k;
+  };
+  for (const LoadSpec& l : spec.loads)
+    add_slot(kDofsPerNode * l.node + l.dof);
+  for (const InputSpec& in : spec.inputs) {
+    if (in.kind == InputKind::kNodalForce) add_slot(kDofsPerNode * in.node + in.dof);
+  }
   for (std::size_t i = 0; i < S.loads; ++i) {
     const LoadSpec& l = spec.loads[i];
     model.load_slot[i] = slot_of(kDofsPerNode * l.node + l.dof);

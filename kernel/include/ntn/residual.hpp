@@ -3,8 +3,10 @@
 // one DOF for the outputs.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 
+#include "ntn/dof_pass.hpp"
 #include "ntn/model_spec.hpp"
 #include "ntn/state.hpp"
 
@@ -72,6 +74,46 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
               double* out) {
   residual_nodes<S, kScaled>(m, s, w, scale, out, 0, S.nodes);
   residual_slots<S, kScaled>(m, s, w, scale, out);
+}
+
+// A model without hinges: the residual, a_n and the update of nodes [first, last) in one pass
+// (dof_pass.hpp), the load slots' DOFs (sorted by DOF: make_model) with their whole P_n. Returns
+// false when a velocity is non-finite.
+template <Sizes S>
+bool residual_update(const Model<S>& m, State<S>& s, Scratch<S>& w, std::size_t first,
+                     std::size_t last) {
+  const DofPassData x{m.mass.data(), m.inv_mass.data(), w.f.data(), w.load_g.data(), m.alpha,
+                      m.dt,          w.a.data(),        s.v.data(), s.u.data()};
+  double bad = 0;
+  int k = 0;  // the first slot at or after node `first`
+  while (k < m.num_slots &&
+         static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) < kDofsPerNode * first)
+    ++k;
+  for (std::size_t n = first; n < last;) {
+    std::size_t loaded = last;  // the next node with a slot
+    if (k < m.num_slots)
+      loaded = std::min(
+          last, static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) / kDofsPerNode);
+    if (dof_pass_nodes(m.element_pass, x, n, loaded) != 0.0) bad = 1.0;
+    if (loaded == last) break;
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      const std::size_t j = kDofsPerNode * loaded + d;
+      double p = m.mass[j] * w.load_g[d];
+      if (k < m.num_slots && static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) == j)
+        p = w.p_slot[static_cast<std::size_t>(k++)];
+      const double v = dof_update(x, j, p);
+      bad = v - v == 0.0 ? bad : 1.0;
+    }
+    n = loaded + 1;
+  }
+  return bad == 0;
+}
+
+// a_n at DOF j of a model without hinges, as residual_update() will compute it: the outputs read
+// it before that pass.
+template <Sizes S>
+double acceleration_at(const Model<S>& m, const State<S>& s, const Scratch<S>& w, std::size_t j) {
+  return acceleration(external_load(m, w, j), w.f[j], m.alpha, m.mass[j], s.v[j], m.inv_mass[j]);
 }
 
 // R_n - C v_{n-1/2} at the six DOFs of one node, as the outputs recompute it (with

@@ -10,10 +10,9 @@
 //      element by element (TeamWork::end_forces): a function of u (and v) alone;
 //   B. each worker sums, for its fixed range of nodes, the stored end forces of every element at
 //      that node in element order (TeamWork::incidence, built in element order), starting from
-//      +0.0: the very sums of the single-core pass, operation for operation. In a model without
-//      hinges the residual and the accelerations of the same nodes follow (DOF by DOF, as
-//      residual() does them);
-//   C. (no hinges) each worker updates its DOFs' v and u (update(), DOF by DOF).
+//      +0.0: the very sums of the single-core pass, operation for operation;
+//   C. (no hinges) after the outputs, each worker runs the DOF pass (residual, a_n and update:
+//      residual_update(), dof_pass.hpp) over the same nodes.
 // Between the phases the team's run() returns only when every worker has finished. Everything
 // else stays on the caller's thread, in the single-core order.
 #pragma once

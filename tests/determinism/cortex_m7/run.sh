@@ -23,9 +23,9 @@ mkdir -p "$work"
 common=(-std=c++20 -O2 -ffp-contract=off -fno-exceptions -fno-rtti -I"$src/kernel/include"
         -isystem /usr/include/eigen3 -I"$work" "-DNTN_MODEL_HEADER=\"${name}_model.hpp\""
         "-DNTN_MODEL_NS=ntn::models::$name")
-# (no NTN_SIMD: the Cortex-M7 build keeps the scalar element pass)
+# (no NTN_SIMD: the Cortex-M7 build keeps the scalar element and DOF passes)
 kernel_src=("$src/kernel/src/time_step.cpp" "$src/kernel/src/constraint_forest.cpp"
-            "$src/kernel/src/element_pass.cpp")
+            "$src/kernel/src/element_pass.cpp" "$src/kernel/src/dof_pass.cpp")
 m7=(-mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard -mthumb -ffunction-sections -fdata-sections
     -Wno-psabi -T "$here/cortex_m7.ld" -Wl,--gc-sections)
 

@@ -1,0 +1,89 @@
+// The DOF pass of a model without hinges: the residual, the accelerations and the update (seed
+// S 2-7, DESIGN §5) fused into one pass over the DOF arrays, where the hinged step needs three
+// (residual, NTN coupling, update). Per DOF j, with P_n = m_j g_d (or the load slot's value):
+//   a_n       = ((P_n - F_n) - (alpha m_j) v_{n-1/2}) * (1 / m_j)
+//   v_{n+1/2} = v_{n-1/2} + dt a_n
+//   u_{n+1}   = u_n + dt v_{n+1/2}
+// the same operations in the same order as the unfused stages (residual_nodes(), then update()),
+// so their bits. Two paths compute it, as the element pass (element_pass.hpp): the scalar
+// reference below, and the SIMD path (kernel/src/dof_pass.cpp, Highway, run-time dispatch) with
+// the same operations in every lane; Model::element_pass picks both.
+#pragma once
+
+#include <cstddef>
+
+#include "ntn/element_pass.hpp"
+#include "ntn/model_spec.hpp"
+
+namespace ntn {
+
+// The pass's operands: arrays by DOF unless noted.
+struct DofPassData {
+  const double* mass;      // kg or kg m^2
+  const double* inv_mass;  // 1 / mass
+  const double* f;         // F_n
+  const double* g;         // [kDofsPerNode]: P_n / m per direction (Scratch::load_g)
+  double alpha;            // 1/s: C = alpha M
+  double dt;               // s
+  double* a;               // out: a_n
+  double* v;               // in v_{n-1/2}, out v_{n+1/2}
+  double* u;               // in u_n, out u_{n+1}
+};
+
+namespace detail {
+
+// a_n at one DOF: ((P_n - F_n) - (alpha m) v_{n-1/2}) * (1 / m) (S 2-4), the residual stage's
+// products (residual_nodes) times inv_mass.
+inline double acceleration(double p, double f, double alpha, double mass, double v,
+                           double inv_mass) {
+  return ((p - f) - (alpha * mass) * v) * inv_mass;
+}
+
+// The update (S 5-7): v = v_{n-1/2} + dt a_n into v, then u += dt v; returns v_{n+1/2}.
+inline double advance(double dt, double a, double& v, double& u) {
+  v = v + dt * a;
+  u += dt * v;
+  return v;
+}
+
+// One DOF with load p; returns v_{n+1/2}.
+inline double dof_update(const DofPassData& x, std::size_t j, double p) {
+  const double a = acceleration(p, x.f[j], x.alpha, x.mass[j], x.v[j], x.inv_mass[j]);
+  x.a[j] = a;
+  return advance(x.dt, a, x.v[j], x.u[j]);
+}
+
+// Nodes [first, last), none with a load slot, by the scalar reference. Returns 1 when a velocity
+// is non-finite, else 0 (x - x is 0 for finite x only: no libm).
+inline double dof_pass_nodes_scalar(const DofPassData& x, std::size_t first, std::size_t last) {
+  double bad = 0;
+  for (std::size_t n = first; n < last; ++n) {
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      const std::size_t j = kDofsPerNode * n + d;
+      const double v = dof_update(x, j, x.mass[j] * x.g[d]);
+      bad = v - v == 0.0 ? bad : 1.0;
+    }
+  }
+  return bad;
+}
+
+#if defined(NTN_SIMD)
+// kernel/src/dof_pass.cpp: the same, a vector of DOFs at a time.
+double dof_pass_nodes_simd(const DofPassData& x, std::size_t first, std::size_t last);
+#endif
+
+}  // namespace detail
+
+// The pass over nodes [first, last), none with a load slot, by the chosen path; 1 when a velocity
+// is non-finite, else 0.
+inline double dof_pass_nodes(ElementPass path, const DofPassData& x, std::size_t first,
+                             std::size_t last) {
+#if defined(NTN_SIMD)
+  if (path == ElementPass::kSimd) return detail::dof_pass_nodes_simd(x, first, last);
+#else
+  (void)path;
+#endif
+  return detail::dof_pass_nodes_scalar(x, first, last);
+}
+
+}  // namespace ntn

@@ -1,0 +1,70 @@
+// The DOF pass's SIMD path (dof_pass.hpp): dof_update() and acceleration() in every lane, with
+// Highway's portable vectors compiled for each instruction set and the widest the CPU has picked at
+// run time. Each line is one line of dof_update in the same order (IEEE products and sums, never
+// fused: the build has -ffp-contract=off), so each lane's values are the scalar path's bits. P_n =
+// m g_d repeats every 6 DOFs: two nodes (12 DOFs) are a whole number of vectors of 1, 2 or 4 lanes,
+// with the pattern of g loaded at the same offset for each.
+
+#include "ntn/dof_pass.hpp"
+
+#if defined(NTN_SIMD)
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "dof_pass.cpp"  // NOLINT: Highway re-includes this file per target
+#include <hwy/foreach_target.h>            // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace ntn::detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
+  using D = hn::CappedTag<double, 4>;  // 12 DOFs: 3 vectors of 4, 6 of 2 or 12 of 1
+  using V = hn::Vec<D>;
+  const D d;
+  constexpr std::size_t kPair = 2 * kDofsPerNode;
+  const std::size_t lanes = hn::Lanes(d);
+  double pattern[kPair];  // g, g: lanes [k, k + lanes) of it go with DOFs 6 n + k
+  for (std::size_t k = 0; k < kPair; ++k)
+    pattern[k] = x.g[k % kDofsPerNode];
+  const V alpha = hn::Set(d, x.alpha), dt = hn::Set(d, x.dt), zero = hn::Zero(d);
+  V bad = zero;
+  std::size_t n = first;
+  for (; n + 2 <= last; n += 2) {
+    for (std::size_t k = 0; k < kPair; k += lanes) {
+      const std::size_t j = kDofsPerNode * n + k;
+      const V m = hn::LoadU(d, x.mass + j);
+      const V v0 = hn::LoadU(d, x.v + j);
+      const V p = hn::Mul(m, hn::LoadU(d, pattern + k));
+      const V a =
+          hn::Mul(hn::Sub(hn::Sub(p, hn::LoadU(d, x.f + j)), hn::Mul(hn::Mul(alpha, m), v0)),
+                  hn::LoadU(d, x.inv_mass + j));
+      hn::StoreU(a, d, x.a + j);
+      const V v = hn::Add(v0, hn::Mul(dt, a));
+      hn::StoreU(v, d, x.v + j);
+      hn::StoreU(hn::Add(hn::LoadU(d, x.u + j), hn::Mul(dt, v)), d, x.u + j);
+      bad = hn::IfThenElse(hn::Eq(hn::Sub(v, v), zero), bad, hn::Set(d, 1.0));
+    }
+  }
+  const double tail = dof_pass_nodes_scalar(x, n, last);  // an odd node at the end
+  return hn::AllTrue(d, hn::Eq(bad, zero)) ? tail : 1.0;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ntn::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace ntn::detail {
+
+HWY_EXPORT(DofPassNodes);
+
+double dof_pass_nodes_simd(const DofPassData& x, std::size_t first, std::size_t last) {
+  return HWY_DYNAMIC_DISPATCH(DofPassNodes)(x, first, last);
+}
+
+}  // namespace ntn::detail
+#endif  // HWY_ONCE
+
+#endif  // NTN_SIMD
