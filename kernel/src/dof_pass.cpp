@@ -29,21 +29,28 @@ double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
   for (std::size_t k = 0; k < kPair; ++k)
     pattern[k] = x.g[k % kDofsPerNode];
   const V alpha = hn::Set(d, x.alpha), dt = hn::Set(d, x.dt), zero = hn::Zero(d);
+  // Locals: the vector stores may alias anything (Highway's stores are may_alias), so pointers
+  // read through x would be reloaded after every store.
+  const double* HWY_RESTRICT mass = x.mass;
+  const double* HWY_RESTRICT inv_mass = x.inv_mass;
+  const double* HWY_RESTRICT f = x.f;
+  double* HWY_RESTRICT acc = x.a;
+  double* HWY_RESTRICT vel = x.v;
+  double* HWY_RESTRICT dis = x.u;
   V bad = zero;
   std::size_t n = first;
   for (; n + 2 <= last; n += 2) {
     for (std::size_t k = 0; k < kPair; k += lanes) {
       const std::size_t j = kDofsPerNode * n + k;
-      const V m = hn::LoadU(d, x.mass + j);
-      const V v0 = hn::LoadU(d, x.v + j);
+      const V m = hn::LoadU(d, mass + j);
+      const V v0 = hn::LoadU(d, vel + j);
       const V p = hn::Mul(m, hn::LoadU(d, pattern + k));
-      const V a =
-          hn::Mul(hn::Sub(hn::Sub(p, hn::LoadU(d, x.f + j)), hn::Mul(hn::Mul(alpha, m), v0)),
-                  hn::LoadU(d, x.inv_mass + j));
-      hn::StoreU(a, d, x.a + j);
+      const V a = hn::Mul(hn::Sub(hn::Sub(p, hn::LoadU(d, f + j)), hn::Mul(hn::Mul(alpha, m), v0)),
+                          hn::LoadU(d, inv_mass + j));
+      hn::StoreU(a, d, acc + j);
       const V v = hn::Add(v0, hn::Mul(dt, a));
-      hn::StoreU(v, d, x.v + j);
-      hn::StoreU(hn::Add(hn::LoadU(d, x.u + j), hn::Mul(dt, v)), d, x.u + j);
+      hn::StoreU(v, d, vel + j);
+      hn::StoreU(hn::Add(hn::LoadU(d, dis + j), hn::Mul(dt, v)), d, dis + j);
       bad = hn::IfThenElse(hn::Eq(hn::Sub(v, v), zero), bad, hn::Set(d, 1.0));
     }
   }

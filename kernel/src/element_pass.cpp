@@ -128,13 +128,22 @@ HWY_INLINE void add_lanes(const BeamBlock& blk, std::size_t lanes, const double 
   }
 }
 
-// ... or stored element by element: fe[12 l + c], node i's DOFs c < 6, then node j's.
-HWY_INLINE void store_lanes(const double (*fi)[kBeamLanes], const double (*fj)[kBeamLanes],
-                            double* fe) {
+// ... or, for the multi-core pass, each end added to f where `direct` has its bit, else stored
+// into fe[12 l + 6 end + c] (element by element).
+HWY_INLINE void split_lanes(const BeamBlock& blk, std::uint8_t direct,
+                            const double (*fi)[kBeamLanes], const double (*fj)[kBeamLanes],
+                            double* f, double* fe) {
   for (std::size_t l = 0; l < kBeamLanes; ++l) {
-    for (std::size_t c = 0; c < 6; ++c) {
-      fe[12 * l + c] = fi[c][l];
-      fe[12 * l + 6 + c] = fj[c][l];
+    const double(*ends[2])[kBeamLanes] = {fi, fj};
+    const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
+    for (std::size_t end = 0; end < 2; ++end) {
+      for (std::size_t c = 0; c < 6; ++c) {
+        if (direct_end(direct, l, end)) {
+          f[static_cast<std::size_t>(node_dof[end]) + c] += ends[end][c][l];
+        } else {
+          fe[12 * l + 6 * end + c] = ends[end][c][l];
+        }
+      }
     }
   }
 }
@@ -226,15 +235,26 @@ HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
   });
 }
 
-// ... or stored element by element: fe[12 l + c].
-HWY_INLINE void store_rows(const V* g, double* fe) {
+// ... or, for the multi-core pass, each end added to f where `direct` has its bit, else stored
+// into fe[12 l + 6 end + c].
+HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g, double* f,
+                           double* fe) {
   const D d;
   const hn::Half<D> dh;
   each_lane(g, [&](std::size_t l, V ri, auto hi, V rj, auto hj) {
-    hn::StoreU(ri, d, fe + 12 * l);
-    hn::StoreU(hi, dh, fe + 12 * l + 4);
-    hn::StoreU(rj, d, fe + 12 * l + 6);
-    hn::StoreU(hj, dh, fe + 12 * l + 10);
+    const V r[2] = {ri, rj};
+    const decltype(hi) h[2] = {hi, hj};
+    const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
+    for (std::size_t end = 0; end < 2; ++end) {
+      if (direct_end(direct, l, end)) {
+        double* p = f + node_dof[end];
+        hn::StoreU(hn::Add(hn::LoadU(d, p), r[end]), d, p);
+        hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), h[end]), dh, p + 4);
+      } else {
+        hn::StoreU(r[end], d, fe + 12 * l + 6 * end);
+        hn::StoreU(h[end], dh, fe + 12 * l + 6 * end + 4);
+      }
+    }
   });
 }
 
@@ -261,13 +281,20 @@ HWY_INLINE void forces_transpose(const BeamBlock* blocks, std::size_t elements, 
   }
 }
 
+// Whole blocks whose ends all go to f (the common case) take add_rows, as the single-core pass.
 template <bool kBeta>
-HWY_INLINE void end_forces_transpose(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                                     const double* u, const double* v, double beta, double* fe) {
+HWY_INLINE void split_transpose(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                                const std::uint8_t* direct, const double* u, const double* v,
+                                double beta, double* f, double* fe) {
+  constexpr std::uint8_t kAll = (1U << (2 * kBeamLanes)) - 1U;
   for (std::size_t b = first; b < last; ++b) {
     V g[12];
     block_transpose<kBeta>(blocks[b], u, v, beta, g);
-    store_rows(g, fe + 12 * kBeamLanes * b);
+    if (direct[b] == kAll) {
+      add_rows(blocks[b], g, f);
+    } else {
+      split_rows(blocks[b], direct[b], g, f, fe + 12 * kBeamLanes * b);
+    }
   }
 }
 
@@ -294,14 +321,15 @@ void ElementForces(const BeamBlock* blocks, std::size_t elements, const double* 
   }
 }
 
-void ElementEndForces(const BeamBlock* blocks, std::size_t first, std::size_t last, const double* u,
-                      const double* v, double beta, double* fe) {
+void ElementForcesSplit(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                        const std::uint8_t* direct, const double* u, const double* v, double beta,
+                        double* f, double* fe) {
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
     if (beta != 0.0) {
-      end_forces_transpose<true>(blocks, first, last, u, v, beta, fe);
+      split_transpose<true>(blocks, first, last, direct, u, v, beta, f, fe);
     } else {
-      end_forces_transpose<false>(blocks, first, last, u, v, beta, fe);
+      split_transpose<false>(blocks, first, last, direct, u, v, beta, f, fe);
     }
     return;
   }
@@ -310,7 +338,7 @@ void ElementEndForces(const BeamBlock* blocks, std::size_t first, std::size_t la
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
     block_gather(blocks[b], u, v, beta, fi, fj);
-    store_lanes(fi, fj, fe + 12 * kBeamLanes * b);
+    split_lanes(blocks[b], direct[b], fi, fj, f, fe + 12 * kBeamLanes * b);
   }
 }
 
@@ -327,7 +355,7 @@ namespace ntn {
 namespace detail {
 
 HWY_EXPORT(ElementForces);
-HWY_EXPORT(ElementEndForces);
+HWY_EXPORT(ElementForcesSplit);
 HWY_EXPORT(Target);
 
 void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
@@ -335,9 +363,10 @@ void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const do
   HWY_DYNAMIC_DISPATCH(ElementForces)(blocks, elements, u, v, beta, f);
 }
 
-void element_end_forces_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                             const double* u, const double* v, double beta, double* fe) {
-  HWY_DYNAMIC_DISPATCH(ElementEndForces)(blocks, first, last, u, v, beta, fe);
+void element_forces_split_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                               const std::uint8_t* direct, const double* u, const double* v,
+                               double beta, double* f, double* fe) {
+  HWY_DYNAMIC_DISPATCH(ElementForcesSplit)(blocks, first, last, direct, u, v, beta, f, fe);
 }
 
 }  // namespace detail

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstring>
+#include <vector>
 
 #include "ntn/hil/worker_team.hpp"
 #include "ntn/kernel.hpp"
@@ -89,6 +90,36 @@ TEST(Team, PartitionCoversEveryBlockAndNodeOnce) {
     for (auto k = work.node_start[n] + 1; k < work.node_start[n + 1]; ++k)
       EXPECT_LT(work.incidence[static_cast<std::size_t>(k - 1)],
                 work.incidence[static_cast<std::size_t>(k)]);
+  }
+  // A node is shared, or every end at it is added directly by one worker: the worker whose
+  // blocks hold all of the node's elements.
+  for (int size = 1; size <= 4; ++size) {
+    ASSERT_TRUE(ntn::prepare_team(sim.model, size, work));
+    const auto shared_end =
+        static_cast<std::size_t>(work.shared_split[static_cast<std::size_t>(size)]);
+    std::vector<bool> shared(S.nodes, false);
+    for (std::size_t i = 0; i < shared_end; ++i)
+      shared[static_cast<std::size_t>(work.shared[i])] = true;
+    std::vector<int> owner(S.nodes, -1);
+    for (std::size_t e = 0; e < S.elements; ++e) {
+      const std::size_t b = e / ntn::kBeamLanes, l = e % ntn::kBeamLanes;
+      int k = 0;
+      while (work.block_split[static_cast<std::size_t>(k) + 1] <= static_cast<int>(b))
+        ++k;
+      const int nodes[2] = {sim.model.beams[b].dof_i[l] / 6, sim.model.beams[b].dof_j[l] / 6};
+      for (std::size_t end = 0; end < 2; ++end) {
+        const auto n = static_cast<std::size_t>(nodes[end]);
+        EXPECT_NE(ntn::direct_end(work.direct[b], l, end), shared[n]) << "node " << n;
+        if (shared[n]) continue;
+        if (owner[n] < 0) owner[n] = k;
+        EXPECT_EQ(owner[n], k) << "node " << n << " is interior to two workers";
+      }
+    }
+    if (size == 1) {
+      EXPECT_EQ(shared_end, 0U) << "every node has elements: all interior";
+    } else {
+      EXPECT_GT(shared_end, 0U) << "ranges that meet share nodes";
+    }
   }
 }
 

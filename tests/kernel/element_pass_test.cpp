@@ -89,6 +89,17 @@ std::vector<double> forces(const Elements& e, ntn::ElementPass path, double beta
   return f;
 }
 
+// The multi-core pass (element_forces_split) over every block with random `direct` masks: f
+// after it (from f0) and the stored end forces (from a sentinel), one after the other.
+std::vector<double> split_forces(const Elements& e, ntn::ElementPass path, double beta,
+                                 const std::vector<std::uint8_t>& direct) {
+  std::vector<double> out(e.u.size(), 0.5);
+  out.resize(e.u.size() + 12 * ntn::kBeamLanes * e.blocks.size(), 7.0);
+  ntn::element_forces_split(path, e.blocks.data(), 0, e.blocks.size(), direct.data(), e.u.data(),
+                            e.v.data(), beta, out.data(), out.data() + e.u.size());
+  return out;
+}
+
 // beam_force() on the BeamData themselves, element by element (the kernel's pass before blocks).
 std::vector<double> reference(const Elements& e, double beta) {
   std::vector<double> f(e.u.size(), 0.0);
@@ -167,6 +178,32 @@ TEST_F(EveryTarget, SimdPathGivesTheScalarBits) {
       for (const double beta : {0.0, 2e-3}) {
         EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kSimd, beta),
                               forces(e, ntn::ElementPass::kScalar, beta)))
+            << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
+      }
+    }
+  }
+}
+
+// The multi-core pass: each end added or stored as its bit says, the scalar bits on every target;
+// with every bit set it is the single-core pass (on whole blocks).
+TEST_F(EveryTarget, SplitPassGivesTheScalarBits) {
+  const std::vector<std::int64_t> targets = ntn_test::targets_here();
+  for (const std::int64_t t : targets) {
+    ntn_test::use_target(t);
+    for (const std::size_t n : {std::size_t{4}, std::size_t{8}, std::size_t{64}}) {
+      const Elements e = random_elements(n, 40, 100 + n);
+      std::mt19937_64 rng(n);
+      std::vector<std::uint8_t> direct(e.blocks.size());
+      for (std::uint8_t& d : direct)
+        d = static_cast<std::uint8_t>(rng() % 4 == 0 ? 0xFF : rng() & 0xFF);
+      for (const double beta : {0.0, 2e-3}) {
+        EXPECT_TRUE(same_bits(split_forces(e, ntn::ElementPass::kSimd, beta, direct),
+                              split_forces(e, ntn::ElementPass::kScalar, beta, direct)))
+            << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
+        const std::vector<std::uint8_t> all(e.blocks.size(), 0xFF);
+        std::vector<double> f = split_forces(e, ntn::ElementPass::kSimd, beta, all);
+        f.resize(e.u.size());
+        EXPECT_TRUE(same_bits(f, forces(e, ntn::ElementPass::kScalar, beta, 0.5)))
             << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
       }
     }

@@ -71,7 +71,34 @@ inline BeamData lane(const BeamBlock& blk, std::size_t l) {
 // falls back to the scalar reference in a build without NTN_SIMD.
 enum class ElementPass : std::uint8_t { kSimd, kScalar };
 
+// The multi-core pass's mask of a block (team.hpp): bit direct_bit(l, end) is set when the force
+// of lane l's end (0: node i, 1: node j) is added to F_n directly, else stored.
+constexpr std::uint8_t direct_bit(std::size_t l, std::size_t end) {
+  return static_cast<std::uint8_t>(1U << (2 * l + end));
+}
+constexpr bool direct_end(std::uint8_t direct, std::size_t l, std::size_t end) {
+  return (direct & direct_bit(l, end)) != 0;
+}
+
 namespace detail {
+
+// Element l of a block: its global end forces fi (on node i), fj at u (+ beta v when beta != 0).
+inline void lane_force(const BeamBlock& blk, std::size_t l, const double* u, const double* v,
+                       double beta, double* fi, double* fj) {
+  const BeamData b = lane(blk, l);
+  const auto i = static_cast<std::size_t>(blk.dof_i[l]);
+  const auto j = static_cast<std::size_t>(blk.dof_j[l]);
+  if (beta != 0.0) {
+    double ui[6], uj[6];
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      ui[d] = u[i + d] + beta * v[i + d];
+      uj[d] = u[j + d] + beta * v[j + d];
+    }
+    beam_force(b, ui, uj, fi, fj);
+  } else {
+    beam_force(b, &u[i], &u[j], fi, fj);
+  }
+}
 
 // The scalar reference: f += the elements' forces at u (+ beta v when beta != 0), in order.
 inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements, const double* u,
@@ -79,20 +106,10 @@ inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements,
   for (std::size_t e = 0; e < elements; ++e) {
     const BeamBlock& blk = blocks[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
-    const BeamData b = lane(blk, l);
+    double fi[6], fj[6];
+    lane_force(blk, l, u, v, beta, fi, fj);
     const auto i = static_cast<std::size_t>(blk.dof_i[l]);
     const auto j = static_cast<std::size_t>(blk.dof_j[l]);
-    double fi[6], fj[6];
-    if (beta != 0.0) {
-      double ui[6], uj[6];
-      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
-        ui[d] = u[i + d] + beta * v[i + d];
-        uj[d] = u[j + d] + beta * v[j + d];
-      }
-      beam_force(b, ui, uj, fi, fj);
-    } else {
-      beam_force(b, &u[i], &u[j], fi, fj);
-    }
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       f[i + d] += fi[d];
       f[j + d] += fj[d];
@@ -100,27 +117,28 @@ inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements,
   }
 }
 
-// The scalar reference of the multi-core pass (team.hpp): the end forces of the elements of blocks
-// [first, last), stored element by element, fe[12 e + c] (node i's DOFs c < 6, then node j's),
-// for whole blocks (the lanes past the model's last element are computed and never read).
-inline void element_end_forces_scalar(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                                      const double* u, const double* v, double beta, double* fe) {
+// The scalar reference of the multi-core pass (team.hpp), over the elements of blocks
+// [first, last), whole blocks, in element order: each end's force added to f at its node where
+// direct[block] has the end's bit (direct_end), else stored into fe[12 e + 6 end + c] (the lanes
+// past the model's last element have no bit: stored, never read).
+inline void element_forces_split_scalar(const BeamBlock* blocks, std::size_t first,
+                                        std::size_t last, const std::uint8_t* direct,
+                                        const double* u, const double* v, double beta, double* f,
+                                        double* fe) {
   for (std::size_t e = first * kBeamLanes; e < last * kBeamLanes; ++e) {
     const BeamBlock& blk = blocks[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
-    const BeamData b = lane(blk, l);
-    const auto i = static_cast<std::size_t>(blk.dof_i[l]);
-    const auto j = static_cast<std::size_t>(blk.dof_j[l]);
-    double* out = fe + 12 * e;
-    if (beta != 0.0) {
-      double ui[6], uj[6];
-      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
-        ui[d] = u[i + d] + beta * v[i + d];
-        uj[d] = u[j + d] + beta * v[j + d];
+    double fij[12];
+    lane_force(blk, l, u, v, beta, fij, fij + 6);
+    const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
+    for (std::size_t end = 0; end < 2; ++end) {
+      if (direct_end(direct[e / kBeamLanes], l, end)) {
+        for (std::size_t d = 0; d < kDofsPerNode; ++d)
+          f[static_cast<std::size_t>(node_dof[end]) + d] += fij[6 * end + d];
+      } else {
+        for (std::size_t d = 0; d < kDofsPerNode; ++d)
+          fe[12 * e + 6 * end + d] = fij[6 * end + d];
       }
-      beam_force(b, ui, uj, out, out + 6);
-    } else {
-      beam_force(b, &u[i], &u[j], out, out + 6);
     }
   }
 }
@@ -129,8 +147,9 @@ inline void element_end_forces_scalar(const BeamBlock* blocks, std::size_t first
 // kernel/src/element_pass.cpp: the same, kBeamLanes elements at a time.
 void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
                          const double* v, double beta, double* f);
-void element_end_forces_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                             const double* u, const double* v, double beta, double* fe);
+void element_forces_split_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
+                               const std::uint8_t* direct, const double* u, const double* v,
+                               double beta, double* f, double* fe);
 #endif
 
 }  // namespace detail
@@ -153,19 +172,19 @@ inline void element_forces(ElementPass path, const BeamBlock* blocks, std::size_
   detail::element_forces_scalar(blocks, elements, u, v, beta, f);
 }
 
-// The end forces of blocks [first, last) into fe[12 e + c], by the chosen path.
-inline void element_end_forces(ElementPass path, const BeamBlock* blocks, std::size_t first,
-                               std::size_t last, const double* u, const double* v, double beta,
-                               double* fe) {
+// The multi-core pass over blocks [first, last) (element_forces_split_scalar), by the chosen path.
+inline void element_forces_split(ElementPass path, const BeamBlock* blocks, std::size_t first,
+                                 std::size_t last, const std::uint8_t* direct, const double* u,
+                                 const double* v, double beta, double* f, double* fe) {
 #if defined(NTN_SIMD)
   if (path == ElementPass::kSimd) {
-    detail::element_end_forces_simd(blocks, first, last, u, v, beta, fe);
+    detail::element_forces_split_simd(blocks, first, last, direct, u, v, beta, f, fe);
     return;
   }
 #else
   (void)path;
 #endif
-  detail::element_end_forces_scalar(blocks, first, last, u, v, beta, fe);
+  detail::element_forces_split_scalar(blocks, first, last, direct, u, v, beta, f, fe);
 }
 
 }  // namespace ntn

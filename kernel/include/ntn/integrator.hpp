@@ -336,24 +336,26 @@ struct TeamStep {
   TeamWork<S>* t;
 };
 
-// A: the end forces of worker k's element blocks.
+// A: worker k's element blocks, their ends added to F_n at its interior nodes, stored for the
+// shared ones.
 template <Sizes S>
-void team_end_forces(void* arg, int k) {
+void team_element_forces(void* arg, int k) {
   const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
   const auto first = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k)]);
   const auto last = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k) + 1]);
-  element_end_forces(c.m->element_pass, c.m->beams.data(), first, last, c.s->u.data(),
-                     c.s->v.data(), c.m->beta, c.t->end_forces.data());
+  element_forces_split(c.m->element_pass, c.m->beams.data(), first, last, c.t->direct.data(),
+                       c.s->u.data(), c.s->v.data(), c.m->beta, c.w->f.data(),
+                       c.t->end_forces.data());
 }
 
-// B: F_n at worker k's nodes.
+// B: F_n at worker k's part of the shared nodes.
 template <Sizes S>
-void team_node_forces(void* arg, int k) {
+void team_shared_forces(void* arg, int k) {
   const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
-  const auto first = static_cast<std::size_t>(c.t->node_split[static_cast<std::size_t>(k)]);
-  const auto last = static_cast<std::size_t>(c.t->node_split[static_cast<std::size_t>(k) + 1]);
-  for (std::size_t n = first; n < last; ++n)
-    gather_node(*c.t, n, c.w->f.data());
+  const auto first = static_cast<std::size_t>(c.t->shared_split[static_cast<std::size_t>(k)]);
+  const auto last = static_cast<std::size_t>(c.t->shared_split[static_cast<std::size_t>(k) + 1]);
+  for (std::size_t i = first; i < last; ++i)
+    gather_node(*c.t, static_cast<std::size_t>(c.t->shared[i]), c.w->f.data());
 }
 
 // C (no hinges): the residual, accelerations and update of worker k's nodes (the DOF pass).
@@ -385,8 +387,9 @@ template <Sizes S>
   if (team == nullptr) {
     element_forces(m, s, w);  // element forces F_n = sum T^T K_L T u_n (+ beta v) (§4)
   } else {
-    team->run(team->self, team_end_forces<S>, &c);
-    team->run(team->self, team_node_forces<S>, &c);
+    w.f.fill(0.0);
+    team->run(team->self, team_element_forces<S>, &c);
+    team->run(team->self, team_shared_forces<S>, &c);
   }
   hinge_springs(m, s, w);  // hinge springs: F_n += B^T f_L (§7)
   if constexpr (kFused) {

@@ -1,18 +1,22 @@
 // The multi-core step (issue 17, item 4): step(m, s, w, in, team, work) does what step(m, s, w, in)
-// does, with the element pass and (in models without hinges) the residual and the update spread
-// over a team of workers that the caller made before the run (hil_sim's WorkerTeam: threads,
-// pinned where permitted). The kernel creates no thread and takes no lock: it hands the team a
-// job and a fixed partition.
+// does, with the element pass and (in models without hinges) the DOF pass spread over a team of
+// workers that the caller made before the run (hil_sim's WorkerTeam: threads, pinned where
+// permitted). The kernel creates no thread and takes no lock: it hands the team a job and a
+// fixed partition.
 //
 // The same bits for any number of workers. The single-core pass adds each element's end forces
-// to its nodes in element order, starting from +0.0 (element_pass.hpp). The team's pass:
-//   A. each worker computes the end forces of its fixed range of element blocks and stores them
-//      element by element (TeamWork::end_forces): a function of u (and v) alone;
-//   B. each worker sums, for its fixed range of nodes, the stored end forces of every element at
-//      that node in element order (TeamWork::incidence, built in element order), starting from
-//      +0.0: the very sums of the single-core pass, operation for operation;
+// to its nodes in element order, starting from +0.0 (element_pass.hpp). Worker k owns a fixed
+// range of element blocks; a node all of whose elements are in one worker's range is that
+// worker's ("interior"), the others are shared (a storey's nodes where two ranges meet, in a
+// frame). The team's pass:
+//   A. each worker computes the end forces of its blocks in element order: an end at an interior
+//      node is added to F_n there and then (F_n zeroed before: the single-core sums, operation
+//      for operation); an end at a shared node is stored (TeamWork::end_forces);
+//   B. each worker sums, for its part of the shared nodes, the stored end forces of every
+//      element at that node in element order (TeamWork::incidence) from +0.0: again the
+//      single-core sums;
 //   C. (no hinges) after the outputs, each worker runs the DOF pass (residual, a_n and update:
-//      residual_update(), dof_pass.hpp) over the same nodes.
+//      residual_update(), dof_pass.hpp) over a fixed range of nodes.
 // Between the phases the team's run() returns only when every worker has finished. Everything
 // else stays on the caller's thread, in the single-core order.
 #pragma once
@@ -52,12 +56,19 @@ struct TeamWork {
   // Worker k: element blocks [block_split[k], block_split[k + 1]), nodes [node_split[k], ...).
   std::array<std::int32_t, kMaxTeam + 1> block_split{};
   std::array<std::int32_t, kMaxTeam + 1> node_split{};
+  // Per block, bit 2 l + end (direct_end): that end's node is interior to the block's worker.
+  std::array<std::uint8_t, kBlocks> direct{};
+  // The shared nodes, in node order (the nodes with no element too: their F_n is +0.0), and
+  // worker k's part of them: shared[shared_split[k] .. shared_split[k + 1]).
+  std::array<std::int32_t, S.nodes> shared{};
+  std::array<std::int32_t, kMaxTeam + 1> shared_split{};
   std::array<double, kMaxTeam> bad{};  // per worker: 1 when a velocity of its DOFs is not finite
   int size = 0;                        // workers the partition is for
 };
 
-// Builds the incidence lists and the partition for a team of `size` workers (1..kMaxTeam):
-// element blocks and nodes in equal contiguous ranges. False for a size out of range.
+// Builds the incidence lists, the partition (element blocks, nodes and shared nodes in equal
+// contiguous ranges) and the interior nodes for a team of `size` workers (1..kMaxTeam). False
+// for a size out of range.
 template <Sizes S>
 [[nodiscard]] bool prepare_team(const Model<S>& m, int size, TeamWork<S>& t) {
   if (size < 1 || size > kMaxTeam) return false;
@@ -92,6 +103,38 @@ template <Sizes S>
     t.block_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(blocks * k / size);
     t.node_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(nodes * k / size);
   }
+  // Interior nodes: the first and the last of their elements (in element order) are in the same
+  // worker's blocks, so all are.
+  auto worker_of = [&](std::int32_t element) {
+    const std::int32_t block = element / static_cast<std::int32_t>(kBeamLanes);
+    int k = 0;
+    while (t.block_split[static_cast<std::size_t>(k) + 1] <= block)
+      ++k;
+    return k;
+  };
+  auto interior = [&](std::size_t n) {
+    const auto first = static_cast<std::size_t>(t.node_start[n]);
+    const auto last = static_cast<std::size_t>(t.node_start[n + 1]);
+    return first < last &&
+           worker_of(t.incidence[first] / 12) == worker_of(t.incidence[last - 1] / 12);
+  };
+  t.direct.fill(0);
+  for (std::size_t e = 0; e < S.elements; ++e) {
+    const BeamBlock& blk = m.beams[e / kBeamLanes];
+    const std::size_t l = e % kBeamLanes;
+    const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
+    for (std::size_t end = 0; end < 2; ++end) {
+      if (interior(static_cast<std::size_t>(node_dof[end] / kDofsPerNode)))
+        t.direct[e / kBeamLanes] |= direct_bit(l, end);
+    }
+  }
+  std::int64_t num_shared = 0;
+  for (std::size_t n = 0; n < S.nodes; ++n) {
+    if (!interior(n))
+      t.shared[static_cast<std::size_t>(num_shared++)] = static_cast<std::int32_t>(n);
+  }
+  for (int k = 0; k <= size; ++k)
+    t.shared_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(num_shared * k / size);
   return true;
 }
 
