@@ -37,6 +37,7 @@ struct Options {
   int max_elements = 1 << 30;
   bool screen = true;  // skip the real-time run when a short virtual-clock trial cannot hold
   int threads = 1;     // workers of the multi-core step (the loop's thread is one)
+  int spin = 1 << 10;  // pauses a waiting worker spins before it yields and sleeps
 };
 
 struct Row {
@@ -212,6 +213,9 @@ int main(int argc, char** argv) {
   app.add_option("--cpu", o.cpu, "pin to this CPU (and worker k to the k-th next one)");
   app.add_option("--threads", o.threads, "workers of the multi-core step (1: single-core)")
       ->check(CLI::Range(1, ntn::kMaxTeam));
+  app.add_option("--spin", o.spin,
+                 "pauses a waiting worker spins before it sleeps (large: never sleeps in a run)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--max-elements", o.max_elements, "skip larger frames");
   bool no_fifo = false, no_mlock = false, no_screen = false;
   app.add_flag("--no-fifo", no_fifo, "do not ask for SCHED_FIFO");
@@ -224,7 +228,7 @@ int main(int argc, char** argv) {
   for (const std::string& w : ntn::hil::apply_real_time({o.fifo, o.priority, o.mlock, o.cpu}))
     std::fprintf(stderr, "warning: %s\n", w.c_str());
   // Made (and pinned after the loop's CPU) before any run: no thread is made in the loop.
-  ntn::hil::WorkerTeam workers({o.threads, o.cpu});
+  ntn::hil::WorkerTeam workers({o.threads, o.cpu, o.spin});
   for (const std::string& w : workers.warnings())
     std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::printf("# period %g ms, %g s per size, %s inputs, SCHED_FIFO %s, mlockall %s, %d thread%s\n",
