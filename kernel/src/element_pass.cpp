@@ -369,10 +369,17 @@ void element_forces_split_simd(const BeamBlock* blocks, std::size_t first, std::
   HWY_DYNAMIC_DISPATCH(ElementForcesSplit)(blocks, first, last, direct, u, v, beta, f, fe);
 }
 
+// Unqualified names only in HWY_DYNAMIC_DISPATCH: where the build's own instruction set is the
+// best Highway knows (-march=native on AVX-512), the macro becomes N_<TARGET>::name, which
+// must name a function of this namespace.
+std::int64_t target_simd() {
+  return HWY_DYNAMIC_DISPATCH(Target)();
+}
+
 }  // namespace detail
 
 const char* element_pass_target() {
-  return hwy::TargetName(HWY_DYNAMIC_DISPATCH(detail::Target)());
+  return hwy::TargetName(detail::target_simd());
 }
 
 }  // namespace ntn
