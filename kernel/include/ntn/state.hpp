@@ -87,7 +87,9 @@ struct Scratch {
   std::array<double, kDofs> f{};
   // Acceleration a_n: written by the residual stage (a_n at DOFs no hinge couples) and the NTN
   // coupling stage (the coupled DOFs), read by outputs and the update; the stops and the
-  // constraint projection add their S 35-37 increments. Between the residual and the coupling
+  // constraint projection add their S 35-37 increments. A model without hinges: written at the
+  // outputs' DOFs before the outputs (output_accelerations), then everywhere, with the same
+  // values, by the fused DOF pass (residual_update). Between the residual and the coupling
   // stage its storage is the coupling's input, coupling_input() (ntn_exact: R_n - C v at tree
   // DOFs), never read as `a`.
   std::array<double, kDofs> a{};
