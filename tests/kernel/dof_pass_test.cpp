@@ -114,10 +114,7 @@ TEST(DofPass, NonFiniteVelocityIsReported) {
 using ntn_test::EveryTarget;
 
 TEST_F(EveryTarget, DofPassGivesTheScalarBits) {
-  const std::vector<std::int64_t> targets = ntn_test::targets_here();
-  ASSERT_FALSE(targets.empty());
-  for (const std::int64_t t : targets) {
-    ntn_test::use_target(t);
+  each_target([&](std::int64_t t) {
     for (const std::size_t nodes : {1, 2, 3, 7, 64, 65}) {
       const Dofs d = random_dofs(nodes, 10 + nodes);
       for (const std::size_t first : {std::size_t{0}, std::size_t{1}}) {
@@ -126,7 +123,7 @@ TEST_F(EveryTarget, DofPassGivesTheScalarBits) {
                     run(d, ntn::ElementPass::kScalar, first, nodes), hwy::TargetName(t));
       }
     }
-  }
+  });
 }
 
 #endif  // NTN_SIMD

@@ -168,11 +168,7 @@ TEST(ElementPass, ZerosKeepTheirSign) {
 using ntn_test::EveryTarget;
 
 TEST_F(EveryTarget, SimdPathGivesTheScalarBits) {
-  const std::vector<std::int64_t> targets = ntn_test::targets_here();
-  ASSERT_FALSE(targets.empty());
-  for (const std::int64_t t : targets) {
-    ntn_test::use_target(t);
-    ASSERT_STREQ(ntn::element_pass_target(), hwy::TargetName(t)) << "the dispatch must take it";
+  each_target([&](std::int64_t t) {
     for (const std::size_t n : kCounts) {
       const Elements e = random_elements(n, n < 8 ? 3 : 40, n);
       for (const double beta : {0.0, 2e-3}) {
@@ -181,15 +177,13 @@ TEST_F(EveryTarget, SimdPathGivesTheScalarBits) {
             << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
       }
     }
-  }
+  });
 }
 
 // The multi-core pass: each end added or stored as its bit says, the scalar bits on every target;
 // with every bit set it is the single-core pass (on whole blocks).
 TEST_F(EveryTarget, SplitPassGivesTheScalarBits) {
-  const std::vector<std::int64_t> targets = ntn_test::targets_here();
-  for (const std::int64_t t : targets) {
-    ntn_test::use_target(t);
+  each_target([&](std::int64_t t) {
     for (const std::size_t n : {std::size_t{4}, std::size_t{8}, std::size_t{64}}) {
       const Elements e = random_elements(n, 40, 100 + n);
       std::mt19937_64 rng(n);
@@ -207,7 +201,7 @@ TEST_F(EveryTarget, SplitPassGivesTheScalarBits) {
             << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
       }
     }
-  }
+  });
 }
 
 TEST(ElementPass, DispatchTakesAVectorSetWhereTheCpuHasOne) {

@@ -13,6 +13,8 @@
 #include <hwy/highway.h>
 #include <hwy/targets.h>
 
+#include "ntn/element_pass.hpp"
+
 namespace ntn_test {
 
 inline std::vector<std::int64_t> targets_here() {
@@ -32,6 +34,18 @@ inline void use_target(std::int64_t t) {
 
 class EveryTarget : public ::testing::Test {
  protected:
+  // Runs body(t) with the dispatch on each target t here in turn (checking that it takes it).
+  template <class Body>
+  static void each_target(Body body) {
+    const std::vector<std::int64_t> targets = targets_here();
+    ASSERT_FALSE(targets.empty());
+    for (const std::int64_t t : targets) {
+      use_target(t);
+      ASSERT_STREQ(ntn::element_pass_target(), hwy::TargetName(t)) << "the dispatch must take it";
+      body(t);
+    }
+  }
+
   void TearDown() override {
     hwy::SetSupportedTargetsForTest(0);  // back to what the CPU has
     hwy::GetChosenTarget().Update(hwy::SupportedTargets());
