@@ -46,16 +46,123 @@ HWY_INLINE void to_global(const V* R, const V* l, V* g) {
   g[2] = hn::Add(hn::Add(hn::Mul(R[2], l[0]), hn::Mul(R[5], l[1])), hn::Mul(R[8], l[2]));
 }
 
+// How a block's lanes rotate (beam.hpp, AxisMap): all by the full products, all by one and the
+// same pick (the common case: members meshed in place, numbered member by member), or lane by lane.
+enum class Axes : std::uint8_t { kGeneral, kUniform, kMixed };
+
+HWY_INLINE Axes block_axes(const BeamBlock& blk) {
+  const AxisMap m = blk.axes[0];
+  for (std::size_t l = 1; l < kBeamLanes; ++l) {
+    if (blk.axes[l] != m) return Axes::kMixed;
+  }
+  return m == kGeneralAxes ? Axes::kGeneral : Axes::kUniform;
+}
+
+// A uniform block's picks: local axis k is global axis kAxis[k] (one of the six orders of x, y, z,
+// a template argument so that the picks are register names), its sign bit xor-ed with sign[k]
+// (-0.0 where negated, else +0.0): flip() of beam.hpp, exact.
+struct Pick {
+  V sign[3];
+};
+
+HWY_INLINE Pick block_pick(AxisMap m) {
+  const D d;
+  Pick p;
+  for (std::size_t k = 0; k < 3; ++k)
+    p.sign[k] = hn::Set(d, axis_negated(m, k) ? -0.0 : 0.0);
+  return p;
+}
+
+template <std::size_t kA0, std::size_t kA1>
+HWY_INLINE void pick_local(const Pick& p, const V* g, V* l) {
+  constexpr std::size_t kA2 = 3 - kA0 - kA1;
+  l[0] = hn::Xor(g[kA0], p.sign[0]);
+  l[1] = hn::Xor(g[kA1], p.sign[1]);
+  l[2] = hn::Xor(g[kA2], p.sign[2]);
+}
+
+template <std::size_t kA0, std::size_t kA1>
+HWY_INLINE void pick_global(const Pick& p, const V* l, V* g) {
+  constexpr std::size_t kA2 = 3 - kA0 - kA1;
+  g[kA0] = hn::Xor(l[0], p.sign[0]);
+  g[kA1] = hn::Xor(l[1], p.sign[1]);
+  g[kA2] = hn::Xor(l[2], p.sign[2]);
+}
+
+// A block whose lanes rotate differently: each lane's AxisMap as vectors over lanes
+// [first, first + Lanes).
+struct LaneAxes {
+  hn::Mask<D> aligned;  // lanes with an AxisMap, the others take the full products
+  V axis[3];            // the global axis of local axis k: 0.0, 1.0 or 2.0
+  V sign[3];            // -0.0 where local axis k is negated, else +0.0 (its sign bit xor-ed in)
+};
+
+HWY_INLINE LaneAxes lane_axes(const BeamBlock& blk, std::size_t first) {
+  const D d;
+  alignas(64) double aligned[kBeamLanes], axis[3][kBeamLanes], sign[3][kBeamLanes];
+  for (std::size_t l = 0; l < kBeamLanes; ++l) {
+    const AxisMap m = blk.axes[l];
+    aligned[l] = m == kGeneralAxes ? 0.0 : 1.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      axis[k][l] = static_cast<double>(axis_of(m, k));
+      sign[k][l] = axis_negated(m, k) ? -0.0 : 0.0;
+    }
+  }
+  LaneAxes a;
+  a.aligned = hn::Ne(hn::LoadU(d, aligned + first), hn::Zero(d));
+  for (std::size_t k = 0; k < 3; ++k) {
+    a.axis[k] = hn::LoadU(d, axis[k] + first);
+    a.sign[k] = hn::LoadU(d, sign[k] + first);
+  }
+  return a;
+}
+
+// In the aligned lanes of a mixed block, l (the full products) replaced by the picks of g.
+HWY_INLINE void repick_local(const LaneAxes& a, const V* g, V* l) {
+  const D d;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const V pick = hn::IfThenElse(hn::Eq(a.axis[k], hn::Zero(d)), g[0],
+                                  hn::IfThenElse(hn::Eq(a.axis[k], hn::Set(d, 1.0)), g[1], g[2]));
+    l[k] = hn::IfThenElse(a.aligned, hn::Xor(pick, a.sign[k]), l[k]);
+  }
+}
+
+// ... and g (the full products) replaced by the picks of l.
+HWY_INLINE void repick_global(const LaneAxes& a, const V* l, V* g) {
+  const D d;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const V axis = hn::Set(d, static_cast<double>(c));
+    const V pick = hn::IfThenElse(hn::Eq(a.axis[0], axis), hn::Xor(l[0], a.sign[0]),
+                                  hn::IfThenElse(hn::Eq(a.axis[1], axis), hn::Xor(l[1], a.sign[1]),
+                                                 hn::Xor(l[2], a.sign[2])));
+    g[c] = hn::IfThenElse(a.aligned, pick, g[c]);
+  }
+}
+
 // beam_force from the global displacements ug [u_i, theta_i, u_j, theta_j] (one vector per DOF,
 // lanes [first, first + Lanes) of the block) to the global end forces g, in the same order.
+template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1>
 HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug, V* g) {
   const D d;
-  V R[9];
-  for (std::size_t k = 0; k < 9; ++k)
-    R[k] = hn::LoadU(d, blk.rotation[k].data() + first);
-  V dl[12];  // beam_local_displacements
-  to_local(R, ug, dl), to_local(R, ug + 3, dl + 3), to_local(R, ug + 6, dl + 6);
-  to_local(R, ug + 9, dl + 9);
+  [[maybe_unused]] V R[9];      // the rotation, for the full products
+  [[maybe_unused]] LaneAxes a;  // the picks of a mixed block
+  [[maybe_unused]] Pick pick;   // the picks of a uniform block
+  V dl[12];                     // beam_local_displacements
+  if constexpr (kAxes == Axes::kUniform) {
+    pick = block_pick(blk.axes[0]);
+    for (std::size_t e = 0; e < 12; e += 3)
+      pick_local<kA0, kA1>(pick, ug + e, dl + e);
+  } else {
+    for (std::size_t k = 0; k < 9; ++k)
+      R[k] = hn::LoadU(d, blk.rotation[k].data() + first);
+    for (std::size_t e = 0; e < 12; e += 3)
+      to_local(R, ug + e, dl + e);
+    if constexpr (kAxes == Axes::kMixed) {
+      a = lane_axes(blk, first);
+      for (std::size_t e = 0; e < 12; e += 3)
+        repick_local(a, ug + e, dl + e);
+    }
+  }
 
   // beam_local_force
   V f[12];
@@ -79,9 +186,51 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug
   f[4] = hn::Add(hn::Add(hn::Mul(mq1, dw), hn::Mul(q2, dl[4])), hn::Mul(q3, dl[10]));
   f[10] = hn::Add(hn::Add(hn::Mul(mq1, dw), hn::Mul(q3, dl[4])), hn::Mul(q2, dl[10]));
 
-  // rotate_to_global, end by end
-  to_global(R, f, g), to_global(R, f + 3, g + 3), to_global(R, f + 6, g + 6);
-  to_global(R, f + 9, g + 9);
+  // beam_to_global, end by end
+  if constexpr (kAxes == Axes::kUniform) {
+    for (std::size_t e = 0; e < 12; e += 3)
+      pick_global<kA0, kA1>(pick, f + e, g + e);
+  } else {
+    for (std::size_t e = 0; e < 12; e += 3)
+      to_global(R, f + e, g + e);
+    if constexpr (kAxes == Axes::kMixed) {
+      for (std::size_t e = 0; e < 12; e += 3)
+        repick_global(a, f + e, g + e);
+    }
+  }
+}
+
+// lane_forces for the block's kind of axes.
+HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug, V* g) {
+  switch (block_axes(blk)) {
+    case Axes::kUniform:
+      switch (3 * axis_of(blk.axes[0], 0) + axis_of(blk.axes[0], 1)) {
+        case 1:
+          lane_forces<Axes::kUniform, 0, 1>(blk, first, ug, g);
+          return;
+        case 2:
+          lane_forces<Axes::kUniform, 0, 2>(blk, first, ug, g);
+          return;
+        case 3:
+          lane_forces<Axes::kUniform, 1, 0>(blk, first, ug, g);
+          return;
+        case 5:
+          lane_forces<Axes::kUniform, 1, 2>(blk, first, ug, g);
+          return;
+        case 6:
+          lane_forces<Axes::kUniform, 2, 0>(blk, first, ug, g);
+          return;
+        default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
+          lane_forces<Axes::kUniform, 2, 1>(blk, first, ug, g);
+          return;
+      }
+    case Axes::kGeneral:
+      lane_forces<Axes::kGeneral>(blk, first, ug, g);
+      return;
+    case Axes::kMixed:
+      lane_forces<Axes::kMixed>(blk, first, ug, g);
+      return;
+  }
 }
 
 // Any vector width: the displacements gathered DOF by DOF, the end forces stored lane by lane

@@ -189,6 +189,92 @@ TEST(BeamForce, OnTheFlyEqualsStoredGlobalMatrix) {
   }
 }
 
+// The 48 signed orders of the axes (rotations and reflections), zeros of either sign.
+std::array<double, 9> signed_order(int which, bool negative_zeros) {
+  constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  std::array<double, 9> r{};
+  r.fill(negative_zeros ? -0.0 : 0.0);
+  for (int k = 0; k < 3; ++k)
+    r[static_cast<std::size_t>(3 * k + kOrders[which % 6][k])] =
+        ((which / 6) >> k) % 2 ? -1.0 : 1.0;
+  return r;
+}
+
+// An aligned element (beam.hpp, AxisMap) rotates by picks: the map reads each of the 48 signed
+// orders back, any other rotation is general, and the picks equal the full products as values
+// (a product by 0 adds a zero: only the sign of a zero result can differ).
+TEST(AxisMap, SignedOrdersArePicksOfTheFullProducts) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> x(-1, 1);
+  for (int which = 0; which < 48; ++which) {
+    for (const bool nz : {false, true}) {
+      const auto R = signed_order(which, nz);
+      const ntn::AxisMap m = ntn::axis_map(R);
+      ASSERT_NE(m, ntn::kGeneralAxes) << which;
+      for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(R[3 * k + ntn::axis_of(m, k)], ntn::axis_negated(m, k) ? -1.0 : 1.0);
+      }
+      for (int trial = 0; trial < 20; ++trial) {
+        const double g[3] = {x(rng), trial % 4 == 0 ? 0.0 : x(rng), x(rng)};
+        double full[3], picked[3], back_full[3], back_picked[3];
+        ntn::rotate_to_local(R, g, full);
+        ntn::beam_to_local(m, R, g, picked);
+        ntn::rotate_to_global(R, g, back_full);
+        ntn::beam_to_global(m, R, g, back_picked);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_EQ(full[c], picked[c]);
+          EXPECT_EQ(back_full[c], back_picked[c]);
+        }
+      }
+    }
+  }
+  // Not a signed order: general.
+  EXPECT_EQ(ntn::axis_map({0.6, 0.0, -0.8, 0.0, 1.0, 0.0, 0.8, 0.0, 0.6}), ntn::kGeneralAxes);
+  EXPECT_EQ(ntn::axis_map({1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0}), ntn::kGeneralAxes);
+  EXPECT_EQ(ntn::axis_map({1.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0}), ntn::kGeneralAxes);
+  EXPECT_EQ(ntn::axis_map({1.0, 0.0, 0.0, 0.0, 1.0 + 1e-16 * 2.3, 0.0, 0.0, 0.0, 1.0}),
+            ntn::kGeneralAxes);
+  EXPECT_EQ(ntn::axis_map({}), ntn::kGeneralAxes);
+  // Members of a building frame: along x, y and z with their usual orientation vectors.
+  const ntn::ElementSpec along_x = ntn_test::element(0, 1, ntn_test::kSteel, kRect, {0, 0, 1});
+  const ntn::ElementSpec column = ntn_test::element(0, 1, ntn_test::kSteel, kRect, {1, 0, 0});
+  EXPECT_NE(ntn::axis_map(ntn::beam_geometry(node_at(0, 0, 3), node_at(6, 0, 3), along_x).rotation),
+            ntn::kGeneralAxes);
+  EXPECT_NE(ntn::axis_map(ntn::beam_geometry(node_at(0, 6, 3), node_at(0, 0, 3), along_x).rotation),
+            ntn::kGeneralAxes);
+  EXPECT_NE(
+      ntn::axis_map(ntn::beam_geometry(node_at(2, 1, 0), node_at(2, 1, 3.5), column).rotation),
+      ntn::kGeneralAxes);
+  EXPECT_EQ(
+      ntn::axis_map(ntn::beam_geometry(node_at(0, 0, 0), node_at(6, 0, 3.5), column).rotation),
+      ntn::kGeneralAxes);
+}
+
+// The element force of an aligned element by picks equals the full products' as values, for
+// every signed order, Euler-Bernoulli and Timoshenko (the same operations on the same values).
+TEST(AxisMap, AlignedForceEqualsTheFullProductsAsValues) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int which = 0; which < 48; ++which) {
+    ntn::BeamData b =
+        beam_data(node_at(0, 0, 0), node_at(2.5, 0, 0),
+                  ntn_test::element(0, 1, ntn_test::kSteel, which % 2 ? kThick : kRect, {0, 0, 1}));
+    b.rotation = signed_order(which, which % 3 == 0);
+    ntn::BeamData general = b;
+    b.axes = ntn::axis_map(b.rotation);
+    ASSERT_NE(b.axes, ntn::kGeneralAxes);
+    for (int trial = 0; trial < 10; ++trial) {
+      double d[12], f[12], g[12];
+      for (double& x : d)
+        x = trial == 0 ? 0.0 : 1e-3 * u(rng);
+      ntn::beam_force(b, d, d + 6, f, f + 6);
+      ntn::beam_force(general, d, d + 6, g, g + 6);
+      for (int c = 0; c < 12; ++c)
+        EXPECT_EQ(f[c], g[c]) << which << ", DOF " << c;
+    }
+  }
+}
+
 // HRZ lumping (Hinton, Rock, Zienkiewicz 1976): keep the diagonal of the consistent mass and
 // scale it so the translational diagonal sums to the element's mass. The consistent bending
 // mass (rho A l / 420)[156, 4 l^2, ...] gives translations rho A l / 2 and bending rotations

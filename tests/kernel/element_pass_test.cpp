@@ -30,8 +30,11 @@ namespace {
 using ntn::BeamBlock;
 using ntn::BeamData;
 
-// A random element set: rotations with exact zeros and -0.0 mixed in (axis-aligned members have
-// them), stiffness across orders of magnitude, nodes drawn from a few so that elements share them.
+// A random element set, in runs of 1 to 9 elements of one kind so that blocks come uniform, with
+// lanes of different AxisMaps and with aligned and general lanes mixed: rotations either random
+// entries with exact zeros and -0.0 mixed in (general: the full products), or one of the 48
+// signed orders of the axes, zeros of either sign (aligned: picks, beam.hpp); stiffness across
+// orders of magnitude, nodes drawn from a few so that elements share them.
 struct Elements {
   std::vector<BeamData> beams;
   std::vector<BeamBlock> blocks;
@@ -52,18 +55,38 @@ double pick(std::mt19937_64& rng) {
   }
 }
 
+std::array<double, 9> signed_order(std::uint64_t which, std::mt19937_64& rng) {
+  constexpr std::size_t kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  std::array<double, 9> r{};
+  for (double& x : r)
+    x = rng() % 2 == 0 ? 0.0 : -0.0;
+  for (std::size_t k = 0; k < 3; ++k)
+    r[3 * k + kOrders[which % 6][k]] = ((which / 6) >> k) % 2 == 0 ? 1.0 : -1.0;
+  return r;
+}
+
 Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> mag(3.0, 9.0);
   Elements e;
+  std::size_t run = 0;
+  std::uint64_t kind = 0;  // 48: general, else a signed order
   for (std::size_t k = 0; k < count; ++k) {
+    if (run == 0) run = 1 + rng() % 9, kind = rng() % 3 == 0 ? 48 : rng() % 48;
+    --run;
     BeamData b;
     b.node_i = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(nodes));
     do {
       b.node_j = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(nodes));
     } while (b.node_j == b.node_i);
-    for (double& r : b.rotation)
-      r = pick(rng);
+    if (kind == 48) {
+      for (double& r : b.rotation)
+        r = pick(rng);
+    } else {
+      b.rotation = signed_order(kind, rng);
+    }
+    b.axes = ntn::axis_map(b.rotation);
     auto stiff = [&] { return std::pow(10.0, mag(rng)); };
     b.k.axial = stiff(), b.k.torsion = stiff();
     for (std::size_t c = 0; c < 4; ++c)
@@ -143,14 +166,19 @@ TEST(ElementPass, ScalarPathIsBeamForceInOrder) {
 TEST(ElementPass, ZerosKeepTheirSign) {
   // Displacements +-0 and forces summed onto -0.0: every product is +-0, and each sum's sign
   // depends on the operations and their order.
-  // Five elements on their own nodes, rotations the identity with -0.0 off the diagonal (a
-  // product with +-0 keeps a sign), displacements -0.0.
+  // Five elements on their own nodes, displacements -0.0, rotations with -0.0 off the diagonal
+  // (a product with +-0 keeps a sign): elements 0, 2, 4 the identity (aligned: picks, one
+  // negated axis), 1 and 3 a rotation about y (general: products), so one block of each kind.
   Elements e = random_elements(5, 10, 7);
   for (std::size_t k = 0; k < e.beams.size(); ++k) {
     e.beams[k].node_i = static_cast<std::int32_t>(2 * k);
     e.beams[k].node_j = static_cast<std::int32_t>(2 * k + 1);
-    e.beams[k].rotation = {1.0, -0.0, -0.0, -0.0, 1.0, -0.0, -0.0, -0.0, 1.0};
+    e.beams[k].rotation =
+        k % 2 == 0 ? std::array<double, 9>{1.0, -0.0, -0.0, -0.0, -1.0, -0.0, -0.0, -0.0, -1.0}
+                   : std::array<double, 9>{0.6, -0.0, -0.8, -0.0, 1.0, -0.0, 0.8, -0.0, 0.6};
     ntn::set_lane(e.blocks[k / ntn::kBeamLanes], k % ntn::kBeamLanes, e.beams[k]);
+    ASSERT_EQ(e.blocks[k / ntn::kBeamLanes].axes[k % ntn::kBeamLanes] != ntn::kGeneralAxes,
+              k % 2 == 0);
   }
   for (double& x : e.u)
     x = -0.0;
@@ -168,6 +196,18 @@ TEST(ElementPass, ZerosKeepTheirSign) {
 using ntn_test::EveryTarget;
 
 TEST_F(EveryTarget, SimdPathGivesTheScalarBits) {
+  // The sets hold the three kinds of block the SIMD pass tells apart: all lanes general, all one
+  // AxisMap, and lanes that differ (maps, or aligned and general).
+  int general = 0, uniform = 0, mixed = 0;
+  for (const BeamBlock& blk : random_elements(400, 40, 400).blocks) {
+    bool same = true;
+    for (const ntn::AxisMap m : blk.axes)
+      same = same && m == blk.axes[0];
+    (!same ? mixed : blk.axes[0] == ntn::kGeneralAxes ? general : uniform) += 1;
+  }
+  ASSERT_GT(general, 0);
+  ASSERT_GT(uniform, 0);
+  ASSERT_GT(mixed, 0);
   each_target([&](std::int64_t t) {
     for (const std::size_t n : kCounts) {
       const Elements e = random_elements(n, n < 8 ? 3 : 40, n);

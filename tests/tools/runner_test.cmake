@@ -22,8 +22,10 @@ if(NOT hash_a STREQUAL CMAKE_MATCH_1)
 endif()
 # The El Centro reference (README, tests/determinism): the default (--sampling step, the records
 # at every kernel step) is the runner's input semantics before the loop library ran it, to the bit.
-if(NOT hash_a STREQUAL "fa89d903ee8d9aa5")
-  message(FATAL_ERROR "El Centro output hash ${hash_a}, the reference is fa89d903ee8d9aa5")
+# Since issue 17's aligned elements (kernel/README, "Aligned elements pick"), b75556fff5aab1d0; it
+# was fa89d903ee8d9aa5, the same values with other signs of zero.
+if(NOT hash_a STREQUAL "b75556fff5aab1d0")
+  message(FATAL_ERROR "El Centro output hash ${hash_a}, the reference is b75556fff5aab1d0")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/a.csv ${OUT}/b.csv
                 RESULT_VARIABLE same)

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "ntn/model_spec.hpp"
@@ -21,12 +22,55 @@ struct BeamStiffness {
   std::array<double, 4> xz{};  // plane x-z: w along z, rotation about y (uses Iy)
 };
 
-// What step() needs of an element: its nodes, rotation (rows: local x, y, z in global) and
-// stiffness constants. 160 bytes; the force is applied on the fly from these.
+// An element whose local axes lie along global axes (a member along x, y or z with its
+// orientation along another: most members of a building frame) has a rotation whose rows are
+// signed unit vectors: local component k is global component axis(k), negated or not. Such an
+// element rotates by picking components, with no product and no sum (DESIGN §4). AxisMap codes it:
+// 0 for any other rotation; else bit 15 set, bits 2k..2k+1 the global axis of local axis k and bit
+// 6 + k set when it is negated. The code is part of the arithmetic (a picked component keeps its
+// sign of zero where the full product would add +0.0), so both element passes read it from the
+// model, never from a threshold of their own.
+using AxisMap = std::uint16_t;
+inline constexpr AxisMap kGeneralAxes = 0;
+inline constexpr AxisMap kAlignedAxes = 0x8000;
+
+constexpr std::size_t axis_of(AxisMap m, std::size_t k) {
+  return (static_cast<unsigned>(m) >> (2 * k)) & 3U;
+}
+constexpr bool axis_negated(AxisMap m, std::size_t k) {
+  return ((static_cast<unsigned>(m) >> (6 + k)) & 1U) != 0;
+}
+
+// The AxisMap of a rotation: aligned when each row has one entry +1 or -1 and zeros (of either
+// sign) elsewhere, exactly.
+inline AxisMap axis_map(const std::array<double, 9>& R) {
+  unsigned code = kAlignedAxes, seen = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::size_t unit = 3;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double r = R[3 * k + c];
+      if (r == 1.0 || r == -1.0) {
+        if (unit != 3) return kGeneralAxes;
+        unit = c;
+      } else if (r != 0.0) {
+        return kGeneralAxes;
+      }
+    }
+    if (unit == 3 || (seen & (1U << unit)) != 0) return kGeneralAxes;
+    seen |= 1U << unit;
+    code |= static_cast<unsigned>(unit) << (2 * k);
+    if (R[3 * k + unit] < 0) code |= 1U << (6 + k);
+  }
+  return static_cast<AxisMap>(code);
+}
+
+// What step() needs of an element: its nodes, rotation (rows: local x, y, z in global), its
+// AxisMap and stiffness constants. The force is applied on the fly from these.
 struct BeamData {
   std::int32_t node_i = 0, node_j = 0;
   std::array<double, 9> rotation{};  // row-major 3x3, local = rotation * global
   BeamStiffness k;
+  AxisMap axes = kGeneralAxes;  // axis_map(rotation), or kGeneralAxes: the full products
 };
 
 struct BeamGeometry {
@@ -190,11 +234,36 @@ inline void rotate_to_global(const std::array<double, 9>& R, const double* l, do
   g[2] = R[2] * l[0] + R[5] * l[1] + R[8] * l[2];
 }
 
+// x or -x: a sign flip, exact for every x (the SIMD pass flips the same bit).
+constexpr double flip(double x, bool negated) {
+  return negated ? -x : x;
+}
+
+// rotate_to_local / rotate_to_global of an element: by picking components where its axes are
+// aligned (m != kGeneralAxes), else by the full products.
+inline void beam_to_local(AxisMap m, const std::array<double, 9>& R, const double* g, double* l) {
+  if (m == kGeneralAxes) {
+    rotate_to_local(R, g, l);
+    return;
+  }
+  for (std::size_t k = 0; k < 3; ++k)
+    l[k] = flip(g[axis_of(m, k)], axis_negated(m, k));
+}
+
+inline void beam_to_global(AxisMap m, const std::array<double, 9>& R, const double* l, double* g) {
+  if (m == kGeneralAxes) {
+    rotate_to_global(R, l, g);
+    return;
+  }
+  for (std::size_t k = 0; k < 3; ++k)
+    g[axis_of(m, k)] = flip(l[k], axis_negated(m, k));
+}
+
 // Local displacements of one element from its nodes' global DOFs.
 inline void beam_local_displacements(const BeamData& b, const double* ui, const double* uj,
                                      double* d) {
-  rotate_to_local(b.rotation, ui, d), rotate_to_local(b.rotation, ui + 3, d + 3);
-  rotate_to_local(b.rotation, uj, d + 6), rotate_to_local(b.rotation, uj + 3, d + 9);
+  beam_to_local(b.axes, b.rotation, ui, d), beam_to_local(b.axes, b.rotation, ui + 3, d + 3);
+  beam_to_local(b.axes, b.rotation, uj, d + 6), beam_to_local(b.axes, b.rotation, uj + 3, d + 9);
 }
 
 // Internal force of one element on its two nodes, in global axes: f = T^T K_L T u (DESIGN §4),
@@ -204,8 +273,8 @@ inline void beam_force(const BeamData& b, const double* ui, const double* uj, do
   double d[12], f[12];
   beam_local_displacements(b, ui, uj, d);
   beam_local_force(b.k, d, f);
-  rotate_to_global(b.rotation, f, fi), rotate_to_global(b.rotation, f + 3, fi + 3);
-  rotate_to_global(b.rotation, f + 6, fj), rotate_to_global(b.rotation, f + 9, fj + 3);
+  beam_to_global(b.axes, b.rotation, f, fi), beam_to_global(b.axes, b.rotation, f + 3, fi + 3);
+  beam_to_global(b.axes, b.rotation, f + 6, fj), beam_to_global(b.axes, b.rotation, f + 9, fj + 3);
 }
 
 // End forces of one element in its local axes [N, Vy, Vz, T, My, Mz] at node i then node j:

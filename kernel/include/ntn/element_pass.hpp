@@ -27,21 +27,26 @@ constexpr std::size_t beam_blocks(std::size_t elements) {
 
 // kBeamLanes elements, field by field (BeamData's fields, lane l of each). Lanes past the model's
 // last element have zero stiffness and DOF offset 0; the pass computes them and adds them nowhere.
-struct alignas(64) BeamBlock {
+// The rotation comes last: a block of aligned elements (beam.hpp, AxisMap) never reads it. Every
+// lane array is 32-byte aligned (one AVX2 vector, never across a cache line) and a block is the
+// size of kBeamLanes BeamData.
+struct alignas(32) BeamBlock {
   using Lanes = std::array<double, kBeamLanes>;
-  std::array<std::int32_t, kBeamLanes> dof_i{};  // kDofsPerNode * node_i
-  std::array<std::int32_t, kBeamLanes> dof_j{};  // kDofsPerNode * node_j
-  std::array<Lanes, 9> rotation{};               // BeamData::rotation[k], lane by lane
   Lanes axial{};
   Lanes torsion{};
   std::array<Lanes, 4> xy{};
   std::array<Lanes, 4> xz{};
+  std::array<std::int32_t, kBeamLanes> dof_i{};  // kDofsPerNode * node_i
+  std::array<std::int32_t, kBeamLanes> dof_j{};  // kDofsPerNode * node_j
+  std::array<AxisMap, kBeamLanes> axes{};        // axis_map(rotation), lane by lane
+  alignas(32) std::array<Lanes, 9> rotation{};   // BeamData::rotation[k], lane by lane
 };
 static_assert(sizeof(BeamBlock) == kBeamLanes * sizeof(BeamData), "one BeamData per lane");
 
 inline void set_lane(BeamBlock& blk, std::size_t l, const BeamData& b) {
   blk.dof_i[l] = kDofsPerNode * b.node_i;
   blk.dof_j[l] = kDofsPerNode * b.node_j;
+  blk.axes[l] = axis_map(b.rotation);  // from the rotation: the one rule, whatever b.axes says
   for (std::size_t k = 0; k < 9; ++k)
     blk.rotation[k][l] = b.rotation[k];
   blk.axial[l] = b.k.axial;
@@ -56,6 +61,7 @@ inline BeamData lane(const BeamBlock& blk, std::size_t l) {
   BeamData b;
   b.node_i = blk.dof_i[l] / kDofsPerNode;
   b.node_j = blk.dof_j[l] / kDofsPerNode;
+  b.axes = blk.axes[l];
   for (std::size_t k = 0; k < 9; ++k)
     b.rotation[k] = blk.rotation[k][l];
   b.k.axial = blk.axial[l];

@@ -1,8 +1,8 @@
 // The output hash that ntn-run-<model> and ntn-hil-<model> print ("output hash" on screen,
 // "output_hash" in the JSON summary): XXH3-64 over every kernel step's outputs, as bytes in step
 // order (Scratch::outputs after each step()), then the final state's u and v. Two runs that
-// print the same hash took the same steps to the same bits (up to XXH3 collisions); the El
-// Centro reference of ntn-run-frame3d, fa89d903ee8d9aa5, is this hash.
+// print the same hash took the same steps to the same bits (up to XXH3 collisions), the sign of
+// zero included; the El Centro reference of ntn-run-frame3d, b75556fff5aab1d0, is this hash.
 #pragma once
 
 #include <cstddef>
