@@ -25,10 +25,10 @@ struct BeamStiffness {
 // An element whose local axes lie along global axes (a member along x, y or z with its
 // orientation along another: most members of a building frame) has a rotation whose rows are
 // signed unit vectors: local component k is global component axis(k), negated or not. Such an
-// element rotates by picking components, with no product and no sum (DESIGN §4). AxisMap codes it:
-// 0 for any other rotation; else bit 15 set, bits 2k..2k+1 the global axis of local axis k and bit
-// 6 + k set when it is negated. The code is part of the arithmetic (a picked component keeps its
-// sign of zero where the full product would add +0.0), so both element passes read it from the
+// element rotates by picking components, with no product and no sum (kernel/README). AxisMap codes
+// it: 0 for any other rotation; else bit 15 set, bits 2k..2k+1 the global axis of local axis k and
+// bit 6 + k set when it is negated. The code is part of the arithmetic (a picked component keeps
+// its sign of zero where the full product would add +0.0), so both element passes read it from the
 // model, never from a threshold of their own.
 using AxisMap = std::uint16_t;
 inline constexpr AxisMap kGeneralAxes = 0;
