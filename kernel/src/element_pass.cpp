@@ -58,84 +58,73 @@ HWY_INLINE Axes block_axes(const BeamBlock& blk) {
   return m == kGeneralAxes ? Axes::kGeneral : Axes::kUniform;
 }
 
-// A uniform block's picks: local axis k is global axis kAxis[k] (one of the six orders of x, y, z,
-// a template argument so that the picks are register names), its sign bit xor-ed with sign[k]
-// (-0.0 where negated, else +0.0): flip() of beam.hpp, exact.
-struct Pick {
-  V sign[3];
-};
-
-HWY_INLINE Pick block_pick(AxisMap m) {
+// A uniform block's picks: local axis k is global axis kA<k> (one of the six orders of x, y, z, a
+// template argument so that the picks are register names), its sign bit xor-ed with sign[k]
+// (-0.0 where negated, else +0.0): flip() of beam.hpp, exact. (Vectors are passed as arrays, not
+// in structs: a struct's implicit constructor lacks Highway's target attributes.)
+HWY_INLINE void block_signs(AxisMap m, V* sign) {
   const D d;
-  Pick p;
   for (std::size_t k = 0; k < 3; ++k)
-    p.sign[k] = hn::Set(d, axis_negated(m, k) ? -0.0 : 0.0);
-  return p;
+    sign[k] = hn::Set(d, axis_negated(m, k) ? -0.0 : 0.0);
 }
 
 template <std::size_t kA0, std::size_t kA1>
-HWY_INLINE void pick_local(const Pick& p, const V* g, V* l) {
+HWY_INLINE void pick_local(const V* sign, const V* g, V* l) {
   constexpr std::size_t kA2 = 3 - kA0 - kA1;
-  l[0] = hn::Xor(g[kA0], p.sign[0]);
-  l[1] = hn::Xor(g[kA1], p.sign[1]);
-  l[2] = hn::Xor(g[kA2], p.sign[2]);
+  l[0] = hn::Xor(g[kA0], sign[0]);
+  l[1] = hn::Xor(g[kA1], sign[1]);
+  l[2] = hn::Xor(g[kA2], sign[2]);
 }
 
 template <std::size_t kA0, std::size_t kA1>
-HWY_INLINE void pick_global(const Pick& p, const V* l, V* g) {
+HWY_INLINE void pick_global(const V* sign, const V* l, V* g) {
   constexpr std::size_t kA2 = 3 - kA0 - kA1;
-  g[kA0] = hn::Xor(l[0], p.sign[0]);
-  g[kA1] = hn::Xor(l[1], p.sign[1]);
-  g[kA2] = hn::Xor(l[2], p.sign[2]);
+  g[kA0] = hn::Xor(l[0], sign[0]);
+  g[kA1] = hn::Xor(l[1], sign[1]);
+  g[kA2] = hn::Xor(l[2], sign[2]);
 }
 
 // A block whose lanes rotate differently: each lane's AxisMap as vectors over lanes
-// [first, first + Lanes).
-struct LaneAxes {
-  hn::Mask<D> aligned;  // lanes with an AxisMap, the others take the full products
-  V axis[3];            // the global axis of local axis k: 0.0, 1.0 or 2.0
-  V sign[3];            // -0.0 where local axis k is negated, else +0.0 (its sign bit xor-ed in)
-};
-
-HWY_INLINE LaneAxes lane_axes(const BeamBlock& blk, std::size_t first) {
+// [first, first + Lanes): aligned 1.0 in the lanes with an AxisMap (the others take the full
+// products), axis[k] the global axis of local axis k (0.0, 1.0 or 2.0), sign[k] -0.0 where local
+// axis k is negated, else +0.0.
+HWY_INLINE void lane_axes(const BeamBlock& blk, std::size_t first, V& aligned, V* axis, V* sign) {
   const D d;
-  alignas(64) double aligned[kBeamLanes], axis[3][kBeamLanes], sign[3][kBeamLanes];
+  alignas(64) double al[kBeamLanes], ax[3][kBeamLanes], sg[3][kBeamLanes];
   for (std::size_t l = 0; l < kBeamLanes; ++l) {
     const AxisMap m = blk.axes[l];
-    aligned[l] = m == kGeneralAxes ? 0.0 : 1.0;
+    al[l] = m == kGeneralAxes ? 0.0 : 1.0;
     for (std::size_t k = 0; k < 3; ++k) {
-      axis[k][l] = static_cast<double>(axis_of(m, k));
-      sign[k][l] = axis_negated(m, k) ? -0.0 : 0.0;
+      ax[k][l] = static_cast<double>(axis_of(m, k));
+      sg[k][l] = axis_negated(m, k) ? -0.0 : 0.0;
     }
   }
-  LaneAxes a;
-  a.aligned = hn::Ne(hn::LoadU(d, aligned + first), hn::Zero(d));
+  aligned = hn::LoadU(d, al + first);
   for (std::size_t k = 0; k < 3; ++k) {
-    a.axis[k] = hn::LoadU(d, axis[k] + first);
-    a.sign[k] = hn::LoadU(d, sign[k] + first);
+    axis[k] = hn::LoadU(d, ax[k] + first);
+    sign[k] = hn::LoadU(d, sg[k] + first);
   }
-  return a;
 }
 
 // In the aligned lanes of a mixed block, l (the full products) replaced by the picks of g.
-HWY_INLINE void repick_local(const LaneAxes& a, const V* g, V* l) {
+HWY_INLINE void repick_local(V aligned, const V* axis, const V* sign, const V* g, V* l) {
   const D d;
   for (std::size_t k = 0; k < 3; ++k) {
-    const V pick = hn::IfThenElse(hn::Eq(a.axis[k], hn::Zero(d)), g[0],
-                                  hn::IfThenElse(hn::Eq(a.axis[k], hn::Set(d, 1.0)), g[1], g[2]));
-    l[k] = hn::IfThenElse(a.aligned, hn::Xor(pick, a.sign[k]), l[k]);
+    const V pick = hn::IfThenElse(hn::Eq(axis[k], hn::Zero(d)), g[0],
+                                  hn::IfThenElse(hn::Eq(axis[k], hn::Set(d, 1.0)), g[1], g[2]));
+    l[k] = hn::IfThenElse(hn::Ne(aligned, hn::Zero(d)), hn::Xor(pick, sign[k]), l[k]);
   }
 }
 
 // ... and g (the full products) replaced by the picks of l.
-HWY_INLINE void repick_global(const LaneAxes& a, const V* l, V* g) {
+HWY_INLINE void repick_global(V aligned, const V* axis, const V* sign, const V* l, V* g) {
   const D d;
   for (std::size_t c = 0; c < 3; ++c) {
-    const V axis = hn::Set(d, static_cast<double>(c));
-    const V pick = hn::IfThenElse(hn::Eq(a.axis[0], axis), hn::Xor(l[0], a.sign[0]),
-                                  hn::IfThenElse(hn::Eq(a.axis[1], axis), hn::Xor(l[1], a.sign[1]),
-                                                 hn::Xor(l[2], a.sign[2])));
-    g[c] = hn::IfThenElse(a.aligned, pick, g[c]);
+    const V at = hn::Set(d, static_cast<double>(c));
+    const V pick = hn::IfThenElse(
+        hn::Eq(axis[0], at), hn::Xor(l[0], sign[0]),
+        hn::IfThenElse(hn::Eq(axis[1], at), hn::Xor(l[1], sign[1]), hn::Xor(l[2], sign[2])));
+    g[c] = hn::IfThenElse(hn::Ne(aligned, hn::Zero(d)), pick, g[c]);
   }
 }
 
@@ -144,23 +133,24 @@ HWY_INLINE void repick_global(const LaneAxes& a, const V* l, V* g) {
 template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1>
 HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug, V* g) {
   const D d;
-  [[maybe_unused]] V R[9];      // the rotation, for the full products
-  [[maybe_unused]] LaneAxes a;  // the picks of a mixed block
-  [[maybe_unused]] Pick pick;   // the picks of a uniform block
-  V dl[12];                     // beam_local_displacements
+  [[maybe_unused]] V R[9];     // the rotation, for the full products
+  [[maybe_unused]] V aligned;  // a mixed block's lanes (lane_axes)
+  [[maybe_unused]] V axis[3];  // ...
+  [[maybe_unused]] V sign[3];  // the sign bits of the picks
+  V dl[12];                    // beam_local_displacements
   if constexpr (kAxes == Axes::kUniform) {
-    pick = block_pick(blk.axes[0]);
+    block_signs(blk.axes[0], sign);
     for (std::size_t e = 0; e < 12; e += 3)
-      pick_local<kA0, kA1>(pick, ug + e, dl + e);
+      pick_local<kA0, kA1>(sign, ug + e, dl + e);
   } else {
     for (std::size_t k = 0; k < 9; ++k)
       R[k] = hn::LoadU(d, blk.rotation[k].data() + first);
     for (std::size_t e = 0; e < 12; e += 3)
       to_local(R, ug + e, dl + e);
     if constexpr (kAxes == Axes::kMixed) {
-      a = lane_axes(blk, first);
+      lane_axes(blk, first, aligned, axis, sign);
       for (std::size_t e = 0; e < 12; e += 3)
-        repick_local(a, ug + e, dl + e);
+        repick_local(aligned, axis, sign, ug + e, dl + e);
     }
   }
 
@@ -189,13 +179,13 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug
   // beam_to_global, end by end
   if constexpr (kAxes == Axes::kUniform) {
     for (std::size_t e = 0; e < 12; e += 3)
-      pick_global<kA0, kA1>(pick, f + e, g + e);
+      pick_global<kA0, kA1>(sign, f + e, g + e);
   } else {
     for (std::size_t e = 0; e < 12; e += 3)
       to_global(R, f + e, g + e);
     if constexpr (kAxes == Axes::kMixed) {
       for (std::size_t e = 0; e < 12; e += 3)
-        repick_global(a, f + e, g + e);
+        repick_global(aligned, axis, sign, f + e, g + e);
     }
   }
 }
