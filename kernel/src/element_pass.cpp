@@ -2,7 +2,8 @@
 // Highway's portable vectors compiled for each instruction set it knows and the widest the CPU has
 // picked at run time (dynamic dispatch). Every line below is one line of beam_force in the same
 // order: IEEE products, sums and negations lane by lane (the build has -ffp-contract=off, and
-// Highway's Mul/Add/Sub/Neg are never fused), so each lane's forces are the scalar path's bits.
+// Highway's Mul/Add/Sub/Neg are never fused), and the picks and sign flips of an aligned element
+// (beam.hpp, AxisMap) where beam_force picks, so each lane's forces are the scalar path's bits.
 // The end forces are then added to the nodes lane by lane, in the model's element order.
 
 #include "ntn/element_pass.hpp"

@@ -4,8 +4,9 @@
 //   - the scalar reference: beam_force() (beam.hpp) element by element, in the model's order;
 //   - the SIMD path (kernel/src/element_pass.cpp, Highway, the CPU's widest vectors picked at
 //     run time): beam_force's operations in beam_force's order in every lane (IEEE products and
-//     sums, no contraction, nothing skipped), the end forces then added to the nodes lane by
-//     lane in the model's element order.
+//     sums, no contraction; the picks of an aligned element where beam_force picks, by the
+//     element's AxisMap), the end forces then added to the nodes lane by lane in the model's
+//     element order.
 // So both give the same bits, on every build (tests/kernel/element_pass_test.cpp). A build
 // without NTN_SIMD (embedded, cross builds) has the scalar path alone.
 #pragma once
