@@ -15,6 +15,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
+#include "support/signed_order.hpp"
 
 namespace {
 
@@ -189,15 +190,10 @@ TEST(BeamForce, OnTheFlyEqualsStoredGlobalMatrix) {
   }
 }
 
-// The 48 signed orders of the axes (rotations and reflections), zeros of either sign.
+// The 48 signed orders of the axes, zeros all +0.0 or all -0.0.
 std::array<double, 9> signed_order(int which, bool negative_zeros) {
-  constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  std::array<double, 9> r{};
-  r.fill(negative_zeros ? -0.0 : 0.0);
-  for (int k = 0; k < 3; ++k)
-    r[static_cast<std::size_t>(3 * k + kOrders[which % 6][k])] =
-        ((which / 6) >> k) % 2 ? -1.0 : 1.0;
-  return r;
+  return ntn_test::signed_order(static_cast<std::size_t>(which),
+                                [&](std::size_t) { return negative_zeros ? -0.0 : 0.0; });
 }
 
 // An aligned element (beam.hpp, AxisMap) rotates by picks: the map reads each of the 48 signed

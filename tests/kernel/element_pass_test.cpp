@@ -19,6 +19,7 @@
 #include "support/every_target.hpp"
 #include "support/frames.hpp"
 #include "support/init_model.hpp"
+#include "support/signed_order.hpp"
 
 #if defined(NTN_SIMD)
 #include <hwy/highway.h>
@@ -55,17 +56,6 @@ double pick(std::mt19937_64& rng) {
   }
 }
 
-std::array<double, 9> signed_order(std::uint64_t which, std::mt19937_64& rng) {
-  constexpr std::size_t kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
-                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  std::array<double, 9> r{};
-  for (double& x : r)
-    x = rng() % 2 == 0 ? 0.0 : -0.0;
-  for (std::size_t k = 0; k < 3; ++k)
-    r[3 * k + kOrders[which % 6][k]] = ((which / 6) >> k) % 2 == 0 ? 1.0 : -1.0;
-  return r;
-}
-
 Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> mag(3.0, 9.0);
@@ -84,7 +74,8 @@ Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
       for (double& r : b.rotation)
         r = pick(rng);
     } else {
-      b.rotation = signed_order(kind, rng);
+      b.rotation = ntn_test::signed_order(static_cast<std::size_t>(kind),
+                                          [&](std::size_t) { return rng() % 2 == 0 ? 0.0 : -0.0; });
     }
     b.axes = ntn::axis_map(b.rotation);
     auto stiff = [&] { return std::pow(10.0, mag(rng)); };
