@@ -132,7 +132,8 @@ HWY_INLINE void repick_global(V aligned, const V* axis, const V* sign, const V* 
 // beam_force from the global displacements ug [u_i, theta_i, u_j, theta_j] (one vector per DOF,
 // lanes [first, first + Lanes) of the block) to the global end forces g, in the same order.
 template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1>
-HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug, V* g) {
+HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot, std::size_t first,
+                            const V* ug, V* g) {
   const D d;
   [[maybe_unused]] V R[9];     // the rotation, for the full products
   [[maybe_unused]] V aligned;  // a mixed block's lanes (lane_axes)
@@ -145,7 +146,7 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug
       pick_local<kA0, kA1>(sign, ug + e, dl + e);
   } else {
     for (std::size_t k = 0; k < 9; ++k)
-      R[k] = hn::LoadU(d, blk.rotation[k].data() + first);
+      R[k] = hn::LoadU(d, rot.rotation[k].data() + first);
     for (std::size_t e = 0; e < 12; e += 3)
       to_local(R, ug + e, dl + e);
     if constexpr (kAxes == Axes::kMixed) {
@@ -192,42 +193,44 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug
 }
 
 // lane_forces for the block's kind of axes.
-HWY_INLINE void lane_forces(const BeamBlock& blk, std::size_t first, const V* ug, V* g) {
+HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot, std::size_t first,
+                            const V* ug, V* g) {
   switch (block_axes(blk)) {
     case Axes::kUniform:
       switch (3 * axis_of(blk.axes[0], 0) + axis_of(blk.axes[0], 1)) {
         case 1:
-          lane_forces<Axes::kUniform, 0, 1>(blk, first, ug, g);
+          lane_forces<Axes::kUniform, 0, 1>(blk, rot, first, ug, g);
           return;
         case 2:
-          lane_forces<Axes::kUniform, 0, 2>(blk, first, ug, g);
+          lane_forces<Axes::kUniform, 0, 2>(blk, rot, first, ug, g);
           return;
         case 3:
-          lane_forces<Axes::kUniform, 1, 0>(blk, first, ug, g);
+          lane_forces<Axes::kUniform, 1, 0>(blk, rot, first, ug, g);
           return;
         case 5:
-          lane_forces<Axes::kUniform, 1, 2>(blk, first, ug, g);
+          lane_forces<Axes::kUniform, 1, 2>(blk, rot, first, ug, g);
           return;
         case 6:
-          lane_forces<Axes::kUniform, 2, 0>(blk, first, ug, g);
+          lane_forces<Axes::kUniform, 2, 0>(blk, rot, first, ug, g);
           return;
         default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
-          lane_forces<Axes::kUniform, 2, 1>(blk, first, ug, g);
+          lane_forces<Axes::kUniform, 2, 1>(blk, rot, first, ug, g);
           return;
       }
     case Axes::kGeneral:
-      lane_forces<Axes::kGeneral>(blk, first, ug, g);
+      lane_forces<Axes::kGeneral>(blk, rot, first, ug, g);
       return;
     case Axes::kMixed:
-      lane_forces<Axes::kMixed>(blk, first, ug, g);
+      lane_forces<Axes::kMixed>(blk, rot, first, ug, g);
       return;
   }
 }
 
 // Any vector width: the displacements gathered DOF by DOF, the end forces stored lane by lane
 // into fi, fj [DOF][lane].
-HWY_INLINE void block_gather(const BeamBlock& blk, const double* u, const double* v, double beta,
-                             double (*fi)[kBeamLanes], double (*fj)[kBeamLanes]) {
+HWY_INLINE void block_gather(const BeamBlock& blk, const BeamRotations& rot, const double* u,
+                             const double* v, double beta, double (*fi)[kBeamLanes],
+                             double (*fj)[kBeamLanes]) {
   const D d;
   const hn::Rebind<std::int32_t, D> d32;
   const hn::Rebind<std::int64_t, D> d64;
@@ -247,7 +250,7 @@ HWY_INLINE void block_gather(const BeamBlock& blk, const double* u, const double
       }
     }
     V g[12];
-    lane_forces(blk, first, ug, g);
+    lane_forces(blk, rot, first, ug, g);
     for (std::size_t c = 0; c < 6; ++c) {
       hn::StoreU(g[c], d, fi[c] + first);
       hn::StoreU(g[6 + c], d, fj[c] + first);
@@ -320,8 +323,8 @@ HWY_INLINE void load_end(const double* x, const std::int32_t* dof, V* out) {
 // Vectors of 4 (AVX2, AVX-512): the displacements loaded node by node and transposed into lanes,
 // then the end forces g [DOF] of the 4 lanes.
 template <bool kBeta>
-HWY_INLINE void block_transpose(const BeamBlock& blk, const double* u, const double* v, double beta,
-                                V* g) {
+HWY_INLINE void block_transpose(const BeamBlock& blk, const BeamRotations& rot, const double* u,
+                                const double* v, double beta, V* g) {
   const D d;
   V ug[12];
   load_end(u, blk.dof_i.data(), ug);
@@ -334,7 +337,7 @@ HWY_INLINE void block_transpose(const BeamBlock& blk, const double* u, const dou
     for (std::size_t c = 0; c < 12; ++c)
       ug[c] = hn::Add(ug[c], hn::Mul(b, vg[c]));
   }
-  lane_forces(blk, 0, ug, g);
+  lane_forces(blk, rot, 0, ug, g);
 }
 
 // The end forces g [DOF] of one node end transposed back, lane by lane: DOFs 0..3 in r[l], DOFs
@@ -399,18 +402,19 @@ HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g
 }
 
 template <bool kBeta>
-HWY_INLINE void forces_transpose(const BeamBlock* blocks, std::size_t elements, const double* u,
-                                 const double* v, double beta, double* f) {
+HWY_INLINE void forces_transpose(const BeamBlock* blocks, const BeamRotations* rotations,
+                                 std::size_t elements, const double* u, const double* v,
+                                 double beta, double* f) {
   const D d;
   const std::size_t full = elements / kBeamLanes;
   for (std::size_t b = 0; b < full; ++b) {
     V g[12];
-    block_transpose<kBeta>(blocks[b], u, v, beta, g);
+    block_transpose<kBeta>(blocks[b], rotations[b], u, v, beta, g);
     add_rows(blocks[b], g, f);
   }
   if (const std::size_t lanes = elements - full * kBeamLanes; lanes > 0) {
     V g[12];
-    block_transpose<kBeta>(blocks[full], u, v, beta, g);
+    block_transpose<kBeta>(blocks[full], rotations[full], u, v, beta, g);
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
     for (std::size_t c = 0; c < 6; ++c) {
@@ -423,13 +427,14 @@ HWY_INLINE void forces_transpose(const BeamBlock* blocks, std::size_t elements, 
 
 // Whole blocks whose ends all go to f (the common case) take add_rows, as the single-core pass.
 template <bool kBeta>
-HWY_INLINE void split_transpose(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                                const std::uint8_t* direct, const double* u, const double* v,
-                                double beta, double* f, double* fe) {
+HWY_INLINE void split_transpose(const BeamBlock* blocks, const BeamRotations* rotations,
+                                std::size_t first, std::size_t last, const std::uint8_t* direct,
+                                const double* u, const double* v, double beta, double* f,
+                                double* fe) {
   constexpr std::uint8_t kAll = (1U << (2 * kBeamLanes)) - 1U;
   for (std::size_t b = first; b < last; ++b) {
     V g[12];
-    block_transpose<kBeta>(blocks[b], u, v, beta, g);
+    block_transpose<kBeta>(blocks[b], rotations[b], u, v, beta, g);
     if (direct[b] == kAll) {
       add_rows(blocks[b], g, f);
     } else {
@@ -440,14 +445,14 @@ HWY_INLINE void split_transpose(const BeamBlock* blocks, std::size_t first, std:
 
 #endif  // HWY_TARGET != HWY_SCALAR
 
-void ElementForces(const BeamBlock* blocks, std::size_t elements, const double* u, const double* v,
-                   double beta, double* f) {
+void ElementForces(const BeamBlock* blocks, const BeamRotations* rotations, std::size_t elements,
+                   const double* u, const double* v, double beta, double* f) {
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
     if (beta != 0.0) {
-      forces_transpose<true>(blocks, elements, u, v, beta, f);
+      forces_transpose<true>(blocks, rotations, elements, u, v, beta, f);
     } else {
-      forces_transpose<false>(blocks, elements, u, v, beta, f);
+      forces_transpose<false>(blocks, rotations, elements, u, v, beta, f);
     }
     return;
   }
@@ -456,20 +461,20 @@ void ElementForces(const BeamBlock* blocks, std::size_t elements, const double* 
   for (std::size_t b = 0; b < num_blocks; ++b) {
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
-    block_gather(blocks[b], u, v, beta, fi, fj);
+    block_gather(blocks[b], rotations[b], u, v, beta, fi, fj);
     add_lanes(blocks[b], b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes, fi, fj, f);
   }
 }
 
-void ElementForcesSplit(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                        const std::uint8_t* direct, const double* u, const double* v, double beta,
-                        double* f, double* fe) {
+void ElementForcesSplit(const BeamBlock* blocks, const BeamRotations* rotations, std::size_t first,
+                        std::size_t last, const std::uint8_t* direct, const double* u,
+                        const double* v, double beta, double* f, double* fe) {
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
     if (beta != 0.0) {
-      split_transpose<true>(blocks, first, last, direct, u, v, beta, f, fe);
+      split_transpose<true>(blocks, rotations, first, last, direct, u, v, beta, f, fe);
     } else {
-      split_transpose<false>(blocks, first, last, direct, u, v, beta, f, fe);
+      split_transpose<false>(blocks, rotations, first, last, direct, u, v, beta, f, fe);
     }
     return;
   }
@@ -477,7 +482,7 @@ void ElementForcesSplit(const BeamBlock* blocks, std::size_t first, std::size_t 
   for (std::size_t b = first; b < last; ++b) {
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
-    block_gather(blocks[b], u, v, beta, fi, fj);
+    block_gather(blocks[b], rotations[b], u, v, beta, fi, fj);
     split_lanes(blocks[b], direct[b], fi, fj, f, fe + 12 * kBeamLanes * b);
   }
 }
@@ -498,15 +503,18 @@ HWY_EXPORT(ElementForces);
 HWY_EXPORT(ElementForcesSplit);
 HWY_EXPORT(Target);
 
-void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
-                         const double* v, double beta, double* f) {
-  HWY_DYNAMIC_DISPATCH(ElementForces)(blocks, elements, u, v, beta, f);
+void element_forces_simd(const BeamBlock* blocks, const BeamRotations* rotations,
+                         std::size_t elements, const double* u, const double* v, double beta,
+                         double* f) {
+  HWY_DYNAMIC_DISPATCH(ElementForces)(blocks, rotations, elements, u, v, beta, f);
 }
 
-void element_forces_split_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                               const std::uint8_t* direct, const double* u, const double* v,
-                               double beta, double* f, double* fe) {
-  HWY_DYNAMIC_DISPATCH(ElementForcesSplit)(blocks, first, last, direct, u, v, beta, f, fe);
+void element_forces_split_simd(const BeamBlock* blocks, const BeamRotations* rotations,
+                               std::size_t first, std::size_t last, const std::uint8_t* direct,
+                               const double* u, const double* v, double beta, double* f,
+                               double* fe) {
+  HWY_DYNAMIC_DISPATCH(ElementForcesSplit)
+  (blocks, rotations, first, last, direct, u, v, beta, f, fe);
 }
 
 // Unqualified names only in HWY_DYNAMIC_DISPATCH: where the build's own instruction set is the

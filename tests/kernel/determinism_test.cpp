@@ -64,6 +64,9 @@ class Determinism : public ::testing::Test {
 TEST_F(Determinism, InitIsRepeatable) {
   EXPECT_EQ(std::memcmp(model_a.mass.data(), model_b.mass.data(), sizeof(model_a.mass)), 0);
   EXPECT_EQ(std::memcmp(model_a.beams.data(), model_b.beams.data(), sizeof(model_a.beams)), 0);
+  EXPECT_EQ(
+      std::memcmp(model_a.rotations.data(), model_b.rotations.data(), sizeof(model_a.rotations)),
+      0);
   EXPECT_EQ(model_a.dt, model_b.dt);
   EXPECT_EQ(model_a.stable.dt_stable, model_b.stable.dt_stable);
 }

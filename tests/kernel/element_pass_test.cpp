@@ -30,6 +30,7 @@ namespace {
 
 using ntn::BeamBlock;
 using ntn::BeamData;
+using ntn::BeamRotations;
 
 // A random element set, in runs of 1 to 9 elements of one kind so that blocks come uniform, with
 // lanes of different AxisMaps and with aligned and general lanes mixed: rotations either random
@@ -39,6 +40,7 @@ using ntn::BeamData;
 struct Elements {
   std::vector<BeamData> beams;
   std::vector<BeamBlock> blocks;
+  std::vector<BeamRotations> rotations;
   std::vector<double> u, v;
 };
 
@@ -85,8 +87,11 @@ Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
     e.beams.push_back(b);
   }
   e.blocks.resize(ntn::beam_blocks(count));
-  for (std::size_t k = 0; k < count; ++k)
-    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], k % ntn::kBeamLanes, e.beams[k]);
+  e.rotations.resize(ntn::beam_blocks(count));
+  for (std::size_t k = 0; k < count; ++k) {
+    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], e.rotations[k / ntn::kBeamLanes],
+                  k % ntn::kBeamLanes, e.beams[k]);
+  }
   const auto dofs = static_cast<std::size_t>(ntn::kDofsPerNode * nodes);
   e.u.resize(dofs), e.v.resize(dofs);
   for (std::size_t j = 0; j < dofs; ++j)
@@ -98,8 +103,8 @@ Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
 // into +0.0; -0.0 keeps the signs visible).
 std::vector<double> forces(const Elements& e, ntn::ElementPass path, double beta, double f0 = 0.0) {
   std::vector<double> f(e.u.size(), f0);
-  ntn::element_forces(path, e.blocks.data(), e.beams.size(), e.u.data(), e.v.data(), beta,
-                      f.data());
+  ntn::element_forces(path, e.blocks.data(), e.rotations.data(), e.beams.size(), e.u.data(),
+                      e.v.data(), beta, f.data());
   return f;
 }
 
@@ -109,8 +114,9 @@ std::vector<double> split_forces(const Elements& e, ntn::ElementPass path, doubl
                                  const std::vector<std::uint8_t>& direct) {
   std::vector<double> out(e.u.size(), 0.5);
   out.resize(e.u.size() + 12 * ntn::kBeamLanes * e.blocks.size(), 7.0);
-  ntn::element_forces_split(path, e.blocks.data(), 0, e.blocks.size(), direct.data(), e.u.data(),
-                            e.v.data(), beta, out.data(), out.data() + e.u.size());
+  ntn::element_forces_split(path, e.blocks.data(), e.rotations.data(), 0, e.blocks.size(),
+                            direct.data(), e.u.data(), e.v.data(), beta, out.data(),
+                            out.data() + e.u.size());
   return out;
 }
 
@@ -167,7 +173,8 @@ TEST(ElementPass, ZerosKeepTheirSign) {
     e.beams[k].rotation =
         k % 2 == 0 ? std::array<double, 9>{1.0, -0.0, -0.0, -0.0, -1.0, -0.0, -0.0, -0.0, -1.0}
                    : std::array<double, 9>{0.6, -0.0, -0.8, -0.0, 1.0, -0.0, 0.8, -0.0, 0.6};
-    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], k % ntn::kBeamLanes, e.beams[k]);
+    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], e.rotations[k / ntn::kBeamLanes],
+                  k % ntn::kBeamLanes, e.beams[k]);
     ASSERT_EQ(e.blocks[k / ntn::kBeamLanes].axes[k % ntn::kBeamLanes] != ntn::kGeneralAxes,
               k % 2 == 0);
   }

@@ -41,7 +41,7 @@ TEST(ModelBytes, EqualsSizeofExactlyWithHinges) {
 
 // The marginal cost of more elements, nodes or hinges, as ntn-model prints it. The Model is
 // aligned to 32 bytes (the element blocks' vectors), so the steps below are ones that keep
-// its end padding: an element block (4 elements, 672 bytes), 64 nodes, 16 hinges.
+// its end padding: an element block and its rotations (4 elements, 672 bytes), 64 nodes, 16 hinges.
 TEST(ModelBytes, PerElementNodeAndHinge) {
   constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 12, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(e) - ntn::modelc::model_bytes(a),

@@ -26,11 +26,10 @@ constexpr std::size_t beam_blocks(std::size_t elements) {
   return (elements + kBeamLanes - 1) / kBeamLanes;
 }
 
-// kBeamLanes elements, field by field (BeamData's fields, lane l of each). Lanes past the model's
-// last element have zero stiffness and DOF offset 0; the pass computes them and adds them nowhere.
-// The rotation comes last: a block of aligned elements (beam.hpp, AxisMap) never reads it. Every
-// lane array is 32-byte aligned (one AVX2 vector, never across a cache line) and a block is the
-// size of kBeamLanes BeamData.
+// kBeamLanes elements, field by field (BeamData's fields but the rotation, lane l of each).
+// Lanes past the model's last element have zero stiffness and DOF offset 0; the pass computes
+// them and adds them nowhere. Every lane array is 32-byte aligned (one AVX2 vector, never across a
+// cache line).
 struct alignas(32) BeamBlock {
   using Lanes = std::array<double, kBeamLanes>;
   Lanes axial{};
@@ -40,16 +39,23 @@ struct alignas(32) BeamBlock {
   std::array<std::int32_t, kBeamLanes> dof_i{};  // kDofsPerNode * node_i
   std::array<std::int32_t, kBeamLanes> dof_j{};  // kDofsPerNode * node_j
   std::array<AxisMap, kBeamLanes> axes{};        // axis_map(rotation), lane by lane
-  alignas(32) std::array<Lanes, 9> rotation{};   // BeamData::rotation[k], lane by lane
 };
-static_assert(sizeof(BeamBlock) == kBeamLanes * sizeof(BeamData), "one BeamData per lane");
 
-inline void set_lane(BeamBlock& blk, std::size_t l, const BeamData& b) {
+// The rotations of a block's elements (BeamData::rotation[k], lane by lane), in an array of their
+// own beside the blocks: a block of aligned elements (beam.hpp, AxisMap) never reads its
+// rotations, so a pass over an aligned frame streams 384 bytes per block instead of 672.
+struct alignas(32) BeamRotations {
+  std::array<BeamBlock::Lanes, 9> rotation{};
+};
+static_assert(sizeof(BeamBlock) + sizeof(BeamRotations) == kBeamLanes * sizeof(BeamData),
+              "one BeamData per lane");
+
+inline void set_lane(BeamBlock& blk, BeamRotations& rot, std::size_t l, const BeamData& b) {
   blk.dof_i[l] = kDofsPerNode * b.node_i;
   blk.dof_j[l] = kDofsPerNode * b.node_j;
   blk.axes[l] = axis_map(b.rotation);  // from the rotation: the one rule, whatever b.axes says
   for (std::size_t k = 0; k < 9; ++k)
-    blk.rotation[k][l] = b.rotation[k];
+    rot.rotation[k][l] = b.rotation[k];
   blk.axial[l] = b.k.axial;
   blk.torsion[l] = b.k.torsion;
   for (std::size_t k = 0; k < 4; ++k) {
@@ -58,13 +64,13 @@ inline void set_lane(BeamBlock& blk, std::size_t l, const BeamData& b) {
   }
 }
 
-inline BeamData lane(const BeamBlock& blk, std::size_t l) {
+inline BeamData lane(const BeamBlock& blk, const BeamRotations& rot, std::size_t l) {
   BeamData b;
   b.node_i = blk.dof_i[l] / kDofsPerNode;
   b.node_j = blk.dof_j[l] / kDofsPerNode;
   b.axes = blk.axes[l];
   for (std::size_t k = 0; k < 9; ++k)
-    b.rotation[k] = blk.rotation[k][l];
+    b.rotation[k] = rot.rotation[k][l];
   b.k.axial = blk.axial[l];
   b.k.torsion = blk.torsion[l];
   for (std::size_t k = 0; k < 4; ++k) {
@@ -90,9 +96,9 @@ constexpr bool direct_end(std::uint8_t direct, std::size_t l, std::size_t end) {
 namespace detail {
 
 // Element l of a block: its global end forces fi (on node i), fj at u (+ beta v when beta != 0).
-inline void lane_force(const BeamBlock& blk, std::size_t l, const double* u, const double* v,
-                       double beta, double* fi, double* fj) {
-  const BeamData b = lane(blk, l);
+inline void lane_force(const BeamBlock& blk, const BeamRotations& rot, std::size_t l,
+                       const double* u, const double* v, double beta, double* fi, double* fj) {
+  const BeamData b = lane(blk, rot, l);
   const auto i = static_cast<std::size_t>(blk.dof_i[l]);
   const auto j = static_cast<std::size_t>(blk.dof_j[l]);
   if (beta != 0.0) {
@@ -108,13 +114,14 @@ inline void lane_force(const BeamBlock& blk, std::size_t l, const double* u, con
 }
 
 // The scalar reference: f += the elements' forces at u (+ beta v when beta != 0), in order.
-inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements, const double* u,
-                                  const double* v, double beta, double* f) {
+inline void element_forces_scalar(const BeamBlock* blocks, const BeamRotations* rotations,
+                                  std::size_t elements, const double* u, const double* v,
+                                  double beta, double* f) {
   for (std::size_t e = 0; e < elements; ++e) {
     const BeamBlock& blk = blocks[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     double fi[6], fj[6];
-    lane_force(blk, l, u, v, beta, fi, fj);
+    lane_force(blk, rotations[e / kBeamLanes], l, u, v, beta, fi, fj);
     const auto i = static_cast<std::size_t>(blk.dof_i[l]);
     const auto j = static_cast<std::size_t>(blk.dof_j[l]);
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
@@ -128,15 +135,15 @@ inline void element_forces_scalar(const BeamBlock* blocks, std::size_t elements,
 // [first, last), whole blocks, in element order: each end's force added to f at its node where
 // direct[block] has the end's bit (direct_end), else stored into fe[12 e + 6 end + c] (the lanes
 // past the model's last element have no bit: stored, never read).
-inline void element_forces_split_scalar(const BeamBlock* blocks, std::size_t first,
-                                        std::size_t last, const std::uint8_t* direct,
-                                        const double* u, const double* v, double beta, double* f,
-                                        double* fe) {
+inline void element_forces_split_scalar(const BeamBlock* blocks, const BeamRotations* rotations,
+                                        std::size_t first, std::size_t last,
+                                        const std::uint8_t* direct, const double* u,
+                                        const double* v, double beta, double* f, double* fe) {
   for (std::size_t e = first * kBeamLanes; e < last * kBeamLanes; ++e) {
     const BeamBlock& blk = blocks[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     double fij[12];
-    lane_force(blk, l, u, v, beta, fij, fij + 6);
+    lane_force(blk, rotations[e / kBeamLanes], l, u, v, beta, fij, fij + 6);
     const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
     for (std::size_t end = 0; end < 2; ++end) {
       if (direct_end(direct[e / kBeamLanes], l, end)) {
@@ -152,11 +159,13 @@ inline void element_forces_split_scalar(const BeamBlock* blocks, std::size_t fir
 
 #if defined(NTN_SIMD)
 // kernel/src/element_pass.cpp: the same, kBeamLanes elements at a time.
-void element_forces_simd(const BeamBlock* blocks, std::size_t elements, const double* u,
-                         const double* v, double beta, double* f);
-void element_forces_split_simd(const BeamBlock* blocks, std::size_t first, std::size_t last,
-                               const std::uint8_t* direct, const double* u, const double* v,
-                               double beta, double* f, double* fe);
+void element_forces_simd(const BeamBlock* blocks, const BeamRotations* rotations,
+                         std::size_t elements, const double* u, const double* v, double beta,
+                         double* f);
+void element_forces_split_simd(const BeamBlock* blocks, const BeamRotations* rotations,
+                               std::size_t first, std::size_t last, const std::uint8_t* direct,
+                               const double* u, const double* v, double beta, double* f,
+                               double* fe);
 #endif
 
 }  // namespace detail
@@ -166,32 +175,34 @@ void element_forces_split_simd(const BeamBlock* blocks, std::size_t first, std::
 const char* element_pass_target();
 
 // f += the elements' forces at u (+ beta v), by the chosen path.
-inline void element_forces(ElementPass path, const BeamBlock* blocks, std::size_t elements,
-                           const double* u, const double* v, double beta, double* f) {
+inline void element_forces(ElementPass path, const BeamBlock* blocks,
+                           const BeamRotations* rotations, std::size_t elements, const double* u,
+                           const double* v, double beta, double* f) {
 #if defined(NTN_SIMD)
   if (path == ElementPass::kSimd) {
-    detail::element_forces_simd(blocks, elements, u, v, beta, f);
+    detail::element_forces_simd(blocks, rotations, elements, u, v, beta, f);
     return;
   }
 #else
   (void)path;
 #endif
-  detail::element_forces_scalar(blocks, elements, u, v, beta, f);
+  detail::element_forces_scalar(blocks, rotations, elements, u, v, beta, f);
 }
 
 // The multi-core pass over blocks [first, last) (element_forces_split_scalar), by the chosen path.
-inline void element_forces_split(ElementPass path, const BeamBlock* blocks, std::size_t first,
+inline void element_forces_split(ElementPass path, const BeamBlock* blocks,
+                                 const BeamRotations* rotations, std::size_t first,
                                  std::size_t last, const std::uint8_t* direct, const double* u,
                                  const double* v, double beta, double* f, double* fe) {
 #if defined(NTN_SIMD)
   if (path == ElementPass::kSimd) {
-    detail::element_forces_split_simd(blocks, first, last, direct, u, v, beta, f, fe);
+    detail::element_forces_split_simd(blocks, rotations, first, last, direct, u, v, beta, f, fe);
     return;
   }
 #else
   (void)path;
 #endif
-  detail::element_forces_split_scalar(blocks, first, last, direct, u, v, beta, f, fe);
+  detail::element_forces_split_scalar(blocks, rotations, first, last, direct, u, v, beta, f, fe);
 }
 
 }  // namespace ntn

@@ -25,8 +25,10 @@ struct Model {
   static constexpr Sizes kSizes = S;
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
 
-  // The elements, kBeamLanes to a block in the model's order (element_pass.hpp): beam(e) is one.
+  // The elements, kBeamLanes to a block in the model's order, and their rotations block by block
+  // (element_pass.hpp): beam(e) is one.
   std::array<BeamBlock, beam_blocks(S.elements)> beams{};
+  std::array<BeamRotations, beam_blocks(S.elements)> rotations{};
   std::array<double, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
   // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
@@ -109,7 +111,9 @@ struct Model {
   // reference, element_pass.hpp). Not part of the model file: a driver or a test may switch it.
   ElementPass element_pass = ElementPass::kSimd;
 
-  BeamData beam(std::size_t e) const { return lane(beams[e / kBeamLanes], e % kBeamLanes); }
+  BeamData beam(std::size_t e) const {
+    return lane(beams[e / kBeamLanes], rotations[e / kBeamLanes], e % kBeamLanes);
+  }
 };
 
 // What init() works in and then drops: kept out of the constant Model.
@@ -278,7 +282,7 @@ template <Sizes S>
     b.node_i = e.node_i, b.node_j = e.node_j;
     b.rotation = g.rotation;
     b.k = beam_stiffness(e, g.length);
-    set_lane(model.beams[i / kBeamLanes], i % kBeamLanes, b);
+    set_lane(model.beams[i / kBeamLanes], model.rotations[i / kBeamLanes], i % kBeamLanes, b);
   }
 
   const SpecView v = view(spec);

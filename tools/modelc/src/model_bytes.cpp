@@ -18,7 +18,8 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   f.state = state_footprint(s);
   f.scratch = scratch_footprint(s);
   f.total = f.model + f.state + f.scratch;
-  f.per_element = sizeof(BeamBlock) / kBeamLanes;  // a block of kBeamLanes elements, per element
+  // A block of kBeamLanes elements and its rotations, per element.
+  f.per_element = (sizeof(BeamBlock) + sizeof(BeamRotations)) / kBeamLanes;
   // Per node: 6 DOFs x 9 per-DOF double arrays (Model: mass, inv_mass, damping, u0, v0; State:
   // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);

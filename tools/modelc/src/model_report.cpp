@@ -334,9 +334,9 @@ std::string info_text(const ModelDescription& m) {
                                   mem.per_curve_point * z.curve_points;
   const std::size_t rest =
       mem.total - mem.per_element * z.elements - mem.per_node * z.nodes - hinge_bytes;
-  line("", "per element " + std::to_string(mem.per_element) + " B (ntn::BeamBlock / 4) x " +
-               std::to_string(z.elements) + " = " + std::to_string(mem.per_element * z.elements) +
-               " B");
+  line("", "per element " + std::to_string(mem.per_element) +
+               " B (ntn::BeamBlock and ntn::BeamRotations / 4) x " + std::to_string(z.elements) +
+               " = " + std::to_string(mem.per_element * z.elements) + " B");
   line("", "per node " + std::to_string(mem.per_node) +
                " B (6 DOFs x 9 double arrays + fixed + support list) x " + std::to_string(z.nodes) +
                " = " + std::to_string(mem.per_node * z.nodes) + " B");
