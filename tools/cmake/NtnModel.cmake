@@ -1,7 +1,8 @@
 # ntn_add_model(TARGET <target> MODEL <model.toml> [NAME <name>] [NO_DEFINITIONS])
 #
 # Compiles a TOML model into a constexpr header at build time and gives it to <target>:
-#   - runs ntn-modelc (rebuilt first when its sources change, rerun when the model changes),
+#   - runs ntn-modelc (in the ntn-rt tree: rebuilt first when its sources change; from an installed
+#     tree, find_package(ntnrt): ntn::ntn-modelc), rerun when the model changes,
 #     writing ${CMAKE_CURRENT_BINARY_DIR}/ntn_models/<name>_model.hpp;
 #   - adds that directory to the target's include path, and the header to its sources so the
 #     target waits for it;
@@ -36,12 +37,23 @@ function(ntn_add_model)
     message(FATAL_ERROR "ntn_add_model: NAME '${name}' is not a C++ identifier (give NAME)")
   endif()
 
+  # The model compiler: this build's (in the ntn-rt tree) or the installed one (find_package).
+  if(TARGET ntn-modelc)
+    set(modelc ntn-modelc)
+    set(modelc_dep ntn-modelc)
+  elseif(TARGET ntn::ntn-modelc)
+    set(modelc ntn::ntn-modelc)
+    set(modelc_dep "$<TARGET_FILE:ntn::ntn-modelc>")
+  else()
+    message(FATAL_ERROR "ntn_add_model: no model compiler (build ntn-rt, or find_package(ntnrt))")
+  endif()
+
   set(dir "${CMAKE_CURRENT_BINARY_DIR}/ntn_models")
   set(header "${dir}/${name}_model.hpp")
   add_custom_command(
     OUTPUT "${header}"
-    COMMAND ntn-modelc "${model}" -o "${header}" --name "${name}"
-    DEPENDS "${model}" ntn-modelc
+    COMMAND ${modelc} "${model}" -o "${header}" --name "${name}"
+    DEPENDS "${model}" ${modelc_dep}
     COMMENT "Compiling model ${ARG_MODEL} -> ntn_models/${name}_model.hpp"
     VERBATIM)
   target_sources(${ARG_TARGET} PRIVATE "${header}")

@@ -1,0 +1,43 @@
+# install_outside_project (CMakeLists.txt): install BUILD into OUT/prefix, build the outside
+# project SOURCE against it, and compare its program's output with INSIDE's.
+file(REMOVE_RECURSE ${OUT})
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (exit ${rc}):\n${out}\n${err}")
+  endif()
+  set(out "${out}" PARENT_SCOPE)
+endfunction()
+
+run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${OUT}/prefix)
+foreach(installed include/ntn/kernel.hpp bin/ntn-modelc)
+  if(NOT EXISTS ${OUT}/prefix/${installed})
+    message(FATAL_ERROR "the installed tree lacks ${installed}")
+  endif()
+endforeach()
+file(GLOB_RECURSE config ${OUT}/prefix/*/ntnrtConfig.cmake)
+if(NOT config)
+  message(FATAL_ERROR "the installed tree lacks ntnrtConfig.cmake")
+endif()
+
+# Only the installed tree: no path into the source or build tree of ntn-rt is given.
+run("configure the outside project" ${CMAKE_COMMAND} -S ${SOURCE} -B ${OUT}/build -G ${GENERATOR}
+    -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${OUT}/prefix
+    -DMODEL=${MODEL})
+file(STRINGS ${OUT}/build/CMakeCache.txt dir_line REGEX "^ntnrt_DIR:")
+string(FIND "${dir_line}" "${OUT}/prefix" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "find_package(ntnrt) did not take the installed tree: ${dir_line}")
+endif()
+run("build the outside project" ${CMAKE_COMMAND} --build ${OUT}/build -j2)
+run("the outside program" ${OUT}/build/outside)
+set(outside "${out}")
+run("the same program built in the tree" ${INSIDE})
+if(NOT outside STREQUAL out)
+  message(FATAL_ERROR "outside and inside differ:\n--- outside\n${outside}--- inside\n${out}")
+endif()
+string(REGEX MATCHALL "\n4000 " last "${outside}")
+if(NOT outside MATCHES "^model cantilever, dt 0x" OR NOT last)
+  message(FATAL_ERROR "unexpected output:\n${outside}")
+endif()
+message(STATUS "outside project = tree, bit for bit:\n${outside}")
