@@ -51,65 +51,66 @@ class Layout {
 constexpr std::size_t model_footprint(const Sizes& s) {
   const std::size_t dofs = kDofsPerNode * s.nodes;
   const std::size_t hinge_nodes = s.hinges > 0 ? s.nodes : 0;  // Model::kHingeNodes
+  const std::size_t blocks = beam_blocks(s.elements);
   detail::Layout l;
-  l.array<BeamBlock>(beam_blocks(s.elements));      // beams
-  l.array<BeamRotations>(beam_blocks(s.elements));  // rotations
-  l.array<double>(dofs);                            // mass
-  l.array<double>(dofs);                            // inv_mass
-  l.array<double>(dofs);                            // damping
-  l.scalar<double>();                               // alpha
-  l.scalar<double>();                               // beta
-  l.array<double>(dofs);                            // u0
-  l.array<double>(dofs);                            // v0
-  l.array<std::uint8_t>(s.nodes);                   // fixed
-  l.array<std::int32_t>(s.nodes);                   // supported_nodes
-  l.scalar<int>();                                  // num_supported
-  l.array<TimePoint>(s.time_points);                // time_points
-  l.array<TimeFunctionSpec>(s.time_functions);      // time_functions
-  l.array<LoadSpec>(s.loads);                       // loads
-  l.array<ElementLoadSpec>(s.element_loads);        // element_loads
-  l.array<HysteresisData>(s.hystereses);            // hystereses
-  l.array<std::int32_t>(s.loads + s.inputs);        // slot_dof
-  l.array<std::int32_t>(s.loads);                   // load_slot
-  l.array<std::int32_t>(s.inputs);                  // input_slot
-  l.scalar<int>();                                  // num_slots
-  l.array<InputSpec>(s.inputs);                     // inputs
-  l.array<OutputSpec>(s.outputs);                   // outputs
-  l.scalar<std::array<double, 3>>();                // gravity
-  l.scalar<int>();                                  // gravity_function
-  l.scalar<double>();                               // dt
-  l.scalar<StableStepReport>();                     // stable
-  l.array<HingeData>(s.hinges);                     // hinges
-  l.array<CurvePoint>(s.curve_points);              // curve_points
-  l.array<ForestEdge>(s.hinges);                    // edges
-  l.array<ForestEdgeMatrices>(s.hinges);            // edge_matrices
-  l.array<ForestRoot>(s.hinges);                    // roots
-  l.array<std::int32_t>(s.hinges);                  // hinge_edge
-  l.array<std::int32_t>(hinge_nodes);               // node_tree
-  l.array<std::uint8_t>(hinge_nodes);               // held
-  l.array<double>(kDofsPerNode * hinge_nodes);      // residual_scale
-  l.array<std::int32_t>(s.hinges);                  // spring_hinges
-  l.array<std::int32_t>(s.hinges);                  // branch_hinges
-  l.array<std::int32_t>(s.hinges);                  // project_edges
-  l.array<ForestTree>(s.hinges);                    // trees
-  l.array<std::int32_t>(s.hinges);                  // tree_stops
-  l.array<std::int32_t>(s.hinges);                  // slip_hinges
-  l.array<double>(s.hystereses * kSlipBlock);       // slip_mobility
-  l.array<double>(s.hystereses * kSlipBlock);       // slip_factor
-  l.scalar<int>();                                  // num_edges
-  l.scalar<int>();                                  // num_roots
-  l.scalar<int>();                                  // num_spring_hinges
-  l.scalar<int>();                                  // num_branch_hinges
-  l.scalar<int>();                                  // num_project_edges
-  l.scalar<int>();                                  // num_trees
-  l.scalar<int>();                                  // num_slip_hinges
-  l.scalar<int>();                                  // num_slip_normals
-  l.scalar<int>();                                  // held_dofs
-  l.scalar<HingeMethod>();                          // hinge_method
-  l.scalar<ClampRule>();                            // clamp
-  l.scalar<double>();                               // inv_dt
-  l.scalar<Substeps>();                             // substeps
-  l.scalar<ElementPass>();                          // element_pass
+  l.array<BeamBlock>(blocks);                   // beams
+  l.array<BeamRotations>(blocks);               // rotations
+  l.array<double>(dofs);                        // mass
+  l.array<double>(dofs);                        // inv_mass
+  l.array<double>(dofs);                        // damping
+  l.scalar<double>();                           // alpha
+  l.scalar<double>();                           // beta
+  l.array<double>(dofs);                        // u0
+  l.array<double>(dofs);                        // v0
+  l.array<std::uint8_t>(s.nodes);               // fixed
+  l.array<std::int32_t>(s.nodes);               // supported_nodes
+  l.scalar<int>();                              // num_supported
+  l.array<TimePoint>(s.time_points);            // time_points
+  l.array<TimeFunctionSpec>(s.time_functions);  // time_functions
+  l.array<LoadSpec>(s.loads);                   // loads
+  l.array<ElementLoadSpec>(s.element_loads);    // element_loads
+  l.array<HysteresisData>(s.hystereses);        // hystereses
+  l.array<std::int32_t>(s.loads + s.inputs);    // slot_dof
+  l.array<std::int32_t>(s.loads);               // load_slot
+  l.array<std::int32_t>(s.inputs);              // input_slot
+  l.scalar<int>();                              // num_slots
+  l.array<InputSpec>(s.inputs);                 // inputs
+  l.array<OutputSpec>(s.outputs);               // outputs
+  l.scalar<std::array<double, 3>>();            // gravity
+  l.scalar<int>();                              // gravity_function
+  l.scalar<double>();                           // dt
+  l.scalar<StableStepReport>();                 // stable
+  l.array<HingeData>(s.hinges);                 // hinges
+  l.array<CurvePoint>(s.curve_points);          // curve_points
+  l.array<ForestEdge>(s.hinges);                // edges
+  l.array<ForestEdgeMatrices>(s.hinges);        // edge_matrices
+  l.array<ForestRoot>(s.hinges);                // roots
+  l.array<std::int32_t>(s.hinges);              // hinge_edge
+  l.array<std::int32_t>(hinge_nodes);           // node_tree
+  l.array<std::uint8_t>(hinge_nodes);           // held
+  l.array<double>(kDofsPerNode * hinge_nodes);  // residual_scale
+  l.array<std::int32_t>(s.hinges);              // spring_hinges
+  l.array<std::int32_t>(s.hinges);              // branch_hinges
+  l.array<std::int32_t>(s.hinges);              // project_edges
+  l.array<ForestTree>(s.hinges);                // trees
+  l.array<std::int32_t>(s.hinges);              // tree_stops
+  l.array<std::int32_t>(s.hinges);              // slip_hinges
+  l.array<double>(s.hystereses * kSlipBlock);   // slip_mobility
+  l.array<double>(s.hystereses * kSlipBlock);   // slip_factor
+  l.scalar<int>();                              // num_edges
+  l.scalar<int>();                              // num_roots
+  l.scalar<int>();                              // num_spring_hinges
+  l.scalar<int>();                              // num_branch_hinges
+  l.scalar<int>();                              // num_project_edges
+  l.scalar<int>();                              // num_trees
+  l.scalar<int>();                              // num_slip_hinges
+  l.scalar<int>();                              // num_slip_normals
+  l.scalar<int>();                              // held_dofs
+  l.scalar<HingeMethod>();                      // hinge_method
+  l.scalar<ClampRule>();                        // clamp
+  l.scalar<double>();                           // inv_dt
+  l.scalar<Substeps>();                         // substeps
+  l.scalar<ElementPass>();                      // element_pass
   return l.size();
 }
 
