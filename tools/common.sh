@@ -7,7 +7,8 @@ export NTN_ROOT
 # Debian packages the build and the tests need (all by name, nothing downloaded at build time).
 NTN_PACKAGES=(cmake ninja-build g++ make pkg-config libeigen3-dev libfftw3-dev libtomlplusplus-dev
               libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libxxhash-dev clang-format
-              libspectra-dev gnuplot-nox libexpat1-dev libhwy-dev)
+              libspectra-dev gnuplot-nox libexpat1-dev libhwy-dev pybind11-dev python3-dev
+              python3-numpy python3-pytest python3-matplotlib)
 
 ntn_jobs() { nproc 2>/dev/null || echo 2; }
 

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 #include <string>
 
@@ -24,6 +25,7 @@
 
 #include "frame_models.hpp"
 #include "ntn/hil/worker_team.hpp"
+#include "ntn/runtime_storage.hpp"
 
 // ---- Allocation counter: every operator new in this executable is counted. ----------------
 
@@ -415,6 +417,74 @@ void bm_step(benchmark::State& bs) {
   }
 }
 
+// The same frame in run-time storage (issue 18): the spec of model_of<G>() given as a view,
+// one block bound before init. Its state after `kCheckSteps` steps from rest equals the compiled
+// model's bit for bit (else the benchmark fails).
+template <Grid G>
+RunTimeParts& runtime_of() {
+  static constexpr Sizes S = sizes_of(G);
+  static RunTimeParts* const parts = [] {
+    (void)model_of<G>();  // builds the spec
+    const SpecView v = view(static_instance<ModelSpec<S>>());
+    const Sizes z = ntn::sizes_of(v);
+    const std::size_t bytes = runtime_block_bytes(z);
+    auto* p = new RunTimeParts;
+    auto* block =
+        static_cast<std::byte*>(::operator new (bytes, std::align_val_t{kRunTimeBlockAlign}));
+    if (!runtime_bind(*p, z, {}, std::span<std::byte>(block, bytes)) ||
+        !init(runtime_spec(v), p->model, p->init_work).ok()) {
+      std::fprintf(stderr, "run-time storage: binding or init failed\n");
+      std::abort();
+    }
+    return p;
+  }();
+  return *parts;
+}
+
+template <Grid G>
+void bm_step_runtime(benchmark::State& bs) {
+  static constexpr Sizes S = sizes_of(G);
+  RunTimeParts& p = runtime_of<G>();
+  const std::span<const double> in(kGround);
+  auto run_from_rest = [&](int steps) {
+    p.state.u.fill(0.0), p.state.v.fill(0.0), p.state.held_inputs.fill(0.0);
+    p.state.tick = 0, p.state.inputs_held = 0, p.state.faults = 0;
+    (void)start(p.model, p.state, p.scratch, in);
+    for (int k = 0; k < steps; ++k)
+      (void)step(p.model, p.state, p.scratch, in);
+  };
+  // The compiled model from rest the same number of steps: the same bits.
+  {
+    constexpr int kCheckSteps = 200;
+    State<S>& c = static_instance<State<S>, 4>();
+    Scratch<S>& w = static_instance<Scratch<S>>();
+    reset(c);
+    (void)start(model_of<G>(), c, w, kGround);
+    for (int k = 0; k < kCheckSteps; ++k)
+      (void)step(model_of<G>(), c, w, kGround);
+    run_from_rest(kCheckSteps);
+    if (std::memcmp(c.u.data(), p.state.u.data(), sizeof c.u) != 0 ||
+        std::memcmp(c.v.data(), p.state.v.data(), sizeof c.v) != 0) {
+      fail(bs, "run-time storage differs from the compiled model");
+      return;
+    }
+  }
+  run_from_rest(kWarmupSteps);
+  bool diverged = false;
+  const std::uint64_t allocs_before = g_allocations.load(std::memory_order_relaxed);
+  for (auto _ : bs) {
+    diverged |= step(p.model, p.state, p.scratch, in) == StepStatus::kDiverged;
+  }
+  const std::uint64_t allocs = g_allocations.load(std::memory_order_relaxed) - allocs_before;
+  if (allocs != 0) fail(bs, "heap allocation in the timed loop");
+  if (diverged) fail(bs, "the step diverged");
+  const double element_steps = static_cast<double>(bs.iterations()) * S.elements;
+  bs.counters["elements"] = S.elements;
+  bs.counters["ns_per_element_step"] =
+      benchmark::Counter(element_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bs.counters["allocs"] = static_cast<double>(allocs);
+}
+
 // The peer's step, timed like bm_step: per element-step, allocations counted, and checked
 // against the kernel (the same K u in another order: rounding only).
 template <Grid G, bool kPrune>
@@ -476,6 +546,8 @@ void register_frame() {
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark(("step/stored_matrix/elements:" + n).c_str(),
                                bm_step<G, Formulation::kStored>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/runtime_storage/elements:" + n).c_str(), bm_step_runtime<G>)
       ->Unit(benchmark::kMicrosecond);
   // The multi-core step: wall-clock time (the CPU time is the calling thread's alone).
   benchmark::RegisterBenchmark(("step/threads:1/elements:" + n).c_str(),

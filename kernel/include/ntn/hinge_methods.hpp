@@ -74,41 +74,47 @@ InitStatus hinge_method_init(const ModelSpec<S>& spec, Model<S>& model, InitWork
 // R_n - C v_{n-1/2} (S 2-3): a_n = (R_n - C v) / m at every DOF that no hinge couples.
 template <Sizes S>
 void residual_stage(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0) {
-    with_hinge_method(m.hinge_method, [&](auto method) { method.residual(m, s, w); });
-  } else {
-    residual(m, s, w, m.inv_mass.data(), w.a.data());
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges > 0) {
+      with_hinge_method(m.hinge_method, [&](auto method) { method.residual(m, s, w); });
+      return;
+    }
   }
+  residual(m, s, w, m.inv_mass.data(), w.a.data());
 }
 
 // The NTN coupling: a_n at the coupled DOFs (S 17-26; DESIGN §7.1).
 template <Sizes S>
 void ntn_coupling(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0) {
-    with_hinge_method(m.hinge_method, [&](auto method) { method.couple(m, s, w); });
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges > 0)
+      with_hinge_method(m.hinge_method, [&](auto method) { method.couple(m, s, w); });
   }
 }
 
 // Rigid branches, after the update: the momentum clamp or S 33 (DESIGN §7.1).
 template <Sizes S>
 void hinge_stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0) {
-    with_hinge_method(m.hinge_method, [&](auto method) { method.stops(m, s, w); });
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges > 0)
+      with_hinge_method(m.hinge_method, [&](auto method) { method.stops(m, s, w); });
   }
 }
 
 // The constraint projection, after the stops: S 27-37 or the forest's (DESIGN §7.1).
 template <Sizes S>
 void constraint_projection(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0) {
-    with_hinge_method(m.hinge_method, [&](auto method) { method.project(m, s, w); });
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges > 0)
+      with_hinge_method(m.hinge_method, [&](auto method) { method.project(m, s, w); });
   }
 }
 
 template <Sizes S>
 void project_initial(const Model<S>& m, State<S>& s) {
-  if constexpr (S.hinges > 0) {
-    with_hinge_method(m.hinge_method, [&](auto method) { method.project_initial(m, s); });
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges > 0)
+      with_hinge_method(m.hinge_method, [&](auto method) { method.project_initial(m, s); });
   }
 }
 

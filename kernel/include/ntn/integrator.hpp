@@ -31,14 +31,21 @@ inline bool finite(double x) {
 }
 
 template <Sizes S>
-using Inputs = std::array<double, S.inputs>;
+using Inputs = StepInputs<S>;
 
 // Bad inputs never reach the state (§8): a non-finite value or one outside the channel's
 // [min, max] is replaced by the channel's last good value, counted and flagged.
 template <Sizes S>
-bool accept_inputs(const Model<S>& m, State<S>& s, const Inputs<S>& in) {
+bool accept_inputs(const Model<S>& m, State<S>& s, Inputs<S> in) {
+  if constexpr (S.runtime) {  // a span of another length: every channel held
+    if (in.size() != m.sizes.inputs) {
+      s.inputs_held += m.sizes.inputs;
+      s.faults |= kFaultInputHeld;
+      return false;
+    }
+  }
   bool held = false;
-  for (std::size_t k = 0; k < S.inputs; ++k) {
+  for (std::size_t k = 0; k < m.sizes.inputs; ++k) {
     const double x = in[k];
     if (!finite(x)) {
       held = true;
@@ -63,7 +70,7 @@ template <Sizes S>
 void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   const double fg = load_factor(m.time_points, m.time_functions, m.gravity_function, t);
   w.ground = {0.0, 0.0, 0.0};
-  for (std::size_t i = 0; i < S.inputs; ++i) {
+  for (std::size_t i = 0; i < m.sizes.inputs; ++i) {
     const InputSpec& in = m.inputs[i];
     if (in.kind == InputKind::kGroundAcceleration) {
       w.ground[static_cast<std::size_t>(in.dof)] += s.held_inputs[i] * in.scale;
@@ -79,12 +86,12 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
     const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
     w.p_slot[static_cast<std::size_t>(k)] = m.mass[j] * w.load_g[j % kDofsPerNode];
   }
-  for (std::size_t i = 0; i < S.loads; ++i) {
+  for (std::size_t i = 0; i < m.sizes.loads; ++i) {
     const LoadSpec& l = m.loads[i];
     w.p_slot[static_cast<std::size_t>(m.load_slot[i])] +=
         l.value * load_factor(m.time_points, m.time_functions, l.time_function, t);
   }
-  for (std::size_t i = 0; i < S.inputs; ++i) {
+  for (std::size_t i = 0; i < m.sizes.inputs; ++i) {
     const InputSpec& in = m.inputs[i];
     if (in.kind == InputKind::kNodalForce) {
       w.p_slot[static_cast<std::size_t>(m.input_slot[i])] += s.held_inputs[i] * in.scale;
@@ -102,8 +109,8 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   w.f.fill(0.0);
-  ntn::element_forces(m.element_pass, m.beams.data(), m.rotations.data(), S.elements, s.u.data(),
-                      s.v.data(), m.beta, w.f.data());
+  ntn::element_forces(m.element_pass, m.beams.data(), m.rotations.data(), m.sizes.elements,
+                      s.u.data(), s.v.data(), m.beta, w.f.data());
 }
 
 // A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
@@ -130,13 +137,13 @@ void hinge_spring_local(const Model<S>& m, const State<S>& s, const HingeData& h
 // return mapping, hysteresis.hpp): this stage is the one place that writes it.
 template <Sizes S>
 void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0) {
+  if constexpr (kMayHaveHinges<S>) {
     for (int i = 0; i < m.num_spring_hinges; ++i) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
       double d[6], d_dot[6], f[6];
       hinge_deformation(s, h, d, d_dot);
-      if constexpr (S.hystereses > 0) {
+      if constexpr (S.runtime || S.hystereses > 0) {
         for (std::size_t k = 0; h.plastic != 0 && k < kDofsPerNode; ++k) {
           if (!((h.plastic >> k) & 1U)) continue;
           const auto slot = static_cast<std::size_t>(h.history[k]);
@@ -172,7 +179,7 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
 // force of the normal direction as its channel gives it (a rigid one's lambda, a spring's force).
 template <Sizes S>
 void slip_normals(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0 && S.hystereses > 0) {
+  if constexpr (kMayHaveHystereses<S>) {
     if (m.num_slip_normals == 0) return;
     int coupled_tree = -1;
     for (int i = 0; i < m.num_slip_hinges; ++i) {
@@ -224,7 +231,7 @@ double hinge_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w,
 // residual_update() computes it everywhere with u and v: the outputs come first.
 template <Sizes S>
 void output_accelerations(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  for (std::size_t c = 0; c < S.outputs; ++c) {
+  for (std::size_t c = 0; c < m.sizes.outputs; ++c) {
     const OutputSpec& o = m.outputs[c];
     if (o.kind != OutputKind::kVelocity && o.kind != OutputKind::kAcceleration &&
         o.kind != OutputKind::kAbsoluteAcceleration)
@@ -239,7 +246,7 @@ template <Sizes S>
 void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) {
   w.time = t;
   [[maybe_unused]] int coupled_tree = -1;  // hinge_force: the tree whose coupled R is in w.r
-  for (std::size_t c = 0; c < S.outputs; ++c) {
+  for (std::size_t c = 0; c < m.sizes.outputs; ++c) {
     const OutputSpec& o = m.outputs[c];
     const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
     double value = 0;
@@ -254,20 +261,20 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         value = w.a[j];
         break;
       case OutputKind::kHingeForce:
-        if constexpr (S.hinges > 0) value = hinge_force(m, s, w, o.hinge, o.dof, coupled_tree);
+        if constexpr (kMayHaveHinges<S>) value = hinge_force(m, s, w, o.hinge, o.dof, coupled_tree);
         break;
       case OutputKind::kHingeDisplacement:
-        if constexpr (S.hinges > 0) value = hinge_displacement(m, s, o.hinge, o.dof);
+        if constexpr (kMayHaveHinges<S>) value = hinge_displacement(m, s, o.hinge, o.dof);
         break;
       case OutputKind::kHingeVelocity:
-        if constexpr (S.hinges > 0) value = hinge_velocity(m, s, w, o.hinge, o.dof);
+        if constexpr (kMayHaveHinges<S>) value = hinge_velocity(m, s, w, o.hinge, o.dof);
         break;
       case OutputKind::kHingeSlipState:  // written by the slip stage (slip_outputs)
         break;
       case OutputKind::kHingePlastic:
       case OutputKind::kHingeDissipated:
       case OutputKind::kHingeLevel:
-        if constexpr (S.hinges > 0 && S.hystereses > 0) {
+        if constexpr (kMayHaveHystereses<S>) {
           const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
           if (((h.plastic | h.slip) >> o.dof) & 1U) {
             const auto slot = static_cast<std::size_t>(h.history[static_cast<std::size_t>(o.dof)]);
@@ -320,7 +327,7 @@ bool update(const Model<S>& m, State<S>& s, const Scratch<S>& w) {
   // The check is a select into a double, not `ok &= finite(v)`: GCC vectorizes no loop with a
   // bool reduction, and this is a pass over every DOF.
   double bad = 0;
-  for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
+  for (std::size_t j = 0; j < m.dofs(); ++j) {
     const double v = advance(dt, w.a[j], s.v[j], s.u[j]);
     bad = finite(v) ? bad : 1.0;
   }
@@ -373,10 +380,9 @@ void team_update(void* arg, int k) {
 // hinges has no coupled DOF: its residual, accelerations and update are one pass over the DOFs
 // (residual_update), after the outputs, which compute the few a_n they read themselves.
 template <Sizes S>
-[[nodiscard]] StepStatus step_on(const Model<S>& m, State<S>& s, Scratch<S>& w,
-                                 const std::array<double, S.inputs>& in, const Team* team,
-                                 TeamWork<S>* work) {
-  constexpr bool kFused = S.hinges == 0;  // the DOF pass (dof_pass.hpp)
+[[nodiscard]] StepStatus step_on(const Model<S>& m, State<S>& s, Scratch<S>& w, StepInputs<S> in,
+                                 const Team* team, TeamWork<S>* work) {
+  const bool fused = m.sizes.hinges == 0;  // the DOF pass (dof_pass.hpp); compiled: a constant
   // A team whose partition is for another size runs nothing: the step is the caller's alone (the
   // same bits).
   if (team != nullptr && (work == nullptr || team->size != work->size)) team = nullptr;
@@ -392,7 +398,7 @@ template <Sizes S>
     team->run(team->self, team_shared_forces<S>, &c);
   }
   hinge_springs(m, s, w);  // hinge springs: F_n += B^T f_L (§7)
-  if constexpr (kFused) {
+  if (fused) {
     output_accelerations(m, s, w);  // a_n where the outputs read it (S 2-4)
   } else {
     residual_stage(m, s, w);  // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
@@ -401,13 +407,13 @@ template <Sizes S>
   slip_normals(m, s, w);       // friction: the normal forces N at t_n (slip.hpp)
   sample_outputs(m, s, w, t);  // outputs: the channels at t_n
   bool finite = true;
-  if constexpr (kFused) {  // residual, a_n and update: v_{n+1/2}, u_{n+1} (S 2-7)
+  if (fused) {  // residual, a_n and update: v_{n+1/2}, u_{n+1} (S 2-7)
     if (team != nullptr) {
       team->run(team->self, team_update<S>, &c);
       for (int k = 0; k < work->size; ++k)
         finite = finite && work->bad[static_cast<std::size_t>(k)] == 0.0;
     } else {
-      finite = residual_update(m, s, w, 0, S.nodes);
+      finite = residual_update(m, s, w, 0, m.sizes.nodes);
     }
   } else {
     finite = update(m, s, w);  // update: v_{n+1/2}, u_{n+1} (S 5-7)
@@ -449,8 +455,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
 // ntn_exact, u_0 and v_0 first take the rigid components of their tree parents (the constraints
 // hold from t_0); v_{-1/2} = v_0 - dt/2 a_0 (DESIGN §5), tick = 0.
 template <Sizes S>
-[[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w,
-                               const std::array<double, S.inputs>& in) {
+[[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w, StepInputs<S> in) {
   s.tick = 0;
   for (auto& h : s.held_inputs)
     h = 0.0;
@@ -462,7 +467,7 @@ template <Sizes S>
   detail::hinge_springs(m, s, w);
   detail::residual_stage(m, s, w);
   detail::ntn_coupling(m, s, w);
-  for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
+  for (std::size_t j = 0; j < m.dofs(); ++j) {
     s.v[j] -= 0.5 * m.dt * w.a[j];
   }
   return accepted ? StepStatus::kOk : StepStatus::kInputHeld;
@@ -470,17 +475,15 @@ template <Sizes S>
 
 // One step t_n -> t_{n+1}. Outputs in `w` are the channels at t_n.
 template <Sizes S>
-[[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w,
-                              const std::array<double, S.inputs>& in) {
+[[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w, StepInputs<S> in) {
   return detail::step_on<S>(m, s, w, in, nullptr, nullptr);
 }
 
 // The same step with a team of workers (team.hpp): the same bits for any team size. `work` was
 // built by prepare_team() for this model and team.size workers.
 template <Sizes S>
-[[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w,
-                              const std::array<double, S.inputs>& in, const Team& team,
-                              TeamWork<S>& work) {
+[[nodiscard]] StepStatus step(const Model<S>& m, State<S>& s, Scratch<S>& w, StepInputs<S> in,
+                              const Team& team, TeamWork<S>& work) {
   return detail::step_on<S>(m, s, w, in, &team, &work);
 }
 

@@ -21,43 +21,43 @@
 namespace ntn {
 
 template <Sizes S>
-struct Model {
+struct Model : SizesOf<S> {
   static constexpr Sizes kSizes = S;
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
 
   // The elements, kBeamLanes to a block in the model's order, and their rotations block by block
   // (element_pass.hpp): beam(e) is one.
-  std::array<BeamBlock, beam_blocks(S.elements)> beams{};
-  std::array<BeamRotations, beam_blocks(S.elements)> rotations{};
-  std::array<double, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
+  Array<BeamBlock, S, beam_blocks(S.elements)> beams{};
+  Array<BeamRotations, S, beam_blocks(S.elements)> rotations{};
+  Array<double, S, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
   // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
   // (ntn_exact: the forest gives them) and mechanism DOFs (held at zero).
-  std::array<double, kDofs> inv_mass{};
-  std::array<double, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
+  Array<double, S, kDofs> inv_mass{};
+  Array<double, S, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
   double beta = 0;   // s: stiffness-proportional damping beta K_el, in the element pass
   // The run's initial state u_0, v_0 (NodeSpec::u0, v0; zero by default): initial_state() puts
   // it in a State before start().
-  std::array<double, kDofs> u0{};
-  std::array<double, kDofs> v0{};
-  std::array<std::uint8_t, S.nodes> fixed{};            // support bits per node (bit d: DOF d)
-  std::array<std::int32_t, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
+  Array<double, S, kDofs> u0{};
+  Array<double, S, kDofs> v0{};
+  Array<std::uint8_t, S, S.nodes> fixed{};            // support bits per node (bit d: DOF d)
+  Array<std::int32_t, S, S.nodes> supported_nodes{};  // nodes with any fixed DOF, ascending
   int num_supported = 0;
 
-  std::array<TimePoint, S.time_points> time_points{};
-  std::array<TimeFunctionSpec, S.time_functions> time_functions{};
-  std::array<LoadSpec, S.loads> loads{};
-  std::array<ElementLoadSpec, S.element_loads> element_loads{};  // for the element-force outputs
-  std::array<HysteresisData, S.hystereses> hystereses{};         // kPlastic directions, by slot
+  Array<TimePoint, S, S.time_points> time_points{};
+  Array<TimeFunctionSpec, S, S.time_functions> time_functions{};
+  Array<LoadSpec, S, S.loads> loads{};
+  Array<ElementLoadSpec, S, S.element_loads> element_loads{};  // for the element-force outputs
+  Array<HysteresisData, S, S.hystereses> hystereses{};         // kPlastic directions, by slot
   // The DOFs that carry a nodal load or a force input ("load slots"), each once: only there does
   // P_n differ from M g (gravity and base excitation), which the residual pass computes on the fly.
-  std::array<std::int32_t, S.loads + S.inputs> slot_dof{};  // slot -> its DOF
-  std::array<std::int32_t, S.loads> load_slot{};            // nodal load -> its slot
-  std::array<std::int32_t, S.inputs> input_slot{};          // force input -> its slot, else -1
+  Array<std::int32_t, S, S.loads + S.inputs> slot_dof{};  // slot -> its DOF
+  Array<std::int32_t, S, S.loads> load_slot{};            // nodal load -> its slot
+  Array<std::int32_t, S, S.inputs> input_slot{};          // force input -> its slot, else -1
   int num_slots = 0;
-  std::array<InputSpec, S.inputs> inputs{};
-  std::array<OutputSpec, S.outputs> outputs{};
+  Array<InputSpec, S, S.inputs> inputs{};
+  Array<OutputSpec, S, S.outputs> outputs{};
   std::array<double, 3> gravity{};  // m/s^2
   int gravity_function = kConstant;
 
@@ -66,31 +66,31 @@ struct Model {
 
   // Hinges (DESIGN §7). Per-node arrays exist only in models with hinges.
   static constexpr std::size_t kHingeNodes = S.hinges > 0 ? S.nodes : 0;
-  std::array<HingeData, S.hinges> hinges{};
-  std::array<CurvePoint, S.curve_points> curve_points{};
-  std::array<ForestEdge, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
-  std::array<ForestEdgeMatrices, S.hinges> edge_matrices{};  // ntn_exact: each edge's matrices
-  std::array<ForestRoot, S.hinges> roots{};           // ntn_exact: trees not rooted at the ground
-  std::array<std::int32_t, S.hinges> hinge_edge{};    // hinge -> its forest edge, or -1
-  std::array<std::int32_t, kHingeNodes> node_tree{};  // node -> its rigid tree, or -1
-  std::array<std::uint8_t, kHingeNodes> held{};       // mechanism DOFs held at zero (bits)
+  Array<HingeData, S, S.hinges> hinges{};
+  Array<CurvePoint, S, S.curve_points> curve_points{};
+  Array<ForestEdge, S, S.hinges> edges{};  // ntn_exact: rigid trees, parents before children
+  Array<ForestEdgeMatrices, S, S.hinges> edge_matrices{};  // ntn_exact: each edge's matrices
+  Array<ForestRoot, S, S.hinges> roots{};           // ntn_exact: trees not rooted at the ground
+  Array<std::int32_t, S, S.hinges> hinge_edge{};    // hinge -> its forest edge, or -1
+  Array<std::int32_t, S, kHingeNodes> node_tree{};  // node -> its rigid tree, or -1
+  Array<std::uint8_t, S, kHingeNodes> held{};       // mechanism DOFs held at zero (bits)
   // ntn_exact: what the residual pass multiplies R_n by, per DOF: inv_mass outside the trees, 1
   // in a tree (the forest turns those R into accelerations in place; ntn_exact.hpp).
-  std::array<double, kDofsPerNode * kHingeNodes> residual_scale{};
-  std::array<std::int32_t, S.hinges> spring_hinges{};  // hinges with a spring or dashpot
-  std::array<std::int32_t, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
-  std::array<std::int32_t, S.hinges> project_edges{};  // ntn_exact: edges the step re-projects
-  std::array<ForestTree, S.hinges> trees{};            // ntn_exact: edge range and root per tree
+  Array<double, S, kDofsPerNode * kHingeNodes> residual_scale{};
+  Array<std::int32_t, S, S.hinges> spring_hinges{};  // hinges with a spring or dashpot
+  Array<std::int32_t, S, S.hinges> branch_hinges{};  // hinges with a rigid branch (a stop)
+  Array<std::int32_t, S, S.hinges> project_edges{};  // ntn_exact: edges the step re-projects
+  Array<ForestTree, S, S.hinges> trees{};            // ntn_exact: edge range and root per tree
   // ntn_exact: the stop hinges (indices into branch_hinges) whose two nodes lie in one tree,
   // tree by tree (ForestTree::first_stop, end_stop).
-  std::array<std::int32_t, S.hinges> tree_stops{};
-  std::array<std::int32_t, S.hinges> slip_hinges{};  // ntn_exact: hinges with a slip direction
+  Array<std::int32_t, S, S.hinges> tree_stops{};
+  Array<std::int32_t, S, S.hinges> slip_hinges{};  // ntn_exact: hinges with a slip direction
   // ntn_exact: W_ij = b_i^T M_c^-1 b_j between the slip directions of each rigid tree, row by
   // row in the slip stage's order (slip.hpp, init_slip_mobility): constant, so built at init.
-  std::array<double, S.hystereses * kSlipBlock> slip_mobility{};
+  Array<double, S, S.hystereses * kSlipBlock> slip_mobility{};
   // ntn_exact: the L D L^T of each tree's W with every direction sticking, in the same rows
   // (slip.hpp's ldl_factor; 0 in a tree's first entry when W is singular).
-  std::array<double, S.hystereses * kSlipBlock> slip_factor{};
+  Array<double, S, S.hystereses * kSlipBlock> slip_factor{};
   int num_edges = 0;
   int num_roots = 0;
   int num_spring_hinges = 0;
@@ -111,6 +111,8 @@ struct Model {
   // reference, element_pass.hpp). Not part of the model file: a driver or a test may switch it.
   ElementPass element_pass = ElementPass::kSimd;
 
+  std::size_t dofs() const { return kDofsPerNode * this->sizes.nodes; }  // kDofs, in any storage
+
   BeamData beam(std::size_t e) const {
     return lane(beams[e / kBeamLanes], rotations[e / kBeamLanes], e % kBeamLanes);
   }
@@ -118,15 +120,16 @@ struct Model {
 
 // What init() works in and then drops: kept out of the constant Model.
 template <Sizes S>
-struct InitWorkspace {
+struct InitWorkspace : SizesOf<S> {
   // The mass the accelerations divide by, before init() inverts it into Model::inv_mass: the
   // lumped mass, or the hinge-summed one (ntn_paper, S 22-26).
-  std::array<double, Model<S>::kDofs> divided_mass{};
-  std::array<ForestWork, S.hinges> forest{};  // ntn_exact: build_forest's, one per hinge
+  Array<double, S, Model<S>::kDofs> divided_mass{};
+  Array<ForestWork, S, S.hinges> forest{};  // ntn_exact: build_forest's, one per hinge
   // ntn_exact with slip directions: an impulse along one and the trees' response to it, for
   // Model::slip_mobility (init_slip_mobility, slip.hpp).
-  std::array<double, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_impulse{};
-  std::array<double, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_response{};
+  Array<double, S, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_impulse{};
+  Array<double, S, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_response{};
+  Array<std::uint8_t, S, S.hystereses> slot_used{};  // check_references: each slot used once
 };
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
@@ -154,20 +157,21 @@ inline void assemble_lumped_mass(const SpecView& spec, std::span<double> out) {
 
 // Every index in the spec is in range, so step() can index without checks.
 template <Sizes S>
-[[nodiscard]] InitStatus check_references(const ModelSpec<S>& spec) {
-  auto node_ok = [](int n) { return n >= 0 && std::cmp_less(n, S.nodes); };
+[[nodiscard]] InitStatus check_references(const ModelSpec<S>& spec, InitWorkspace<S>& work) {
+  const Sizes& sz = work.sizes;
+  auto node_ok = [&](int n) { return n >= 0 && std::cmp_less(n, sz.nodes); };
   auto dof_ok = [](int d, int n) { return d >= 0 && d < n; };
-  auto function_ok = [](int f) {
-    return f == kConstant || (f >= 0 && std::cmp_less(f, S.time_functions));
+  auto function_ok = [&](int f) {
+    return f == kConstant || (f >= 0 && std::cmp_less(f, sz.time_functions));
   };
-  for (std::size_t i = 0; i < S.elements; ++i) {
+  for (std::size_t i = 0; i < sz.elements; ++i) {
     const ElementSpec& e = spec.elements[i];
     if (!node_ok(e.node_i) || !node_ok(e.node_j))
       return {InitError::kBadReference, static_cast<int>(i)};
   }
-  for (std::size_t f = 0; f < S.time_functions; ++f) {
+  for (std::size_t f = 0; f < sz.time_functions; ++f) {
     const TimeFunctionSpec& tf = spec.time_functions[f];
-    if (tf.count < 1 || tf.first < 0 || std::cmp_greater(tf.first + tf.count, S.time_points))
+    if (tf.count < 1 || tf.first < 0 || std::cmp_greater(tf.first + tf.count, sz.time_points))
       return {InitError::kBadTimeFunction, static_cast<int>(f)};
     for (int k = tf.first + 1; k < tf.first + tf.count; ++k) {
       if (!(spec.time_points[static_cast<std::size_t>(k)].t >
@@ -175,26 +179,28 @@ template <Sizes S>
         return {InitError::kBadTimeFunction, static_cast<int>(f)};
     }
   }
-  for (std::size_t i = 0; i < S.loads; ++i) {
+  for (std::size_t i = 0; i < sz.loads; ++i) {
     const LoadSpec& l = spec.loads[i];
     if (!node_ok(l.node) || !dof_ok(l.dof, kDofsPerNode) || !function_ok(l.time_function))
       return {InitError::kBadReference, static_cast<int>(i)};
   }
-  for (std::size_t i = 0; i < S.element_loads; ++i) {
+  for (std::size_t i = 0; i < sz.element_loads; ++i) {
     const ElementLoadSpec& l = spec.element_loads[i];
-    if (l.element < 0 || !std::cmp_less(l.element, S.elements) || !function_ok(l.time_function))
+    if (l.element < 0 || !std::cmp_less(l.element, sz.elements) || !function_ok(l.time_function))
       return {InitError::kBadReference, static_cast<int>(i)};
   }
   if (!function_ok(spec.settings.gravity_function)) return {InitError::kBadReference, -1};
-  std::array<std::uint8_t, S.hystereses> slot_used{};  // each history slot has one direction
-  for (std::size_t i = 0; i < S.hinges; ++i) {
+  auto& slot_used = work.slot_used;  // each history slot has one direction
+  slot_used.fill(0);
+  for (std::size_t i = 0; i < sz.hinges; ++i) {
     HingeData h;
-    if (!make_hinge_data(spec.hinges[i], spec.settings, S.nodes, spec.curves, spec.curve_points, h))
+    if (!make_hinge_data(spec.hinges[i], spec.settings, sz.nodes, spec.curves, spec.curve_points,
+                         h))
       return {InitError::kBadHinge, static_cast<int>(i)};
     for (std::size_t k = 0; k < kDofsPerNode; ++k) {
       if (!(((h.plastic | h.slip) >> k) & 1U)) continue;
       const auto slot = static_cast<std::size_t>(h.history[k]);
-      if (slot >= S.hystereses ||
+      if (slot >= sz.hystereses ||
           !hysteresis_valid(spec.hystereses[slot], h.stiffness[k], h.dashpot[k]) ||
           slot_used[slot] != 0)
         return {InitError::kBadHinge, static_cast<int>(i)};
@@ -216,7 +222,7 @@ template <Sizes S>
       if (law.circle >= 0) {  // the partner: a friction direction of the hinge, the same law
         const auto c = static_cast<std::size_t>(law.circle);
         if (c == k || c / 3 != k / 3 || !((h.slip >> c) & 1U) ||
-            static_cast<std::size_t>(h.history[c]) >= S.hystereses)
+            static_cast<std::size_t>(h.history[c]) >= sz.hystereses)
           return {InitError::kBadHinge, static_cast<int>(i)};
         const HysteresisSpec& other = spec.hystereses[static_cast<std::size_t>(h.history[c])];
         if (other.circle != static_cast<int>(k) || other.normal != law.normal ||
@@ -226,19 +232,19 @@ template <Sizes S>
       slot_used[slot] = 1;
     }
   }
-  for (std::size_t i = 0; i < S.inputs; ++i) {
+  for (std::size_t i = 0; i < sz.inputs; ++i) {
     const InputSpec& in = spec.inputs[i];
     const bool ok = in.kind == InputKind::kGroundAcceleration
                         ? dof_ok(in.dof, 3)
                         : node_ok(in.node) && dof_ok(in.dof, kDofsPerNode);
     if (!ok || !(in.min <= in.max)) return {InitError::kBadInput, static_cast<int>(i)};
   }
-  for (std::size_t i = 0; i < S.outputs; ++i) {
+  for (std::size_t i = 0; i < sz.outputs; ++i) {
     const OutputSpec& o = spec.outputs[i];
     bool ok = dof_ok(o.dof, kDofsPerNode);
     switch (o.kind) {
       case OutputKind::kElementForce:
-        ok = ok && o.element >= 0 && std::cmp_less(o.element, S.elements) &&
+        ok = ok && o.element >= 0 && std::cmp_less(o.element, sz.elements) &&
              (o.end == 0 || o.end == 1);
         break;
       case OutputKind::kDrift:
@@ -253,7 +259,7 @@ template <Sizes S>
       case OutputKind::kHingeLevel:
       case OutputKind::kHingeVelocity:
       case OutputKind::kHingeSlipState:
-        ok = ok && o.hinge >= 0 && std::cmp_less(o.hinge, S.hinges);
+        ok = ok && o.hinge >= 0 && std::cmp_less(o.hinge, sz.hinges);
         break;
       default:
         ok = ok && node_ok(o.node);
@@ -268,9 +274,15 @@ template <Sizes S>
 // static); `work` is scratch for the call only.
 template <Sizes S>
 [[nodiscard]] InitStatus init(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<S>& work) {
-  static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
-  if (const InitStatus st = check_references(spec); !st.ok()) return st;
-  for (std::size_t i = 0; i < S.elements; ++i) {
+  const Sizes& sz = model.sizes;
+  if constexpr (S.runtime) {  // the storage was bound for this model (storage_bind.hpp)
+    if (sizes_of(view(spec)) != sz || work.sizes != sz) return {InitError::kStorageSizes, -1};
+    if (sz.nodes < 2 || sz.elements < 1) return {InitError::kStorageSizes, -1};
+  } else {
+    static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
+  }
+  if (const InitStatus st = check_references(spec, work); !st.ok()) return st;
+  for (std::size_t i = 0; i < sz.elements; ++i) {
     const ElementSpec& e = spec.elements[i];
     const int where = static_cast<int>(i);
     if (!beam_properties_valid(e)) return {InitError::kBadProperty, where};
@@ -293,49 +305,52 @@ template <Sizes S>
   // what the method precomputes (the forest, or the S 22-26 masses in work.divided_mass).
   model.hinge_method = spec.settings.hinge_method;
   model.clamp = spec.settings.clamp;
-  const std::array<double, Model<S>::kDofs>& divided = work.divided_mass;
+  const auto& divided = work.divided_mass;
   work.divided_mass = model.mass;
-  if constexpr (S.hinges > 0) {
-    for (std::size_t i = 0; i < S.hinges; ++i) {
-      (void)make_hinge_data(spec.hinges[i], spec.settings, S.nodes, spec.curves, spec.curve_points,
-                            model.hinges[i]);
-    }
-    model.curve_points = spec.curve_points;
-    model.num_edges = model.num_roots = model.held_dofs = 0;
-    model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
-    model.num_slip_hinges = model.num_slip_normals = 0;
-    model.num_trees = 0;
-    for (std::size_t i = 0; i < S.hinges; ++i) {
-      const HingeData& h = model.hinges[i];
-      const auto hinge = static_cast<std::int32_t>(i);
-      if (h.springs != 0)
-        model.spring_hinges[static_cast<std::size_t>(model.num_spring_hinges++)] = hinge;
-      if (h.branches != 0)
-        model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = hinge;
-      if (h.slip != 0) model.slip_hinges[static_cast<std::size_t>(model.num_slip_hinges++)] = hinge;
-      for (std::size_t k = 0; h.slip != 0 && k < kDofsPerNode; ++k) {
-        if ((h.slip >> k) & 1U)
-          model.num_slip_normals +=
-              spec.hystereses[static_cast<std::size_t>(h.history[k])].normal >= 0 ? 1 : 0;
+  if constexpr (kMayHaveHinges<S>) {
+    if (sz.hinges > 0) {
+      for (std::size_t i = 0; i < sz.hinges; ++i) {
+        (void)make_hinge_data(spec.hinges[i], spec.settings, sz.nodes, spec.curves,
+                              spec.curve_points, model.hinges[i]);
       }
+      model.curve_points = spec.curve_points;
+      model.num_edges = model.num_roots = model.held_dofs = 0;
+      model.num_spring_hinges = model.num_branch_hinges = model.num_project_edges = 0;
+      model.num_slip_hinges = model.num_slip_normals = 0;
+      model.num_trees = 0;
+      for (std::size_t i = 0; i < sz.hinges; ++i) {
+        const HingeData& h = model.hinges[i];
+        const auto hinge = static_cast<std::int32_t>(i);
+        if (h.springs != 0)
+          model.spring_hinges[static_cast<std::size_t>(model.num_spring_hinges++)] = hinge;
+        if (h.branches != 0)
+          model.branch_hinges[static_cast<std::size_t>(model.num_branch_hinges++)] = hinge;
+        if (h.slip != 0)
+          model.slip_hinges[static_cast<std::size_t>(model.num_slip_hinges++)] = hinge;
+        for (std::size_t k = 0; h.slip != 0 && k < kDofsPerNode; ++k) {
+          if ((h.slip >> k) & 1U)
+            model.num_slip_normals +=
+                spec.hystereses[static_cast<std::size_t>(h.history[k])].normal >= 0 ? 1 : 0;
+        }
+      }
+      for (auto& e : model.hinge_edge)
+        e = -1;
+      for (auto& t : model.node_tree)
+        t = -1;
+      for (auto& h : model.held)
+        h = 0;
+      if (const InitStatus st = detail::hinge_method_init(spec, model, work); !st.ok()) return st;
     }
-    for (auto& e : model.hinge_edge)
-      e = -1;
-    for (auto& t : model.node_tree)
-      t = -1;
-    for (auto& h : model.held)
-      h = 0;
-    if (const InitStatus st = detail::hinge_method_init(spec, model, work); !st.ok()) return st;
   }
 
-  for (std::size_t n = 0; n < S.nodes; ++n) {
+  for (std::size_t n = 0; n < sz.nodes; ++n) {
     const std::uint8_t fixed = spec.nodes[n].fixed;
     model.fixed[n] = fixed;
     if (fixed != 0)
       model.supported_nodes[static_cast<std::size_t>(model.num_supported++)] =
           static_cast<std::int32_t>(n);
     bool in_tree = false;
-    if constexpr (S.hinges > 0) in_tree = model.node_tree[n] >= 0;
+    if constexpr (kMayHaveHinges<S>) in_tree = sz.hinges > 0 && model.node_tree[n] >= 0;
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       const std::size_t j = kDofsPerNode * n + d;
       model.damping[j] = spec.settings.alpha * model.mass[j];  // residual() recomputes it so
@@ -347,7 +362,7 @@ template <Sizes S>
         // No mass: without hinges the node has no element either, which the model compiler
         // refuses; with hinges it is a mechanism (DESIGN §7.1), held at zero. A spring on it
         // makes the stable step zero, which is refused below.
-        if constexpr (S.hinges == 0) {
+        if (!kMayHaveHinges<S> || sz.hinges == 0) {
           return {InitError::kMassless, static_cast<int>(j)};
         } else {
           model.held[n] |= static_cast<std::uint8_t>(1U << d);
@@ -357,7 +372,9 @@ template <Sizes S>
         inv = 1.0 / divided[j];
       }
       model.inv_mass[j] = inv;
-      if constexpr (S.hinges > 0) model.residual_scale[j] = in_tree ? 1.0 : inv;
+      if constexpr (kMayHaveHinges<S>) {
+        if (sz.hinges > 0) model.residual_scale[j] = in_tree ? 1.0 : inv;
+      }
     }
   }
 
@@ -388,11 +405,11 @@ template <Sizes S>
   for (const InputSpec& in : spec.inputs) {
     if (in.kind == InputKind::kNodalForce) add_slot(kDofsPerNode * in.node + in.dof);
   }
-  for (std::size_t i = 0; i < S.loads; ++i) {
+  for (std::size_t i = 0; i < sz.loads; ++i) {
     const LoadSpec& l = spec.loads[i];
     model.load_slot[i] = slot_of(kDofsPerNode * l.node + l.dof);
   }
-  for (std::size_t i = 0; i < S.inputs; ++i) {
+  for (std::size_t i = 0; i < sz.inputs; ++i) {
     const InputSpec& in = spec.inputs[i];
     model.input_slot[i] =
         in.kind == InputKind::kNodalForce ? slot_of(kDofsPerNode * in.node + in.dof) : -1;
@@ -402,11 +419,11 @@ template <Sizes S>
   model.time_functions = spec.time_functions;
   model.loads = spec.loads;
   model.element_loads = spec.element_loads;
-  if constexpr (S.hystereses > 0) {
+  if constexpr (S.runtime || S.hystereses > 0) {
     // Each slot's law with its direction's elastic k (a rigid-plastic direction: the penalty
     // stiffness under penalty, 1 under ntn_exact, where the slip stage uses the yields alone and
     // its hardening is a spring of its own).
-    for (std::size_t i = 0; i < S.hinges; ++i) {
+    for (std::size_t i = 0; i < sz.hinges; ++i) {
       const HingeSpec& hs = spec.hinges[i];
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if (hs.behaviour[k] != HingeBehaviour::kPlastic &&

@@ -6,28 +6,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
+
+#include "ntn/storage.hpp"
 
 namespace ntn {
 
 // Node DOF order (DESIGN §3): ux, uy, uz, rx, ry, rz.
 inline constexpr int kDofsPerNode = 6;
 enum Dof : std::uint8_t { kUx = 0, kUy, kUz, kRx, kRy, kRz };
-
-// Compile-time sizes of a model. A structural type, so it is a template parameter.
-struct Sizes {
-  std::size_t nodes = 0;
-  std::size_t elements = 0;
-  std::size_t time_functions = 0;
-  std::size_t time_points = 0;  // all time-function points, concatenated
-  std::size_t loads = 0;
-  std::size_t inputs = 0;
-  std::size_t outputs = 0;
-  std::size_t hinges = 0;  // NTN hinges, member-end releases and supports with a frame (DESIGN §7)
-  std::size_t curves = 0;  // force-deformation curves of `curve` hinge directions
-  std::size_t curve_points = 0;   // all curve points, concatenated
-  std::size_t element_loads = 0;  // distributed loads on elements (the member loads' parts)
-  std::size_t hystereses = 0;     // hysteretic hinge directions (kPlastic), each with its history
-};
 
 struct NodeSpec {
   double x = 0, y = 0, z = 0;                // m
@@ -272,22 +259,27 @@ constexpr double branch_slope_limit(const Settings& s, std::size_t k) {
   return lim > 0 ? lim : 1e300;
 }
 
-// Everything a model is, at compile-time sizes.
+// An array of a model's spec: a std::array in a compiled spec (a generated header spells the
+// whole model as one constant), a view of the caller's arrays in a run-time one.
+template <class T, Sizes S, std::size_t N>
+using SpecArray = std::conditional_t<S.runtime, std::span<const T>, std::array<T, N>>;
+
+// Everything a model is: at compile-time sizes, or (kRunTime) views of a run-time description.
 template <Sizes S>
 struct ModelSpec {
   static constexpr Sizes kSizes = S;
-  std::array<NodeSpec, S.nodes> nodes{};
-  std::array<ElementSpec, S.elements> elements{};
-  std::array<TimePoint, S.time_points> time_points{};
-  std::array<TimeFunctionSpec, S.time_functions> time_functions{};
-  std::array<LoadSpec, S.loads> loads{};
-  std::array<InputSpec, S.inputs> inputs{};
-  std::array<OutputSpec, S.outputs> outputs{};
-  std::array<HingeSpec, S.hinges> hinges{};
-  std::array<CurveSpec, S.curves> curves{};
-  std::array<CurvePoint, S.curve_points> curve_points{};
-  std::array<ElementLoadSpec, S.element_loads> element_loads{};
-  std::array<HysteresisSpec, S.hystereses> hystereses{};
+  SpecArray<NodeSpec, S, S.nodes> nodes{};
+  SpecArray<ElementSpec, S, S.elements> elements{};
+  SpecArray<TimePoint, S, S.time_points> time_points{};
+  SpecArray<TimeFunctionSpec, S, S.time_functions> time_functions{};
+  SpecArray<LoadSpec, S, S.loads> loads{};
+  SpecArray<InputSpec, S, S.inputs> inputs{};
+  SpecArray<OutputSpec, S, S.outputs> outputs{};
+  SpecArray<HingeSpec, S, S.hinges> hinges{};
+  SpecArray<CurveSpec, S, S.curves> curves{};
+  SpecArray<CurvePoint, S, S.curve_points> curve_points{};
+  SpecArray<ElementLoadSpec, S, S.element_loads> element_loads{};
+  SpecArray<HysteresisSpec, S, S.hystereses> hystereses{};
   Settings settings{};
 };
 
@@ -315,6 +307,43 @@ constexpr SpecView view(const ModelSpec<S>& spec) {
           spec.loads,   spec.inputs,       spec.outputs,       spec.hinges,
           spec.curves,  spec.curve_points, spec.element_loads, spec.hystereses,
           spec.settings};
+}
+
+// The sizes of a model given as a view (a run-time description): the counts of its arrays.
+constexpr Sizes sizes_of(const SpecView& v) {
+  Sizes s;
+  s.nodes = v.nodes.size();
+  s.elements = v.elements.size();
+  s.time_functions = v.time_functions.size();
+  s.time_points = v.time_points.size();
+  s.loads = v.loads.size();
+  s.inputs = v.inputs.size();
+  s.outputs = v.outputs.size();
+  s.hinges = v.hinges.size();
+  s.curves = v.curves.size();
+  s.curve_points = v.curve_points.size();
+  s.element_loads = v.element_loads.size();
+  s.hystereses = v.hystereses.size();
+  return s;
+}
+
+// The run-time spec of a view: the same arrays, for init() into run-time storage.
+constexpr ModelSpec<kRunTime> runtime_spec(const SpecView& v) {
+  ModelSpec<kRunTime> spec;
+  spec.nodes = v.nodes;
+  spec.elements = v.elements;
+  spec.time_points = v.time_points;
+  spec.time_functions = v.time_functions;
+  spec.loads = v.loads;
+  spec.inputs = v.inputs;
+  spec.outputs = v.outputs;
+  spec.hinges = v.hinges;
+  spec.curves = v.curves;
+  spec.curve_points = v.curve_points;
+  spec.element_loads = v.element_loads;
+  spec.hystereses = v.hystereses;
+  spec.settings = v.settings;
+  return spec;
 }
 
 }  // namespace ntn

@@ -224,7 +224,7 @@ struct NtnPaperMethod {
   template <Sizes S>
   static void couple(const Model<S>& m, const State<S>&, Scratch<S>& w) {
     paper_forces(m.hinges, w.r.data());
-    for (std::size_t j = 0; j < Model<S>::kDofs; ++j) {
+    for (std::size_t j = 0; j < m.dofs(); ++j) {
       w.a[j] = w.r[j] * m.inv_mass[j];
     }
   }

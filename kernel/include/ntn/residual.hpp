@@ -72,7 +72,7 @@ void residual_slots(const Model<S>& m, const State<S>& s, const Scratch<S>& w, c
 template <Sizes S, bool kScaled = true>
 void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const double* scale,
               double* out) {
-  residual_nodes<S, kScaled>(m, s, w, scale, out, 0, S.nodes);
+  residual_nodes<S, kScaled>(m, s, w, scale, out, 0, m.sizes.nodes);
   residual_slots<S, kScaled>(m, s, w, scale, out);
 }
 

@@ -445,7 +445,7 @@ void sort_slip_hinges(Model<S>& m) {
 // response_along, clamp.hpp), with InitWorkspace's buffers.
 template <Sizes S>
 void init_slip_mobility(Model<S>& m, InitWorkspace<S>& work) {
-  if constexpr (S.hinges > 0 && S.hystereses > 0) {
+  if constexpr (kMayHaveHystereses<S>) {
     double* impulse = work.slip_impulse.data();
     double* response = work.slip_response.data();
     // The directions of slip hinges [begin, end) in the slip stage's order: fn(hinge, k, index).
@@ -494,7 +494,7 @@ void init_slip_mobility(Model<S>& m, InitWorkspace<S>& work) {
 // directions, then each direction that is at a yield takes its new slip and the work done.
 template <Sizes S>
 void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0 && S.hystereses > 0) {
+  if constexpr (kMayHaveHystereses<S>) {
     if (m.num_slip_hinges == 0) return;
     // Tree by tree (sort_slip_hinges made each tree's one range): together, or by Gauss-Seidel
     // when that fails; the hinges in no tree (first) by Gauss-Seidel.
@@ -551,9 +551,9 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
 // force), and how the stage left the direction (State::slip_state).
 template <Sizes S>
 void slip_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  if constexpr (S.hinges > 0 && S.hystereses > 0 && S.outputs > 0) {
+  if constexpr (kMayHaveHystereses<S> && (S.runtime || S.outputs > 0)) {
     if (m.num_slip_hinges == 0) return;
-    for (std::size_t c = 0; c < S.outputs; ++c) {
+    for (std::size_t c = 0; c < m.sizes.outputs; ++c) {
       const OutputSpec& o = m.outputs[c];
       if (o.kind != OutputKind::kHingeForce && o.kind != OutputKind::kHingeSlipState) continue;
       const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];

@@ -22,35 +22,41 @@ template <std::size_t N>
 ConstNodeBlock node_block(const std::array<double, N>& x, int node) {
   return ConstNodeBlock(x.data() + kDofsPerNode * node, kDofsPerNode);
 }
+inline NodeBlock node_block(Slice<double>& x, int node) {
+  return NodeBlock(x.data() + kDofsPerNode * node, kDofsPerNode);
+}
+inline ConstNodeBlock node_block(const Slice<double>& x, int node) {
+  return ConstNodeBlock(x.data() + kDofsPerNode * node, kDofsPerNode);
+}
 
 template <Sizes S>
-struct State {
+struct State : SizesOf<S> {
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
-  std::array<double, kDofs> u{};               // m, rad: displacements u_n relative to the ground
-  std::array<double, kDofs> v{};               // m/s, rad/s: v_{n-1/2} once started (S 5-6)
-  std::array<double, S.inputs> held_inputs{};  // last accepted value of each input channel
-  std::int64_t tick = 0;                       // step counter: t_n = tick * dt, never summed
-  std::uint64_t inputs_held = 0;               // non-finite inputs replaced by the held value
-  std::uint64_t inputs_out_of_range = 0;       // inputs outside [min, max], held likewise
-  std::uint32_t faults = 0;                    // Fault bits, sticky
+  Array<double, S, kDofs> u{};               // m, rad: displacements u_n relative to the ground
+  Array<double, S, kDofs> v{};               // m/s, rad/s: v_{n-1/2} once started (S 5-6)
+  Array<double, S, S.inputs> held_inputs{};  // last accepted value of each input channel
+  std::int64_t tick = 0;                     // step counter: t_n = tick * dt, never summed
+  std::uint64_t inputs_held = 0;             // non-finite inputs replaced by the held value
+  std::uint64_t inputs_out_of_range = 0;     // inputs outside [min, max], held likewise
+  std::uint32_t faults = 0;                  // Fault bits, sticky
   // The history of the hysteretic hinge directions (kPlastic, hysteresis.hpp), by slot
   // (HingeSpec::hysteresis): plastic deformation d_p (m or rad: the force is k (d - d_p)) and
   // energy dissipated (J).
-  std::array<double, S.hystereses> plastic{};
-  std::array<double, S.hystereses> dissipated{};
-  std::array<double, S.hystereses> plastic_peak{};  // the largest |d_p| so far
+  Array<double, S, S.hystereses> plastic{};
+  Array<double, S, S.hystereses> dissipated{};
+  Array<double, S, S.hystereses> plastic_peak{};  // the largest |d_p| so far
   // Backbone rules only (backbone.hpp): the largest deformation reached in the positive and in
   // the negative sense (magnitudes), and where the reloading lines of the positive and the
   // negative sense start (peak_oriented: the zero-force points of the last unloading lines).
-  std::array<std::array<double, 4>, S.hystereses> excursion{};
+  Array<std::array<double, 4>, S, S.hystereses> excursion{};
   // Rigid-plastic and brittle directions (slip.hpp, brittle.hpp): 1 + the tick of the step in
   // which the direction first slid or broke (0: never); a `failure` direction has broken from
   // then on.
-  std::array<std::int64_t, S.hystereses> first_slip{};
+  Array<std::int64_t, S, S.hystereses> first_slip{};
   // Rigid-plastic directions under ntn_exact (slip.hpp): how the last step left each one: 0
   // stuck, +1 / -1 at its limit in the positive / negative sense (sliding), 2 free (broken, or
   // a fixed_if released). The next step's solve starts from it.
-  std::array<std::int8_t, S.hystereses> slip_state{};
+  Array<std::int8_t, S, S.hystereses> slip_state{};
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b
@@ -60,31 +66,31 @@ template <Sizes S>
 struct ClampWork {
   static constexpr std::size_t kDofs = S.hinges > 0 ? kDofsPerNode* S.nodes : 0;
   // written by clamp_response (b, then the forest's upward pass in place), read by it
-  std::array<double, kDofs> impulse{};
+  Array<double, S, kDofs> impulse{};
   // written by clamp_response (M_c^-1 b), read by clamp_projection and clamp_move
-  std::array<double, kDofs> response{};
+  Array<double, S, kDofs> response{};
   // Event counts, not state (only their order within a step counts): when each node was last
   // moved by a clamp (written by clamp_move), when each stop hinge was last looked at (written
   // by the sweeps; index into Model::branch_hinges); both read by clamp_due.
-  std::array<std::int64_t, (S.hinges > 0 ? S.nodes : 0)> moved{};
-  std::array<std::int64_t, S.hinges> checked{};
+  Array<std::int64_t, S, (S.hinges > 0 ? S.nodes : 0)> moved{};
+  Array<std::int64_t, S, S.hinges> checked{};
   std::int64_t events = 0;
 };
 
 // Each field: what it holds, the stage that writes it and the stages that read it (the stages
 // of step(), integrator.hpp).
 template <Sizes S>
-struct Scratch {
+struct Scratch : SizesOf<S> {
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
   // External load P_n (DESIGN §5): M g at every DOF (load_g per DOF direction, computed in the
   // residual pass), except at the model's load slots, whose P_n is here (external_load()).
   // load_g, p_slot: written by loads, read by the residual stage, hinge-force and reaction
   // outputs (external_load).
-  std::array<double, kDofsPerNode> load_g{};        // m/s^2: gravity - a_g on x, y, z; 0, 0, 0
-  std::array<double, S.loads + S.inputs> p_slot{};  // N or N m, P_n at Model::slot_dof
+  std::array<double, kDofsPerNode> load_g{};      // m/s^2: gravity - a_g on x, y, z; 0, 0, 0
+  Array<double, S, S.loads + S.inputs> p_slot{};  // N or N m, P_n at Model::slot_dof
   // Internal force F_n: written by element forces and hinge springs, read by the residual stage
   // and the reaction and hinge-force outputs.
-  std::array<double, kDofs> f{};
+  Array<double, S, kDofs> f{};
   // Acceleration a_n: written by the residual stage (a_n at DOFs no hinge couples) and the NTN
   // coupling stage (the coupled DOFs), read by outputs and the update; the stops and the
   // constraint projection add their S 35-37 increments. A model without hinges: written at the
@@ -92,21 +98,20 @@ struct Scratch {
   // values, by the fused DOF pass (residual_update). Between the residual and the coupling
   // stage its storage is the coupling's input, coupling_input() (ntn_exact: R_n - C v at tree
   // DOFs), never read as `a`.
-  std::array<double, kDofs> a{};
+  Array<double, S, kDofs> a{};
   // The coupled R_n - C v (models with hinges): ntn_paper's at every DOF, written by its
   // residual and coupling stages (S 17-21) and read by them; ntn_exact's of one rigid tree,
   // written and read by the hinge-force output of that tree (forest_hinge_force).
-  std::array<double, (S.hinges > 0 ? kDofs : 0)> r{};
-  std::array<double, S.outputs>
-      outputs{};  // channels at t_n: written by outputs (a slip direction's force by the slip
-                  // stage), read by the caller
+  Array<double, S, (S.hinges > 0 ? kDofs : 0)> r{};
+  Array<double, S, S.outputs> outputs{};  // channels at t_n: written by outputs (a slip direction's
+                                          // force by the slip stage), read by the caller
   // N or N m, by history slot: the force of each rigid-plastic direction at t_n (the slip
   // stage's, slip.hpp; 0 for the other slots): written by the slip stage, read by it and by the
   // hinge-force outputs it then writes.
-  std::array<double, S.hystereses> slip_force{};
+  Array<double, S, S.hystereses> slip_force{};
   // N or N m, by history slot: a friction direction's normal force N at t_n (slip.hpp): written
   // by the slip-normal stage (after the coupling), read by the slip stage.
-  std::array<double, S.hystereses> slip_normal{};
+  Array<double, S, S.hystereses> slip_normal{};
   ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
   std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
   double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller
@@ -114,7 +119,9 @@ struct Scratch {
   // The residual stage's output where the NTN coupling finishes it in place (ntn_exact): the
   // storage of `a`, holding R_n - C v_{n-1/2} at the DOFs of rigid trees (a_n elsewhere) until
   // the coupling stage has turned them into a_n. A name of its own, so that `a` always means a_n.
-  std::span<double, kDofs> coupling_input() { return a; }
+  std::span<double, S.runtime ? std::dynamic_extent : kDofs> coupling_input() {
+    return std::span < double, S.runtime ? std::dynamic_extent : kDofs > (a);
+  }
 };
 
 }  // namespace ntn

@@ -45,22 +45,22 @@ struct Team {
 // every node (in element order) and the fixed partition. Caller-owned (static), built once by
 // prepare_team().
 template <Sizes S>
-struct TeamWork {
+struct TeamWork : SizesOf<S> {
   static constexpr std::size_t kBlocks = beam_blocks(S.elements);
   // fe[12 e + c]: element e's force on node i's DOF c (c < 6), then on node j's; whole blocks.
-  std::array<double, 12 * kBeamLanes * kBlocks> end_forces{};
+  Array<double, S, 12 * kBeamLanes * kBlocks> end_forces{};
   // The elements at node n: incidence[node_start[n] .. node_start[n + 1]), each the offset
   // 12 e + 6 end into end_forces, in element order.
-  std::array<std::int32_t, S.nodes + 1> node_start{};
-  std::array<std::int32_t, 2 * S.elements> incidence{};
+  Array<std::int32_t, S, S.nodes + 1> node_start{};
+  Array<std::int32_t, S, 2 * S.elements> incidence{};
   // Worker k: element blocks [block_split[k], block_split[k + 1]), nodes [node_split[k], ...).
   std::array<std::int32_t, kMaxTeam + 1> block_split{};
   std::array<std::int32_t, kMaxTeam + 1> node_split{};
   // Per block, bit 2 l + end (direct_end): that end's node is interior to the block's worker.
-  std::array<std::uint8_t, kBlocks> direct{};
+  Array<std::uint8_t, S, kBlocks> direct{};
   // The shared nodes, in node order (the nodes with no element too: their F_n is +0.0), and
   // worker k's part of them: shared[shared_split[k] .. shared_split[k + 1]).
-  std::array<std::int32_t, S.nodes> shared{};
+  Array<std::int32_t, S, S.nodes> shared{};
   std::array<std::int32_t, kMaxTeam + 1> shared_split{};
   std::array<double, kMaxTeam> bad{};  // per worker: 1 when a velocity of its DOFs is not finite
   int size = 0;                        // workers the partition is for
@@ -72,19 +72,22 @@ struct TeamWork {
 template <Sizes S>
 [[nodiscard]] bool prepare_team(const Model<S>& m, int size, TeamWork<S>& t) {
   if (size < 1 || size > kMaxTeam) return false;
+  if constexpr (S.runtime) {
+    if (t.sizes != m.sizes) return false;  // not bound for this model (runtime_storage.hpp)
+  }
   t.size = size;
   t.node_start.fill(0);
-  for (std::size_t e = 0; e < S.elements; ++e) {
+  for (std::size_t e = 0; e < m.sizes.elements; ++e) {
     const BeamBlock& blk = m.beams[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     ++t.node_start[static_cast<std::size_t>(blk.dof_i[l] / kDofsPerNode) + 1];
     ++t.node_start[static_cast<std::size_t>(blk.dof_j[l] / kDofsPerNode) + 1];
   }
-  for (std::size_t n = 0; n < S.nodes; ++n)
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n)
     t.node_start[n + 1] += t.node_start[n];  // node_start[n + 1]: the end of node n's list
   // Filled from the back, elements last to first: each list ends up in element order, and
   // node_start[n + 1] moves down to the start of node n's list (no second array).
-  for (std::size_t e = S.elements; e-- > 0;) {
+  for (std::size_t e = m.sizes.elements; e-- > 0;) {
     const BeamBlock& blk = m.beams[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     const std::int32_t ends[2] = {blk.dof_i[l] / kDofsPerNode, blk.dof_j[l] / kDofsPerNode};
@@ -94,11 +97,11 @@ template <Sizes S>
           static_cast<std::int32_t>(12 * e + 6 * end);
     }
   }
-  for (std::size_t n = 0; n < S.nodes; ++n)
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n)
     t.node_start[n] = t.node_start[n + 1];
-  t.node_start[S.nodes] = static_cast<std::int32_t>(2 * S.elements);
-  const auto blocks = static_cast<std::int64_t>(TeamWork<S>::kBlocks);
-  const auto nodes = static_cast<std::int64_t>(S.nodes);
+  t.node_start[m.sizes.nodes] = static_cast<std::int32_t>(2 * m.sizes.elements);
+  const auto blocks = static_cast<std::int64_t>(beam_blocks(m.sizes.elements));
+  const auto nodes = static_cast<std::int64_t>(m.sizes.nodes);
   for (int k = 0; k <= size; ++k) {
     t.block_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(blocks * k / size);
     t.node_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(nodes * k / size);
@@ -119,7 +122,7 @@ template <Sizes S>
            worker_of(t.incidence[first] / 12) == worker_of(t.incidence[last - 1] / 12);
   };
   t.direct.fill(0);
-  for (std::size_t e = 0; e < S.elements; ++e) {
+  for (std::size_t e = 0; e < m.sizes.elements; ++e) {
     const BeamBlock& blk = m.beams[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
@@ -129,7 +132,7 @@ template <Sizes S>
     }
   }
   std::int64_t num_shared = 0;
-  for (std::size_t n = 0; n < S.nodes; ++n) {
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
     if (!interior(n))
       t.shared[static_cast<std::size_t>(num_shared++)] = static_cast<std::int32_t>(n);
   }

@@ -590,7 +590,17 @@ Report check_files(const std::string& model_path, const std::string& response_pa
   } catch (const spectral::Error& e) {
     throw InputError(e.what());
   }
+  Report rep = check_data(model, data, options);
+  rep.model_file = model_path;
+  rep.response_file = response_path;
+  return rep;
+}
 
+Report check_data(const modelc::ModelDescription& model, const spectral::Channels& data,
+                  const Options& options) {
+  validate(options);
+  if (data.data.empty() || !(data.fs > 0))
+    throw InputError("the response has no channel, or no sample rate");
   Selection sel = select_channels(&model, data, options.channels);
   ModelModes modes = model_modes(model, sel, options);
 
@@ -624,8 +634,8 @@ Report check_files(const std::string& model_path, const std::string& response_pa
                                      highest * (1 + options.search_band), options);
   Report rep = compare(modes, id, sel, options);
   rep.model_name = model.name;
-  rep.model_file = model_path;
-  rep.response_file = response_path;
+  rep.model_file = model.source_file;
+  rep.response_file = data.source;
   rep.fs = data.fs;
   rep.duration = data.duration();
   rep.kind = sel.channels.front().kind;

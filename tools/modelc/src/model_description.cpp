@@ -5,20 +5,7 @@
 namespace ntn::modelc {
 
 Sizes ModelDescription::sizes() const {
-  Sizes s;
-  s.nodes = nodes.size();
-  s.elements = elements.size();
-  s.time_functions = time_functions.size();
-  s.time_points = time_points.size();
-  s.loads = loads.size();
-  s.inputs = inputs.size();
-  s.outputs = outputs.size();
-  s.hinges = hinges.size();
-  s.curves = curves.size();
-  s.curve_points = curve_points.size();
-  s.element_loads = element_loads.size();
-  s.hystereses = hystereses.size();
-  return s;
+  return sizes_of(view());
 }
 
 SpecView ModelDescription::view() const {

@@ -59,7 +59,7 @@ inline const char* to_string(DivergenceReason r) {
 template <Sizes S>
 double kinetic_energy(const Model<S>& m, const State<S>& s) {
   double t = 0;
-  for (std::size_t j = 0; j < Model<S>::kDofs; ++j)
+  for (std::size_t j = 0; j < m.dofs(); ++j)
     t += m.mass[j] * s.v[j] * s.v[j];
   return 0.5 * t;
 }
@@ -80,13 +80,12 @@ double time_function_peak(const Model<S>& m, int function) {
 template <Sizes S>
 double response_energy_bound(const Model<S>& m) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  constexpr std::size_t kDofs = Model<S>::kDofs;
   // Stiffness-proportional damping (beta K_el) overdamps the high modes: not the C = alpha M of
   // the argument.
   if (m.beta != 0) return kInf;
   // alpha: the same damping / mass ratio at every DOF that has mass.
   double alpha = -1;
-  for (std::size_t j = 0; j < kDofs; ++j) {
+  for (std::size_t j = 0; j < m.dofs(); ++j) {
     if (!(m.mass[j] > 0)) {
       if (m.damping[j] != 0) return kInf;
       continue;
@@ -103,7 +102,7 @@ double response_energy_bound(const Model<S>& m) {
   }
   // Mass of the unsupported DOFs per translation direction.
   std::array<double, 3> mass_dir{};
-  for (std::size_t n = 0; n < S.nodes; ++n) {
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
     for (std::size_t d = 0; d < 3; ++d) {
       if ((m.fixed[n] >> d) & 1U) continue;
       mass_dir[d] += m.mass[kDofsPerNode * n + d];

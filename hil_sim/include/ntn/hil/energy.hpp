@@ -24,9 +24,30 @@
 
 namespace ntn::hil {
 
-template <Sizes S>
-class EnergyBalance {
+// The balance's totals (EnergyBalance keeps them; a run's result holds a copy).
+class EnergyTotals {
  public:
+  double kinetic() const { return kinetic_; }    // J, at the last half step
+  double kinetic0() const { return kinetic0_; }  // J, at v_{-1/2}
+  double external() const { return external_; }  // J
+  double internal() const { return internal_; }  // J
+  double damping() const { return damping_; }    // J, C = alpha M
+  // The largest |external work| reached so far: the scale of the balance's residual.
+  double input_scale() const { return input_scale_; }
+  // (kinetic - kinetic0) - (external - internal - damping): rounding, plus the stops' work.
+  double residual() const { return (kinetic_ - kinetic0_) - (external_ - internal_ - damping_); }
+
+ protected:
+  double kinetic0_ = 0, kinetic_ = 0, external_ = 0, internal_ = 0, damping_ = 0;
+  double input_scale_ = 0;
+};
+
+template <Sizes S>
+class EnergyBalance : public EnergyTotals {
+ public:
+  // Room for v_{-1/2} of `dofs` DOFs, so that begin() allocates nothing (call before the run).
+  void reserve(std::size_t dofs) { v_prev_.reserve(dofs); }
+  EnergyTotals numbers() const { return *this; }
   // Call after start(): takes v_{-1/2} and the kinetic energy at the start.
   void begin(const Model<S>& m, const State<S>& s) {
     v_prev_.assign(s.v.begin(), s.v.end());
@@ -38,7 +59,7 @@ class EnergyBalance {
   void after_step(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
     const double half_dt = 0.5 * m.dt;
     double ext = 0, in = 0, damp = 0;
-    for (std::size_t n = 0; n < S.nodes; ++n) {
+    for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
       for (std::size_t d = 0; d < kDofsPerNode; ++d) {
         const std::size_t j = kDofsPerNode * n + d;
         const double delta = half_dt * (s.v[j] + v_prev_[j]);
@@ -47,7 +68,7 @@ class EnergyBalance {
         damp += delta * m.alpha * m.mass[j] * v_prev_[j];
       }
     }
-    if constexpr (S.hinges > 0 && S.hystereses > 0) {  // rigid-plastic directions: f (B Delta)_k
+    if constexpr (kMayHaveHystereses<S>) {  // rigid-plastic directions: f (B Delta)_k
       for (int i = 0; i < m.num_slip_hinges; ++i) {
         const HingeData& h =
             m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
@@ -80,16 +101,6 @@ class EnergyBalance {
     kinetic_ = kinetic_energy(m, s);
   }
 
-  double kinetic() const { return kinetic_; }    // J, at the last half step
-  double kinetic0() const { return kinetic0_; }  // J, at v_{-1/2}
-  double external() const { return external_; }  // J
-  double internal() const { return internal_; }  // J
-  double damping() const { return damping_; }    // J, C = alpha M
-  // The largest |external work| reached so far: the scale of the balance's residual.
-  double input_scale() const { return input_scale_; }
-  // (kinetic - kinetic0) - (external - internal - damping): rounding, plus the stops' work.
-  double residual() const { return (kinetic_ - kinetic0_) - (external_ - internal_ - damping_); }
-
   static double kinetic_energy(const Model<S>& m, const State<S>& s) {
     double k = 0;
     for (std::size_t j = 0; j < s.v.size(); ++j)
@@ -99,8 +110,6 @@ class EnergyBalance {
 
  private:
   std::vector<double> v_prev_;
-  double kinetic0_ = 0, kinetic_ = 0, external_ = 0, internal_ = 0, damping_ = 0;
-  double input_scale_ = 0;
 };
 
 // The hysteretic energy of a state: the plastic work of every plastic hinge direction, J.

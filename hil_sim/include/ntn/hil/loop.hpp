@@ -107,6 +107,27 @@ std::int64_t source_epoch_ns(const Source& source) {
   }
 }
 
+// The loop's own channel buffers: the frame's inputs (current, previous), one step's inputs, the
+// frame's outputs and the last good ones. Compiled storage: arrays, on the loop's stack; run-time
+// storage: vectors the caller makes before init (LoopBuffers(model sizes)), so that the loop
+// allocates nothing.
+template <Sizes S>
+struct LoopBuffers {
+  std::array<double, S.inputs> current{}, previous{}, step_in{};
+  std::array<double, S.outputs> out{}, last_good{};
+};
+template <Sizes S>
+requires(S.runtime) struct LoopBuffers<S> {
+  LoopBuffers() = default;
+  explicit LoopBuffers(const Sizes& z)
+      : current(z.inputs),
+        previous(z.inputs),
+        step_in(z.inputs),
+        out(z.outputs),
+        last_good(z.outputs) {}
+  std::vector<double> current, previous, step_in, out, last_good;
+};
+
 // Runs `config.frames` frames from the model's initial state (ntn::initial_state: u_0, v_0 of the
 // model, every counter of `state` reset). Source: `void frame_inputs(std::int64_t k,
 // std::span<double> v, std::uint16_t& flags)` gives frame k's accepted inputs (through the input
@@ -128,17 +149,28 @@ std::int64_t source_epoch_ns(const Source& source) {
 // restarted from there. It is caller storage, as `state`: no heap, no large stack frame.
 // `team` and `team_work`, when given (prepare_team() for team->size workers), run every kernel
 // step with the team (the multi-core step, ntn/team.hpp): the same bits as without.
+// `buffers`: the loop's channel buffers (LoopBuffers); none given, the loop makes its own (for
+// run-time storage, vectors: pass them to allocate nothing here).
 // Nothing here allocates after the vectors in `times` were reserved.
 template <Sizes S, class Clock, class Source, class Sink>
 LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch, Clock& clock,
                     Source& source, Sink& sink, Recorder* recorder, const LoopConfig& config,
                     std::span<Alarm> alarms, FrameTimes& times, State<S>* checkpoint = nullptr,
-                    const Team* team = nullptr, TeamWork<S>* team_work = nullptr) {
+                    const Team* team = nullptr, TeamWork<S>* team_work = nullptr,
+                    LoopBuffers<S>* buffers = nullptr) {
   LoopResult result;
   result.kinetic_limit =
       config.kinetic_limit < 0 ? kinetic_energy_limit(model) : config.kinetic_limit;
-  std::array<double, S.inputs> current{}, previous{}, step_in{};
-  std::array<double, S.outputs> out{}, last_good{};
+  LoopBuffers<S> own;
+  if constexpr (S.runtime) {
+    if (buffers == nullptr) own = LoopBuffers<S>(model.sizes);
+  }
+  LoopBuffers<S>& b = buffers != nullptr ? *buffers : own;
+  auto& current = b.current;
+  auto& previous = b.previous;
+  auto& step_in = b.step_in;
+  auto& out = b.out;
+  auto& last_good = b.last_good;
   std::uint16_t in_flags = 0;
   source.frame_inputs(0, current, in_flags);
   initial_state(model, state);  // the model's u_0, v_0 (static preload, [initial]; zero by default)
@@ -195,7 +227,7 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
         if constexpr (requires { sink.after_step(state, scratch); }) {
           sink.after_step(state, scratch);
         }
-        if (i == 0) out = scratch.outputs;
+        if (i == 0) std::copy(scratch.outputs.begin(), scratch.outputs.end(), out.begin());
         if (st == StepStatus::kDiverged) {
           diverged = true;
           result.reason = DivergenceReason::kNonFinite;

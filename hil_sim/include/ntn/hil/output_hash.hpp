@@ -24,13 +24,13 @@ class OutputHash {
   // One kernel step's outputs (a sink's after_step, loop.hpp).
   template <Sizes S>
   void add_step(const Scratch<S>& scratch) {
-    add(scratch.outputs.data(), sizeof scratch.outputs);
+    add(scratch.outputs.data(), scratch.outputs.size() * sizeof(double));
   }
   // The final state, then the digest (call once, at the end of the run).
   template <Sizes S>
   std::uint64_t finish(const State<S>& state) {
-    add(state.u.data(), sizeof state.u);
-    add(state.v.data(), sizeof state.v);
+    add(state.u.data(), state.u.size() * sizeof(double));
+    add(state.v.data(), state.v.size() * sizeof(double));
     return digest();
   }
   std::uint64_t digest() const;

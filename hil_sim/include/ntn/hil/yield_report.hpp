@@ -36,8 +36,8 @@ inline const char* direction_name(int direction) {
 template <Sizes S>
 std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<S>& s) {
   std::vector<YieldedDirection> out;
-  if constexpr (S.hinges > 0 && S.hystereses > 0) {
-    for (std::size_t h = 0; h < S.hinges; ++h) {
+  if constexpr (kMayHaveHystereses<S>) {
+    for (std::size_t h = 0; h < m.sizes.hinges; ++h) {
       const HingeData& hd = m.hinges[h];
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if (!(((hd.plastic | hd.slip) >> k) & 1U)) continue;
@@ -66,7 +66,7 @@ inline const char* level_name(int level, bool has_limits) {
 template <Sizes S>
 int plastic_directions(const Model<S>& m) {
   int n = 0;
-  if constexpr (S.hinges > 0) {
+  if constexpr (kMayHaveHinges<S>) {
     for (const HingeData& h : m.hinges) {
       for (std::size_t k = 0; k < kDofsPerNode; ++k)
         n += ((h.plastic | h.slip) >> k) & 1U;

@@ -189,6 +189,10 @@ Report compare(const ModelModes& model, const Identification& identification,
 // Everything from files: model (TOML), response (CSV or AT2). Throws InputError.
 Report check_files(const std::string& model_path, const std::string& response_path,
                    const Options& options);
+// The same from a loaded model and channels in memory (the Python module's check_modes): the
+// report names model.source_file and data.source. Throws InputError.
+Report check_data(const modelc::ModelDescription& model, const spectral::Channels& data,
+                  const Options& options);
 
 std::string format_table(const Report& report);
 std::string to_json(const Report& report);

@@ -1,0 +1,244 @@
+// One kernel, two storages (issue 18, item 1): a model in run-time storage (ntn-run's
+// LoadedModel: the model file loaded when the program runs, one block bound before init)
+// computes the same bits as the same model compiled (the model compiler's header, std::arrays),
+// step by step, over a real record (El Centro 1940, config/ground-motions): every output channel
+// at every step and the whole state at the end (u, v, the hinges' history). Exact equality: the
+// same kernel lines on the same numbers in the same order; any difference is a defect.
+//
+// Both storages start from the model's initial state plus the same small velocity at every DOF
+// (so that a model without inputs moves too). The models: every model in config/, the model
+// compiler's hinged test models (a pinned joint, backbone hinges, issue 16's slip connections), the
+// every-key model, and benchmark frames (merged, pinned, mixed and plastic joints;
+// tests/bench/frame_models.hpp) given to both storages as the same spec. The run-time side is also
+// checked for zero heap allocations after init, in start() and step() (the allocation counter
+// replaces malloc and operator new).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backbone_portal_model.hpp"
+#include "bench/frame_models.hpp"
+#include "cantilever_model.hpp"
+#include "every_key_model.hpp"
+#include "frame3d_model.hpp"
+#include "hinged_beam_model.hpp"
+#include "ntn/hil/gate.hpp"
+#include "ntn/hil/record_source.hpp"
+#include "ntn/kernel.hpp"
+#include "ntn/modelc/load_model.hpp"
+#include "ntn/run/loaded_model.hpp"
+#include "pinned_joint_model.hpp"
+#include "portal_plastic_model.hpp"
+#include "portal_slip_model.hpp"
+#include "slip_connections_model.hpp"
+#include "support/alloc_counter.hpp"
+
+namespace {
+
+const std::string kElCentro = NTN_CONFIG_DIR "/ground-motions/elCentro.AT2";
+
+// The compiled storage of one model (on the heap: large models do not fit the stack).
+template <ntn::Sizes S>
+struct Compiled {
+  ntn::Model<S> model;
+  ntn::State<S> state;
+  ntn::Scratch<S> scratch;
+  ntn::InitWorkspace<S> work;
+};
+
+// Every input channel's step inputs: ground accelerations from El Centro (in the channel's unit,
+// as ntn-run reads it), other channels a 2 Hz sine of 1 kN or kN m.
+class Inputs {
+ public:
+  Inputs(std::span<const ntn::InputSpec> specs, double period, double dt)
+      : records_(specs.size()), gate_(specs) {
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      if (specs[k].kind == ntn::InputKind::kGroundAcceleration) {
+        const auto e =
+            ntn::hil::load_input_record(specs[k], "in", kElCentro, "", false, records_[k]);
+        EXPECT_FALSE(e.has_value()) << *e;
+      } else {
+        records_[k].dt = 1e-3;
+        records_[k].units = "N";
+        for (int n = 0; n < 40000; ++n)
+          records_[k].values.push_back(1e3 * std::sin(2 * M_PI * 2.0 * n * 1e-3));
+      }
+    }
+    source_ = std::make_unique<ntn::hil::RecordSource>(records_, gate_, period, dt);
+  }
+  void at(std::int64_t n, std::span<double> v) const { source_->step_inputs(n, v); }
+
+ private:
+  std::vector<ntn::io::Record> records_;
+  ntn::hil::InputGate gate_;
+  std::unique_ptr<ntn::hil::RecordSource> source_;
+};
+
+bool same_bits(const double* a, const double* b, std::size_t n) {
+  return n == 0 || std::memcmp(a, b, n * sizeof(double)) == 0;
+}
+
+template <class A, class B>
+bool same(const A& a, const B& b) {
+  return a.size() == b.size() &&
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
+// Runs `steps` steps of both storages from the model's initial state and compares. `rt` was
+// bound and init()ed from the same model.
+template <ntn::Sizes S>
+void expect_same_run(const ntn::ModelSpec<S>& spec, ntn::run::LoadedModel& rt, std::int64_t steps) {
+  auto c = std::make_unique<Compiled<S>>();
+  ASSERT_TRUE(ntn::init(spec, c->model, c->work).ok());
+  const ntn::InitStatus st = rt.init();
+  ASSERT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
+  auto& m = rt.model();
+  auto& s = rt.state();
+  auto& w = rt.scratch();
+  ASSERT_EQ(m.dt, c->model.dt);
+  ASSERT_EQ(m.sizes, S);
+
+  const Inputs feed(std::span<const ntn::InputSpec>(spec.inputs), spec.settings.frame_period,
+                    c->model.dt);
+  std::array<double, S.inputs> in_c{};
+  std::vector<double> in_r(S.inputs);
+  feed.at(0, in_c);
+  std::copy(in_c.begin(), in_c.end(), in_r.begin());
+  ntn::initial_state(c->model, c->state);
+  ntn::initial_state(m, s);
+  // Both start moving (a model without inputs or loads too): the same small initial velocity at
+  // every DOF, which start() projects onto the hinges' constraints.
+  for (std::size_t j = 0; j < s.v.size(); ++j) {
+    const double v0 = 1e-3 * std::sin(0.7 * static_cast<double>(j));
+    c->state.v[j] += v0;
+    s.v[j] += v0;
+  }
+
+  const ntn_test::AllocationScope heap;  // from here on the run-time side allocates nothing
+  EXPECT_EQ(ntn::start(c->model, c->state, c->scratch, in_c),
+            ntn::start(m, s, w, std::span<const double>(in_r)));
+  std::uint64_t allocations_rt = heap.counts().allocations;
+  std::int64_t first_difference = -1;
+  for (std::int64_t n = 0; n < steps && first_difference < 0; ++n) {
+    feed.at(n, in_c);  // the compiled side's inputs (RecordSource allocates nothing here)
+    std::copy(in_c.begin(), in_c.end(), in_r.begin());
+    const auto before = heap.counts().allocations;
+    const ntn::StepStatus b = ntn::step(m, s, w, std::span<const double>(in_r));
+    allocations_rt += heap.counts().allocations - before;
+    const ntn::StepStatus a = ntn::step(c->model, c->state, c->scratch, in_c);
+    if (a != b || !same_bits(c->scratch.outputs.data(), w.outputs.data(), S.outputs))
+      first_difference = n;
+  }
+  EXPECT_EQ(first_difference, -1) << "the storages' outputs differ from step " << first_difference;
+  EXPECT_EQ(allocations_rt, 0U) << "run-time storage allocated in start() or step()";
+  EXPECT_TRUE(same(c->state.u, s.u));
+  EXPECT_TRUE(same(c->state.v, s.v));
+  EXPECT_TRUE(same(c->state.plastic, s.plastic));
+  EXPECT_TRUE(same(c->state.dissipated, s.dissipated));
+  EXPECT_TRUE(same(c->state.plastic_peak, s.plastic_peak));
+  EXPECT_TRUE(same(c->state.first_slip, s.first_slip));
+  EXPECT_TRUE(same(c->state.slip_state, s.slip_state));
+  EXPECT_EQ(c->state.tick, s.tick);
+  EXPECT_EQ(c->state.faults, s.faults);
+  EXPECT_EQ(c->state.inputs_held, s.inputs_held);
+  // The record moved the model: not a comparison of two states at rest.
+  double peak = 0;
+  for (double u : s.u)
+    peak = std::max(peak, std::fabs(u));
+  EXPECT_GT(peak, 0.0);
+}
+
+// A model file: the compiled header's spec against the file loaded as ntn-run loads it.
+template <ntn::Sizes S>
+void expect_file_same(const ntn::ModelSpec<S>& spec, const std::string& file, double seconds) {
+  ntn::modelc::LoadResult r = ntn::modelc::load_model(file);
+  ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
+  ntn::run::LoadedModel rt(std::move(*r.model), {});
+  ASSERT_TRUE(rt.bound());
+  const auto steps = static_cast<std::int64_t>(seconds / spec.settings.dt);
+  expect_same_run(spec, rt, steps);
+}
+
+// A benchmark frame: the same spec, given to run-time storage as a view.
+template <ntn::bench::Grid G, ntn::bench::Joints J>
+void expect_frame_same(std::int64_t steps) {
+  constexpr ntn::Sizes S = ntn::bench::sizes_of(G, J);
+  auto spec = std::make_unique<ntn::ModelSpec<S>>();
+  ntn::bench::build_frame<G, J>(*spec);
+  ntn::modelc::ModelDescription d;  // the spec's arrays, as a loaded file would hold them
+  const ntn::SpecView v = ntn::view(*spec);
+  d.nodes.assign(v.nodes.begin(), v.nodes.end());
+  d.elements.assign(v.elements.begin(), v.elements.end());
+  d.time_points.assign(v.time_points.begin(), v.time_points.end());
+  d.time_functions.assign(v.time_functions.begin(), v.time_functions.end());
+  d.loads.assign(v.loads.begin(), v.loads.end());
+  d.inputs.assign(v.inputs.begin(), v.inputs.end());
+  d.outputs.assign(v.outputs.begin(), v.outputs.end());
+  d.hinges.assign(v.hinges.begin(), v.hinges.end());
+  d.curves.assign(v.curves.begin(), v.curves.end());
+  d.curve_points.assign(v.curve_points.begin(), v.curve_points.end());
+  d.element_loads.assign(v.element_loads.begin(), v.element_loads.end());
+  d.hystereses.assign(v.hystereses.begin(), v.hystereses.end());
+  d.settings = v.settings;
+  ntn::run::LoadedModel rt(std::move(d), {});
+  ASSERT_TRUE(rt.bound());
+  expect_same_run(*spec, rt, steps);
+}
+
+constexpr double kSeconds = 8.0;  // of El Centro: its strong motion (peak at 2.1 s) and after
+
+TEST(RuntimeStorage, Frame3dConfig) {
+  expect_file_same(ntn::models::frame3d::kSpec, NTN_CONFIG_DIR "/frame3d.toml", kSeconds);
+}
+TEST(RuntimeStorage, CantileverConfig) {
+  expect_file_same(ntn::models::cantilever::kSpec, NTN_CONFIG_DIR "/cantilever.toml", kSeconds);
+}
+TEST(RuntimeStorage, HingedBeamConfig) {
+  expect_file_same(ntn::models::hinged_beam::kSpec, NTN_CONFIG_DIR "/hinged_beam.toml", kSeconds);
+}
+TEST(RuntimeStorage, PortalPlasticConfig) {
+  expect_file_same(ntn::models::portal_plastic::kSpec, NTN_CONFIG_DIR "/portal_plastic.toml",
+                   kSeconds);
+}
+TEST(RuntimeStorage, PortalSlipConfig) {
+  expect_file_same(ntn::models::portal_slip::kSpec, NTN_CONFIG_DIR "/portal_slip.toml", kSeconds);
+}
+TEST(RuntimeStorage, PinnedJoint) {
+  expect_file_same(ntn::models::pinned_joint::kSpec, NTN_MODELC_GOOD_DIR "/pinned_joint.toml",
+                   kSeconds);
+}
+TEST(RuntimeStorage, BackbonePortal) {
+  expect_file_same(ntn::models::backbone_portal::kSpec, NTN_MODELC_GOOD_DIR "/backbone_portal.toml",
+                   kSeconds);
+}
+TEST(RuntimeStorage, SlipConnections) {
+  expect_file_same(ntn::models::slip_connections::kSpec,
+                   NTN_MODELC_GOOD_DIR "/slip_connections.toml", kSeconds);
+}
+TEST(RuntimeStorage, EveryKey) {
+  expect_file_same(ntn::models::every_key::kSpec, NTN_KERNEL_TESTS_DIR "/every_key.toml", kSeconds);
+}
+
+using ntn::bench::Grid;
+using ntn::bench::Joints;
+constexpr Grid kFrame104{.nx = 2, .ny = 1, .storeys = 4, .col_div = 2, .beam_div = 2};
+constexpr Grid kScaling1064{.nx = 6, .ny = 6, .storeys = 8, .col_div = 1, .beam_div = 1};
+
+TEST(RuntimeStorage, BenchFrameMerged) {
+  expect_frame_same<kScaling1064, Joints::kMerged>(3000);
+}
+TEST(RuntimeStorage, BenchFramePinned) {
+  expect_frame_same<kFrame104, Joints::kPinned>(3000);
+}
+TEST(RuntimeStorage, BenchFrameMixed) {
+  expect_frame_same<kFrame104, Joints::kMixed>(3000);
+}
+TEST(RuntimeStorage, BenchFramePlastic) {
+  expect_frame_same<kFrame104, Joints::kPlastic>(3000);
+}
+
+}  // namespace

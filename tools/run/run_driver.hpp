@@ -1,0 +1,567 @@
+// The run of ntn-run and of the compiled runners ntn-run-<model> (tools/run/README.md): one
+// template over the model's storage, compiled (a model header, static storage) or run-time (a
+// model file loaded when the program starts, one block bound before init). Both run the same
+// lines on the same kernel code: the same model and records give the same bits either way.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli.hpp"  // tools/io
+#include "ntn/hil/clock.hpp"
+#include "ntn/hil/csv_sink.hpp"
+#include "ntn/hil/energy.hpp"
+#include "ntn/hil/gate.hpp"
+#include "ntn/hil/loop.hpp"
+#include "ntn/hil/model_info.hpp"
+#include "ntn/hil/output_hash.hpp"
+#include "ntn/hil/record_source.hpp"
+#include "ntn/hil/sampling.hpp"
+#include "ntn/hil/worker_team.hpp"
+#include "ntn/hil/yield_report.hpp"
+#include "ntn/kernel.hpp"
+#include "record.hpp"
+
+namespace ntn::run {
+
+// The command line's options (add_options): the same for every runner.
+struct RunOptions {
+  std::vector<std::string> input_args;
+  double duration = -1;
+  std::string out_path;
+  std::string json_path;
+  std::string sampling_name = "step";
+  bool quiet = false;
+  bool flags = false;
+  std::string element_pass = "simd";
+  int threads = 1;
+};
+
+inline void add_options(CLI::App& app, RunOptions& o) {
+  auto& input_args = o.input_args;
+  auto& duration = o.duration;
+  auto& out_path = o.out_path;
+  auto& json_path = o.json_path;
+  auto& sampling_name = o.sampling_name;
+  auto& quiet = o.quiet;
+  auto& flags = o.flags;
+  auto& element_pass = o.element_pass;
+  auto& threads = o.threads;
+  app.add_option("-i,--input", input_args,
+                 "NAME=FILE: feed input channel NAME from a record (AT2 or CSV; "
+                 "FILE:COLUMN picks a CSV column; values are converted to the input's unit)");
+  app.add_option("-t,--duration", duration, "simulated time in s (default: longest record)")
+      ->check(ntn::cli::Positive());
+  app.add_option("-s,--sampling", sampling_name,
+                 "step (the records at every kernel step; default), hold (at frame times, held "
+                 "over the frame) or interpolate (at frame times, linear over the frame, one "
+                 "frame of delay): hold and interpolate are what ntn-hil's loop does")
+      ->check(CLI::IsMember({"step", "hold", "interpolate"}));
+  app.add_option("-o,--out", out_path, "CSV file for the response, one row per I/O frame");
+  app.add_flag("--flags", flags,
+               "add the loop's flags column to the CSV (input gate, alarm, diverged bits), as "
+               "ntn-hil writes it");
+  app.add_option("--summary-json", json_path, "also write the summary as JSON");
+  app.add_flag("-q,--quiet", quiet, "print only errors and the output hash");
+  app.add_option("--element-pass", element_pass,
+                 "simd (default: the widest vectors this CPU has) or scalar (the reference): the "
+                 "same bits either way")
+      ->check(CLI::IsMember({"simd", "scalar"}));
+  app.add_option("--threads", threads,
+                 "workers of the multi-core step (1 = the caller's thread alone): the same bits "
+                 "for any number")
+      ->check(ntn::cli::Integer(1, ntn::kMaxTeam));
+}
+
+using hil::ModelInfo;  // the names the summary uses (ntn/hil/model_info.hpp)
+
+// The caller's storage of the model: static objects (compiled) or bound to one block
+// (ntn/runtime_storage.hpp); `buffers`: the loop's channels (run-time storage: made before init).
+template <Sizes S>
+struct RunStorage {
+  Model<S>& model;
+  InitWorkspace<S>& init_work;
+  State<S>& state;
+  Scratch<S>& scratch;
+  TeamWork<S>& team_work;
+  hil::LoopBuffers<S>* buffers = nullptr;
+};
+
+namespace detail {
+
+struct Peak {
+  double value = 0;  // largest |value|
+  double time = 0;   // s
+};
+
+inline std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+inline bool is_translation(const OutputSpec& o) {
+  return o.dof < 3;
+}
+
+// The most steps one run takes: t = n dt stays exact in a double far beyond it, and at ~1 us a
+// step it is 12 days of wall time. A longer run is a slip of --duration (or of a record's DT).
+inline constexpr double kMaxSteps = 1e12;
+
+// The loop's sink: every kernel step's outputs into the output hash and the peaks (at the step's
+// time), every frame's outputs as a CSV row (with the loop's flags under --flags).
+template <Sizes S>
+struct RunSink {
+  const Model<S>* model;
+  hil::OutputHash* hash;
+  hil::CsvWriter* csv;
+  bool flags = false;
+  double period = 1e-3;
+  std::vector<Peak> peaks;
+  std::vector<double> last;  // the channels at the last step (residual drifts)
+  std::int64_t steps = 0;
+  hil::EnergyBalance<S> energy;  // the run's work-energy identity (hil/energy.hpp)
+  void after_start(const State<S>& s, const Scratch<S>&) { energy.begin(*model, s); }
+  void after_step(const State<S>& s, const Scratch<S>& w) {
+    ++steps;
+    energy.after_step(*model, s, w);
+    hash->add_step(w);
+    std::copy(w.outputs.begin(), w.outputs.end(), last.begin());
+    for (std::size_t c = 0; c < peaks.size(); ++c) {
+      const double v = std::abs(w.outputs[c]);
+      if (v > peaks[c].value) peaks[c] = {v, w.time};
+    }
+  }
+  std::vector<double>* frames = nullptr;  // every frame's outputs appended (reserved)
+  void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t f) {
+    if (frames != nullptr) frames->insert(frames->end(), v.begin(), v.end());
+    if (csv == nullptr || !csv->is_open()) return;
+    if (flags) {
+      csv->row(static_cast<double>(k) * period, v, f);
+    } else {
+      csv->row(static_cast<double>(k) * period, v);
+    }
+  }
+};
+
+}  // namespace detail
+
+// What simulate() runs: `steps` kernel steps from the model's initial state, the records (one
+// per input channel, in its unit) sampled as `sampling` says, on `threads` workers.
+struct RunRequest {
+  std::int64_t steps = 0;
+  hil::InputSampling sampling = hil::InputSampling::kStep;
+  int threads = 1;
+  hil::CsvWriter* csv = nullptr;          // every frame's outputs as a row (opened, header written)
+  bool csv_flags = false;                 // with the loop's flags column
+  std::vector<double>* frames = nullptr;  // every frame's outputs appended (reserved here)
+};
+
+// What a run gives: the loop's result, the output hash (every output of every step, then the
+// final state: XXH3), per channel the peak |value| and its time and the value at the last step,
+// the energy balance. Not an error: a run that diverged (`diverged`, the loop's safe state).
+struct RunResult {
+  std::string error;  // not empty: the run could not be set up
+  std::vector<std::string> warnings;
+  hil::LoopResult loop;
+  std::int64_t steps = 0;  // kernel steps taken
+  double wall = 0;         // s, at least 1 ns
+  bool diverged = false;
+  char hash[17] = {};  // 16 hex digits
+  std::vector<detail::Peak> peaks;
+  std::vector<double> last;
+  hil::EnergyTotals energy;
+};
+
+// Runs an init()ed model on its records through the real-time loop on the virtual clock, as
+// ntn-run does: the one run of ntn-run, ntn-run-<model> and the Python module (run()).
+template <Sizes S>
+RunResult simulate(RunStorage<S> store, const ModelSpec<S>& spec, const ModelInfo& info,
+                   std::span<const io::Record> records, const RunRequest& request) {
+  RunResult out;
+  const Sizes z = sizes_of(view(spec));
+  const double period = spec.settings.frame_period;
+  const std::int64_t per_frame = store.model.substeps.count;
+  hil::OutputHash hash;
+  if (!hash.ok()) {
+    out.error = "cannot set up the output hash";
+    return out;
+  }
+  // The loop (hil_sim/include/ntn/hil/loop.hpp) on the virtual clock: the frames that hold
+  // the steps, the last one cut short; the model file's alarms (they only set the flags).
+  hil::LoopConfig config;
+  config.period = period;
+  config.substeps = static_cast<int>(per_frame);
+  config.steps = request.steps;
+  config.frames = (request.steps + per_frame - 1) / per_frame;
+  config.sampling = request.sampling;
+  config.kinetic_limit = std::numeric_limits<double>::infinity();
+  config.stop_at_divergence = true;
+  std::vector<hil::Alarm> alarms(z.outputs);
+  for (std::size_t c = 0; c < alarms.size(); ++c) {
+    alarms[c].enabled = info.alarm_limits[c] > 0;
+    alarms[c].limit = info.alarm_limits[c];
+    alarms[c].hysteresis = info.alarm_hysteresis[c];
+  }
+  hil::InputGate gate(std::span<const InputSpec>(spec.inputs));
+  hil::RecordSource source(records, gate, period, store.model.dt);
+  detail::RunSink<S> sink{&store.model,
+                          &hash,
+                          request.csv,
+                          request.csv_flags,
+                          period,
+                          std::vector<detail::Peak>(z.outputs),
+                          std::vector<double>(z.outputs),
+                          0,
+                          {},
+                          request.frames};
+  if (request.frames != nullptr)
+    request.frames->reserve(request.frames->size() +
+                            static_cast<std::size_t>(config.frames) * z.outputs);
+  sink.energy.reserve(store.model.dofs());
+  hil::VirtualClock clock;
+  hil::FrameTimes times;  // not kept: no latency on the virtual clock
+
+  // The workers are made before the run (and the partition built): none is made in the loop.
+  hil::WorkerTeam workers({request.threads, -1});
+  out.warnings = workers.warnings();
+  const Team team = workers.team();
+  const bool with_team =
+      request.threads > 1 && prepare_team(store.model, request.threads, store.team_work);
+  const auto t0 = std::chrono::steady_clock::now();
+  out.loop = hil::run_loop(store.model, store.state, store.scratch, clock, source, sink, nullptr,
+                           config, alarms, times, static_cast<State<S>*>(nullptr),
+                           with_team ? &team : nullptr, &store.team_work, store.buffers);
+  // At least 1 ns: a run of one step on a coarse clock must not print an infinite speed.
+  out.wall =
+      std::max(1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  out.steps = sink.steps;
+  out.diverged = out.loop.diverged_frame >= 0;
+  std::snprintf(out.hash, sizeof out.hash, "%016llx",
+                static_cast<unsigned long long>(hash.finish(store.state)));
+  out.peaks = std::move(sink.peaks);
+  out.last = std::move(sink.last);
+  out.energy = sink.energy.numbers();
+  return out;
+}
+
+// Runs the model on the options' records and prints the summary; the program's exit code.
+template <Sizes S>
+int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<S>& spec,
+              RunStorage<S> store) {
+  using detail::fmt;
+  using detail::is_translation;
+  using detail::kMaxSteps;
+  using detail::Peak;
+  using detail::RunSink;
+  const Sizes z = sizes_of(view(spec));
+  const RunOptions& opt = options;
+  const std::vector<std::string>& input_args = opt.input_args;
+  double duration = opt.duration;
+  const std::string& out_path = opt.out_path;
+  const std::string& json_path = opt.json_path;
+  const std::string& sampling_name = opt.sampling_name;
+  const bool quiet = opt.quiet;
+  const bool flags = opt.flags;
+  const std::string& element_pass = opt.element_pass;
+  const int threads = opt.threads;
+  const ntn::hil::InputSampling sampling = *ntn::hil::parse_sampling(sampling_name);
+
+  // Output files: found unwritable before the run, not after it (the --out directory is
+  // created, as a build step writing into a build tree wants).
+  for (const auto& [path, option] : {std::pair{out_path, "--out"}, {json_path, "--summary-json"}}) {
+    if (path.empty()) continue;
+    if (const auto problem = ntn::cli::output_path_problem(path, option, true)) {
+      std::fprintf(stderr, "error: %s\n", problem->c_str());
+      return 2;
+    }
+  }
+
+  // Records for the input channels, by name, in each input's unit, every sample in range.
+  const ntn::cli::InputArgs inputs = ntn::cli::parse_input_args(input_args, "--input");
+  if (inputs.error) {
+    std::fprintf(stderr, "error: %s\n", inputs.error->c_str());
+    return 2;
+  }
+  std::vector<ntn::io::Record> records(z.inputs);
+  std::vector<char> fed(z.inputs, 0);
+  for (const ntn::cli::InputArg& in : inputs.args) {
+    std::size_t k = z.inputs;  // the channel; z.inputs: none
+    for (std::size_t c = 0; c < z.inputs; ++c) {
+      if (info.input_names[c] == in.name) k = c;
+    }
+    if (k == z.inputs) {
+      std::fprintf(stderr, "error: --input %s: the model has no input channel '%s'\n",
+                   in.name.c_str(), in.name.c_str());
+      return 2;
+    }
+    if (const auto e = ntn::hil::load_input_record(spec.inputs[k], in.name, in.file, in.column,
+                                                   true, records[k])) {
+      std::fprintf(stderr, "%s\n", e->c_str());
+      return 2;
+    }
+    fed[k] = true;
+  }
+  double record_duration = 0;
+  std::string longest;
+  for (std::size_t k = 0; k < z.inputs; ++k) {
+    const auto& r = records[k];
+    if (!fed[k]) {
+      std::fprintf(stderr, "error: no record for input channel '%s' (use --input %s=FILE)\n",
+                   std::string(info.input_names[k]).c_str(),
+                   std::string(info.input_names[k]).c_str());
+      return 2;
+    }
+    if (r.duration() > record_duration) record_duration = r.duration(), longest = r.source;
+  }
+  const bool from_records = duration < 0;
+  if (from_records) duration = record_duration;  // default: the longest record
+  if (!(duration > 0)) {
+    std::fprintf(stderr, "error: give --duration (the model has no input records)\n");
+    return 2;
+  }
+
+  if (const ntn::InitStatus st = ntn::init(spec, store.model, store.init_work); !st.ok()) {
+    std::fprintf(stderr, "error: model '%s': %s (at %d)\n", std::string(info.name).c_str(),
+                 ntn::to_string(st.error), st.where);
+    return 1;
+  }
+  store.model.element_pass =
+      element_pass == "scalar" ? ntn::ElementPass::kScalar : ntn::ElementPass::kSimd;
+  const double dt = store.model.dt;
+  // The step count as a checked integer: compared as a double before any conversion or
+  // allocation, and a run of no step at all is refused (it would report nothing as success).
+  const std::string what =
+      from_records ? "the longest record (" + longest + ", " + ntn::cli::num(duration) + " s)"
+                   : "--duration " + ntn::cli::num(duration) + " s";
+  const double wanted_steps = std::ceil(duration / dt - 1e-9);
+  if (!(wanted_steps <= kMaxSteps)) {
+    std::fprintf(stderr, "error: %s is %s steps of dt = %g s; a run takes at most %g steps\n",
+                 what.c_str(), ntn::cli::num(wanted_steps).c_str(), dt, kMaxSteps);
+    return 2;
+  }
+  if (!(wanted_steps >= 1)) {
+    std::fprintf(stderr, "error: %s is shorter than one time step (dt = %g s): nothing would run\n",
+                 what.c_str(), dt);
+    return 2;
+  }
+  const auto steps = static_cast<std::int64_t>(wanted_steps);
+  const double period = spec.settings.frame_period;
+  // N by the kernel's frame rule (ntn::frame_substeps), stored once by init; the model compiler
+  // checked it.
+  const ntn::Substeps& substeps = store.model.substeps;
+  if (!substeps.ok()) {
+    std::fprintf(stderr, "error: model '%s': dt = %g s, frame period %g s: %s\n",
+                 std::string(info.name).c_str(), dt, period, ntn::to_string(substeps.error));
+    return 1;
+  }
+  const std::int64_t per_frame = substeps.count;
+
+  ntn::hil::CsvWriter csv;
+  if (!out_path.empty() && !csv.open(out_path)) {
+    std::fprintf(stderr, "error: --out: cannot write '%s': %s\n", out_path.c_str(),
+                 csv.error().c_str());
+    return 2;
+  }
+  csv.header(info.output_names, info.output_units, flags);
+  RunRequest request;
+  request.steps = steps;
+  request.sampling = sampling;
+  request.threads = threads;
+  request.csv = csv.is_open() ? &csv : nullptr;
+  request.csv_flags = flags;
+  const RunResult run = simulate(store, spec, info, records, request);
+  for (const std::string& w : run.warnings)
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (!run.error.empty()) {
+    std::fprintf(stderr, "error: %s\n", run.error.c_str());
+    return 2;
+  }
+  const ntn::hil::LoopResult& result = run.loop;
+  const double wall = run.wall;
+  const std::int64_t n = run.steps;
+  const bool diverged = run.diverged;
+  const char* digest = run.hash;
+  const auto& sink = run;  // peaks, last, energy
+
+  if (csv.is_open() && !csv.close()) {
+    std::fprintf(stderr, "error: --out: writing '%s' failed: %s\n", out_path.c_str(),
+                 csv.error().c_str());
+    return 2;
+  }
+
+  const double simulated = static_cast<double>(n) * dt;
+  const auto& peaks = sink.peaks;
+  const auto& stable = store.model.stable;
+  const int gov = stable.governing_element;
+  if (!quiet) {
+    std::printf("ntn-run  model %s (%s)\n", std::string(info.name).c_str(),
+                std::string(info.source_file).c_str());
+    for (std::size_t k = 0; k < z.inputs; ++k) {
+      const auto& r = records[k];
+      std::string notes;
+      if (!r.converted_from.empty()) notes += ", converted from " + r.converted_from;
+      if (r.unit_assumed) notes += " (the file states no unit: taken as " + r.units + ")";
+      if (r.t0 != 0)
+        notes += ", file time " + ntn::cli::num(r.t0) + " s played at t = 0 (its first row)";
+      std::printf("  input %-12s %s: %zu samples at %g s, peak %.4g %s%s\n",
+                  std::string(info.input_names[k]).c_str(), r.source.c_str(), r.values.size(), r.dt,
+                  r.peak_abs(), r.units.c_str(), notes.c_str());
+    }
+    std::printf("  size        %zu nodes, %zu elements, %zu hinges, %zu DOFs\n", z.nodes,
+                z.elements, z.hinges, 6 * z.nodes);
+    std::printf("  elements    %s pass (%s)\n", element_pass.c_str(),
+                store.model.element_pass == ntn::ElementPass::kSimd ? ntn::element_pass_target()
+                                                                    : "reference");
+    std::string governing;
+    if (stable.governing_hinge >= 0) {
+      governing = "hinge " + std::to_string(stable.governing_hinge) + ", direction " +
+                  std::to_string(stable.hinge_direction);
+    } else {
+      governing = "element " + std::to_string(gov) + " of member " +
+                  std::string(info.member_names[static_cast<std::size_t>(
+                      spec.elements[static_cast<std::size_t>(gov)].member)]);
+    }
+    std::printf("  time step   dt = %.6g s (stable %.6g s, %s), %lld per %g ms frame\n", dt,
+                stable.dt_stable, governing.c_str(), static_cast<long long>(per_frame),
+                period * 1e3);
+    if (sampling != ntn::hil::InputSampling::kStep) {
+      std::printf("  sampling    %s: inputs at frame times%s\n", ntn::hil::to_string(sampling),
+                  sampling == ntn::hil::InputSampling::kFrameHeld
+                      ? ", held over the frame"
+                      : ", linear over the frame (one frame of delay)");
+    }
+    std::printf(
+        "  run         %lld steps, %.3f s simulated, wall %.3f s, real-time factor %.1fx, "
+        "%.3f us/step\n",
+        static_cast<long long>(n), simulated, wall, simulated / wall,
+        wall / static_cast<double>(n) * 1e6);
+    for (std::size_t c = 0; c < z.outputs; ++c) {
+      const auto& o = spec.outputs[c];
+      const auto& p = peaks[c];
+      const std::string name(info.output_names[c]);
+      if (o.kind == ntn::OutputKind::kDrift) {
+        std::printf("  peak drift       %-16s %s %% at t = %.3f s\n", name.c_str(),
+                    fmt("%.5g", 100 * p.value).c_str(), p.time);
+      } else if (o.kind == ntn::OutputKind::kReaction) {
+        std::printf("  peak base %s %-16s %s %s at t = %.3f s\n",
+                    is_translation(o) ? "shear " : "moment", name.c_str(),
+                    fmt("%.5g", p.value / 1e3).c_str(), is_translation(o) ? "kN" : "kN m", p.time);
+      } else if (o.kind == ntn::OutputKind::kHingeForce) {
+        std::printf("  peak hinge force %-16s %s %s at t = %.3f s\n", name.c_str(),
+                    fmt("%.4g", p.value / 1e3).c_str(), o.dof < 3 ? "kN" : "kN m", p.time);
+      } else {
+        std::printf("  peak             %-16s %s %s at t = %.3f s\n", name.c_str(),
+                    fmt("%.5g", p.value).c_str(), std::string(info.output_units[c]).c_str(),
+                    p.time);
+      }
+    }
+    for (std::size_t c = 0; c < z.outputs; ++c) {
+      if (spec.outputs[c].kind != ntn::OutputKind::kDrift) continue;
+      std::printf("  residual drift   %-16s %s %% at the end (t = %.3f s)\n",
+                  std::string(info.output_names[c]).c_str(),
+                  fmt("%.5g", 100 * sink.last[c]).c_str(), simulated);
+    }
+    {
+      const auto& e = sink.energy;
+      const double hyst = ntn::hil::hysteretic_energy(store.state);
+      std::printf(
+          "  energy      external work %s J = kinetic %s J + internal %s J (hysteretic %s J) "
+          "+ damping %s J; balance residual %.2g of the input\n",
+          fmt("%.6g", e.external()).c_str(), fmt("%.4g", e.kinetic() - e.kinetic0()).c_str(),
+          fmt("%.6g", e.internal()).c_str(), fmt("%.6g", hyst).c_str(),
+          fmt("%.6g", e.damping()).c_str(),
+          e.input_scale() > 0 ? std::fabs(e.residual()) / e.input_scale() : 0.0);
+    }
+    if (const int np = ntn::hil::plastic_directions(store.model); np > 0) {
+      const auto yielded = ntn::hil::yielded_directions(store.model, store.state);
+      std::printf("  plastic     %zu of %d plastic hinge directions yielded\n", yielded.size(), np);
+      for (const auto& y : yielded) {
+        const bool rot = y.direction >= 3;
+        std::printf("    %-16s %s  peak %s %s, residual %s %s, dissipated %s J, %s\n",
+                    std::string(info.hinge_names[static_cast<std::size_t>(y.hinge)]).c_str(),
+                    ntn::hil::direction_name(y.direction), fmt("%.4g", y.peak).c_str(),
+                    rot ? "rad" : "m", fmt("%.4g", y.residual).c_str(), rot ? "rad" : "m",
+                    fmt("%.4g", y.dissipated).c_str(), ntn::hil::level_name(y.level, y.has_limits));
+        if (y.first_slip >= 0)  // a rigid-plastic direction's event
+          std::printf("      %s at t = %s s\n", y.failed ? "failed" : "first slid",
+                      fmt("%.6g", y.first_slip).c_str());
+      }
+    }
+    if (result.input_held_frames > 0)
+      std::printf(
+          "  inputs held %llu frames had an input the gate refused (last good value held)\n",
+          static_cast<unsigned long long>(result.input_held_frames));
+    if (diverged)
+      std::printf("  DIVERGED    the state became non-finite at step %lld\n",
+                  static_cast<long long>(n));
+    if (!out_path.empty()) {
+      std::printf("  response    %s (%lld rows, one per frame)\n", out_path.c_str(),
+                  static_cast<long long>(result.frames));
+    }
+  }
+  std::printf("  output hash %s\n", digest);
+
+  if (!json_path.empty()) {
+    errno = 0;
+    std::ofstream js(json_path, std::ios::binary | std::ios::trunc);
+    js << "{\n  \"model\": \"" << info.name << "\",\n  \"dt\": " << fmt("%.17g", dt)
+       << ",\n  \"dt_stable\": " << fmt("%.17g", stable.dt_stable) << ",\n  \"sampling\": \""
+       << ntn::hil::to_string(sampling) << "\",\n  \"steps\": " << n
+       << ",\n  \"simulated_s\": " << fmt("%.17g", simulated)
+       << ",\n  \"wall_s\": " << fmt("%.6g", wall)
+       << ",\n  \"real_time_factor\": " << fmt("%.6g", simulated / wall)
+       << ",\n  \"diverged\": " << (diverged ? "true" : "false") << ",\n  \"output_hash\": \""
+       << digest << "\",\n  \"peaks\": {";
+    for (std::size_t c = 0; c < z.outputs; ++c) {
+      js << (c ? ",\n" : "\n") << "    \"" << info.output_names[c]
+         << "\": {\"abs\": " << fmt("%.17g", peaks[c].value)
+         << ", \"time\": " << fmt("%.9g", peaks[c].time) << "}";
+    }
+    js << "\n  },\n  \"end\": {";
+    for (std::size_t c = 0; c < z.outputs; ++c) {
+      js << (c ? ",\n" : "\n") << "    \"" << info.output_names[c]
+         << "\": " << fmt("%.17g", sink.last[c]);
+    }
+    const auto& bal = sink.energy;
+    js << "\n  },\n  \"energy_J\": {\"external\": " << fmt("%.17g", bal.external())
+       << ", \"kinetic_change\": " << fmt("%.17g", bal.kinetic() - bal.kinetic0())
+       << ", \"internal\": " << fmt("%.17g", bal.internal())
+       << ", \"hysteretic\": " << fmt("%.17g", ntn::hil::hysteretic_energy(store.state))
+       << ", \"damping\": " << fmt("%.17g", bal.damping())
+       << ", \"residual\": " << fmt("%.17g", bal.residual()) << "},\n  \"yielded\": [";
+    const auto yielded = ntn::hil::yielded_directions(store.model, store.state);
+    for (std::size_t i = 0; i < yielded.size(); ++i) {
+      const auto& y = yielded[i];
+      js << (i ? ",\n" : "\n") << "    {\"hinge\": \""
+         << info.hinge_names[static_cast<std::size_t>(y.hinge)]
+         << "\", \"direction\": " << y.direction << ", \"peak\": " << fmt("%.17g", y.peak)
+         << ", \"residual\": " << fmt("%.17g", y.residual)
+         << ", \"dissipated_J\": " << fmt("%.17g", y.dissipated) << ", \"level\": " << y.level;
+      if (y.first_slip >= 0)
+        js << ", \"first_slip_s\": " << fmt("%.17g", y.first_slip)
+           << ", \"failed\": " << (y.failed ? "true" : "false");
+      js << "}";
+    }
+    js << "\n  ]\n}\n";
+    if (auto e = ntn::cli::close_output(js, "--summary-json", json_path)) {
+      std::fprintf(stderr, "error: %s\n", e->c_str());
+      return 2;
+    }
+  }
+  return diverged ? 3 : 0;
+}
+
+}  // namespace ntn::run
