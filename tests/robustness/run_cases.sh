@@ -52,6 +52,7 @@ ph[TMP]=$tmp
 ph[DIR]=$tmp/a_dir
 ph[FILE]=$tmp/regular_file
 ph[MODEL]=$src/config/frame3d.toml
+ph[CANTILEVER]=$src/config/cantilever.toml
 ph[SENSORS]=$src/tests/modecheck/frame3d_sensors.toml
 ph[AT2]=$src/config/ground-motions/elCentro.AT2
 ph[MODELC_BAD]=$src/tests/modelc/bad
@@ -61,7 +62,7 @@ ph[REGRESSIONS]=$src/tests/fuzz/regressions
 # frames, a 24-byte end record): a valid one of 3 frames, its header alone (no frames, no end
 # record; header size = size(1 frame) - (size(2) - size(1)) - 24), one cut mid-frame (inside frame
 # 2), one with 3 bytes after its end record, and a version-1 header (the format before checksums).
-if [[ -n ${ph[ntn-hil-frame3d]:-} && $group == hil ]]; then
+if [[ -n ${ph[ntn-hil-frame3d]:-} && ( $group == hil || $group == runtime ) ]]; then
   hil=${ph[ntn-hil-frame3d]}
   for n in 1 2 3; do
     timeout "$timeout_s" "$hil" run --clock virtual -i "ag_x=${ph[AT2]}" -n $n -q \
@@ -119,7 +120,8 @@ while IFS= read -r line; do
     done
   fi
   short=$cmd
-  for key in ntn-model ntn-modelc ntn-run-frame3d ntn-hil-frame3d ntn-feeder ntn-check-modes ntn-plot; do
+  for key in ntn-model ntn-modelc ntn-run-frame3d ntn-hil-frame3d ntn-feeder ntn-check-modes ntn-plot \
+    ntn-run ntn-hil; do
     [[ -n ${ph[$key]:-} ]] && short=${short//${ph[$key]}/$key}
   done
   short=${short//$tmp\//}; short=${short//$src\//}
