@@ -41,14 +41,18 @@ def main():
                                  check=True, capture_output=True, text=True).stdout
             cli.append(float(out.split("wall ")[1].split(" s")[0]))
     m_py, m_loop = statistics.median(py), statistics.median(loop)
-    print(f"frame3d, El Centro: {steps} steps, {a.repeats} runs, medians")
-    print(f"  run() wall              {m_py:.4f} s  ({1e9 * m_py / steps:.1f} ns/step)")
-    print(f"  its loop (C++)          {m_loop:.4f} s  ({1e9 * m_loop / steps:.1f} ns/step)")
+    print(f"frame3d, El Centro: {steps} steps, {a.repeats} runs, medians (fastest in brackets)")
+    print(f"  run() wall              {m_py:.4f} s  ({1e9 * m_py / steps:.1f} ns/step) "
+          f"[{min(py):.4f} s]")
+    print(f"  its loop (C++)          {m_loop:.4f} s  ({1e9 * m_loop / steps:.1f} ns/step) "
+          f"[{min(loop):.4f} s]")
     print(f"  Python's part per step  {1e9 * (m_py - m_loop) / steps:.1f} ns "
           f"({100 * (m_py - m_loop) / m_loop:.1f} % of the loop)")
     if cli:
         m_cli = statistics.median(cli)
-        print(f"  ntn-run's loop          {m_cli:.4f} s  ({1e9 * m_cli / steps:.1f} ns/step)")
+        print(f"  ntn-run's loop          {m_cli:.4f} s  ({1e9 * m_cli / steps:.1f} ns/step) "
+              f"[{min(cli):.4f} s]")
+        print(f"  run()'s loop / ntn-run's: {m_loop / m_cli:.3f}")
 
 
 if __name__ == "__main__":
