@@ -470,12 +470,7 @@ inline std::optional<int> parse_args(int argc, char** argv, const std::string& t
       ->check(ntn::cli::Integer(1, ntn::kMaxTeam));
   run->add_flag("-q,--quiet", quiet, "print only warnings, errors and the output hash");
   replay->add_option("log", replay_path, "log written by run --record")->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {  // usage errors exit 2 (CLI11's own codes are 100+)
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return code;
   o.replay = replay->parsed();
   for (const char* option : {"--out", "--record", "--summary-json", "--frames", "--duration"})
     o.given[option] = run->count(option);
@@ -566,26 +561,18 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
                  "could not replay the per-step inputs (use --sampling hold or interpolate)\n");
     return 2;
   }
-  std::vector<ntn::io::Record> records(z.inputs);
-  double record_duration = 0;
-  for (const ntn::cli::InputArg& arg : inputs.args) {
-    std::size_t c = z.inputs;  // the channel; z.inputs: none
-    for (std::size_t k = 0; k < z.inputs; ++k)
-      if (info.input_names[k] == arg.name) c = k;
-    if (c == z.inputs) {
-      std::fprintf(stderr, "error: --input %s=...: the model has no input channel '%s'\n",
-                   arg.name.c_str(), arg.name.c_str());
-      return 2;
-    }
-    // The record's values in the input's unit (gal to g, ...), as ntn-run reads them; per step
-    // (not through the gate, which sees frame values) every sample must be in range.
-    if (const auto e = ntn::hil::load_input_record(spec.inputs[c], arg.name, arg.file, arg.column,
-                                                   per_step, records[c])) {
-      std::fprintf(stderr, "%s\n", e->c_str());
-      return 2;
-    }
-    record_duration = std::max(record_duration, records[c].duration());
+  // The records' values in each input's unit (gal to g, ...), as ntn-run reads them; per step
+  // (not through the gate, which sees frame values) every sample must be in range.
+  std::vector<ntn::io::Record> records;
+  std::vector<char> fed;  // the channels given a record
+  if (const auto e = ntn::hil::load_input_records(spec.inputs, info.input_names, inputs.args,
+                                                  per_step, records, fed)) {
+    std::fprintf(stderr, "%s\n", e->c_str());
+    return 2;
   }
+  double record_duration = 0;
+  for (const ntn::io::Record& r : records)
+    record_duration = std::max(record_duration, r.duration());
   const bool udp_in = listen_port >= 0;
   if (!udp_in && inputs.args.size() != z.inputs && z.inputs > 0) {
     std::fprintf(stderr,

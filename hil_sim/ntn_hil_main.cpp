@@ -3,9 +3,6 @@
 // file:line:column, exit 1) into run-time storage: one block, allocated and bound before init,
 // so that nothing is allocated in the loop. The program is ntn-hil-<model>'s (hil_driver.hpp): for
 // the same options the two give the same bits.
-#include <cstdio>
-#include <exception>
-
 #include "hil_driver.hpp"
 #include "ntn/run/loaded_model.hpp"
 
@@ -31,10 +28,5 @@ int hil_main(int argc, char** argv) {
 
 // No exception may end the program unreported (as ntn-hil-<model>): exit 2.
 int main(int argc, char** argv) {
-  try {
-    return hil_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
-  }
+  return ntn::cli::guarded_main(hil_main, argc, argv);
 }

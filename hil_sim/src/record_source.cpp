@@ -30,6 +30,28 @@ std::optional<std::string> load_input_record(const InputSpec& spec, const std::s
   return std::nullopt;
 }
 
+std::optional<std::string> load_input_records(std::span<const InputSpec> specs,
+                                              std::span<const std::string_view> names,
+                                              std::span<const cli::InputArg> args, bool check_range,
+                                              std::vector<io::Record>& records,
+                                              std::vector<char>& given) {
+  records.assign(specs.size(), io::Record{});
+  given.assign(specs.size(), 0);
+  for (const cli::InputArg& arg : args) {
+    std::size_t c = 0;
+    while (c < names.size() && names[c] != arg.name)
+      ++c;
+    if (c == names.size() || c >= specs.size())
+      return "error: --input " + arg.name + "=...: the model has no input channel '" + arg.name +
+             "'";
+    if (auto e =
+            load_input_record(specs[c], arg.name, arg.file, arg.column, check_range, records[c]))
+      return e;
+    given[c] = 1;
+  }
+  return std::nullopt;
+}
+
 RecordSource::RecordSource(std::span<const io::Record> records, InputGate& gate, double period,
                            double dt)
     : records_(records), gate_(&gate), period_(period), dt_(dt), sample_(records.size()) {}

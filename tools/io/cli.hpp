@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -137,6 +138,30 @@ inline std::optional<std::string> close_output(std::ofstream& out, std::string_v
   if (out) return std::nullopt;
   return std::string(option) + ": write error in " + path + ": " +
          std::strerror(errno != 0 ? errno : EIO);
+}
+
+// Parses the command line. The program's exit code when it ends there: 0 after --help, 2 on a
+// usage error (every ntn tool's code for bad input; CLI11's own codes are 100+), after CLI11
+// printed the message.
+inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  return std::nullopt;
+}
+
+// main()'s backstop: no exception may end a program unreported. Whatever is left after the
+// program's own checks (a std::bad_alloc, a filesystem error) is an error with exit 2.
+inline int guarded_main(int (*program)(int, char**), int argc, char** argv) {
+  try {
+    return program(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
 }
 
 // One NAME=FILE[:COLUMN] argument of --input. COLUMN is what follows the last ':' of the file

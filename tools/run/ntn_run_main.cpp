@@ -16,12 +16,7 @@ int main(int argc, char** argv) {
   app.add_option("model", model_path, "model file (.toml)")->required();
   ntn::run::RunOptions options;
   ntn::run::add_options(app, options);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints the message (or --help)
-    return code == 0 ? 0 : 2;      // a usage error is bad input: 2, as every ntn tool
-  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   int code = 0;
   const auto m = ntn::run::load_or_report(model_path, {.team = options.threads > 1}, "ntn-run",
                                           options.quiet, code);

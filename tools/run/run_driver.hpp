@@ -295,24 +295,12 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
     std::fprintf(stderr, "error: %s\n", inputs.error->c_str());
     return 2;
   }
-  std::vector<ntn::io::Record> records(z.inputs);
-  std::vector<char> fed(z.inputs, 0);
-  for (const ntn::cli::InputArg& in : inputs.args) {
-    std::size_t k = z.inputs;  // the channel; z.inputs: none
-    for (std::size_t c = 0; c < z.inputs; ++c) {
-      if (info.input_names[c] == in.name) k = c;
-    }
-    if (k == z.inputs) {
-      std::fprintf(stderr, "error: --input %s: the model has no input channel '%s'\n",
-                   in.name.c_str(), in.name.c_str());
-      return 2;
-    }
-    if (const auto e = ntn::hil::load_input_record(spec.inputs[k], in.name, in.file, in.column,
-                                                   true, records[k])) {
-      std::fprintf(stderr, "%s\n", e->c_str());
-      return 2;
-    }
-    fed[k] = true;
+  std::vector<ntn::io::Record> records;
+  std::vector<char> fed;
+  if (const auto e = ntn::hil::load_input_records(spec.inputs, info.input_names, inputs.args, true,
+                                                  records, fed)) {
+    std::fprintf(stderr, "%s\n", e->c_str());
+    return 2;
   }
   double record_duration = 0;
   std::string longest;

@@ -11,11 +11,11 @@
 // when its state is no longer finite) and the run ends at the frame that diverged.
 #include <CLI/CLI.hpp>
 #include <string>
-#include <string_view>
-#include <vector>
 
 #include "run_driver.hpp"
 #include NTN_MODEL_HEADER
+
+#include "ntn/hil/compiled_model_info.hpp"  // after the model header
 
 namespace {
 
@@ -29,11 +29,6 @@ ntn::State<kS> g_state;
 ntn::Scratch<kS> g_scratch;
 ntn::TeamWork<kS> g_team_work;  // the multi-core step's partition and end forces (--threads)
 
-template <class A>
-std::vector<std::string_view> names(const A& a) {
-  return {a.begin(), a.end()};
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -41,21 +36,7 @@ int main(int argc, char** argv) {
                ") on recorded inputs"};
   ntn::run::RunOptions options;
   ntn::run::add_options(app, options);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints the message (or --help)
-    return code == 0 ? 0 : 2;      // a usage error is bad input: 2, as every ntn tool
-  }
-  const ntn::run::ModelInfo info{mdl::kName,
-                                 mdl::kSourceFile,
-                                 names(mdl::kInputNames),
-                                 names(mdl::kOutputNames),
-                                 names(mdl::kOutputUnits),
-                                 {mdl::kAlarmLimits.begin(), mdl::kAlarmLimits.end()},
-                                 {mdl::kAlarmHysteresis.begin(), mdl::kAlarmHysteresis.end()},
-                                 names(mdl::kMemberNames),
-                                 names(mdl::kHingeNames)};
-  return ntn::run::run_model<kS>(options, info, mdl::kSpec,
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
+  return ntn::run::run_model<kS>(options, compiled_model_info(), mdl::kSpec,
                                  {g_model, g_init_work, g_state, g_scratch, g_team_work});
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"  // tools/io: InputArg
 #include "ntn/hil/gate.hpp"
 #include "ntn/model_spec.hpp"
 #include "record.hpp"  // tools/io
@@ -24,6 +25,16 @@ namespace ntn::hil {
 std::optional<std::string> load_input_record(const InputSpec& spec, const std::string& name,
                                              const std::string& file, const std::string& column,
                                              bool check_range, io::Record& record);
+
+// Every --input argument's record by its channel (`names`, the model's input names, in the
+// order of `specs`), read by load_input_record: records[c] and given[c] = 1 for each channel
+// given. Returns the first problem's message (an unknown channel: "error: --input NAME=...: the
+// model has no input channel 'NAME'"), or nothing.
+std::optional<std::string> load_input_records(std::span<const InputSpec> specs,
+                                              std::span<const std::string_view> names,
+                                              std::span<const cli::InputArg> args, bool check_range,
+                                              std::vector<io::Record>& records,
+                                              std::vector<char>& given);
 
 // Frame k's inputs are the records at t_k = k period (Record::at: linear between samples, 0
 // after the end), through the input gate (finite and in range, else the last accepted value
