@@ -26,7 +26,11 @@
 #include "every_key_model.hpp"
 #include "frame3d_model.hpp"
 #include "hinged_beam_model.hpp"
+#include "ntn/hil/clock.hpp"
+#include "ntn/hil/energy.hpp"
 #include "ntn/hil/gate.hpp"
+#include "ntn/hil/loop.hpp"
+#include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
@@ -227,6 +231,69 @@ TEST(RuntimeStorage, SlipConnections) {
 }
 TEST(RuntimeStorage, EveryKey) {
   expect_file_same(ntn::models::every_key::kSpec, NTN_KERNEL_TESTS_DIR "/every_key.toml", kSeconds);
+}
+
+// The frame loop (hil_sim's run_loop, as ntn-hil runs it) over run-time storage: with the
+// storage's channel buffers and checkpoint, made when the model was loaded, it allocates nothing
+// (the gate, the record source and the frame times made before it), and its output hash (every
+// step's outputs, the final state) is the compiled model's in the same loop.
+struct HashSink {
+  ntn::hil::OutputHash* hash;
+  template <class State, class Scratch>
+  void after_step(const State&, const Scratch& w) {
+    hash->add_step(w);
+  }
+  void frame_outputs(std::int64_t, std::span<const double>, std::uint16_t) {}
+};
+
+template <ntn::Sizes S>
+std::uint64_t loop_hash(const ntn::ModelSpec<S>& spec, ntn::Model<S>& model, ntn::State<S>& state,
+                        ntn::Scratch<S>& scratch, ntn::State<S>& checkpoint,
+                        ntn::hil::LoopBuffers<S>* buffers, std::uint64_t& allocations) {
+  std::vector<ntn::io::Record> records(1);
+  EXPECT_FALSE(
+      ntn::hil::load_input_record(spec.inputs[0], "ag_x", kElCentro, "", false, records[0]));
+  ntn::hil::InputGate gate{std::span<const ntn::InputSpec>(spec.inputs)};
+  ntn::hil::RecordSource source(records, gate, spec.settings.frame_period, model.dt);
+  ntn::hil::OutputHash hash;
+  HashSink sink{&hash};
+  ntn::hil::LoopConfig config;
+  config.period = spec.settings.frame_period;
+  config.substeps = static_cast<int>(model.substeps.count);
+  config.frames = 3000;  // 3 s of El Centro, held over each 1 ms frame (ntn-hil's default)
+  std::vector<ntn::hil::Alarm> alarms(model.sizes.outputs);
+  ntn::hil::VirtualClock clock;
+  ntn::hil::FrameTimes times;
+  times.reserve(config.frames);
+  const ntn_test::AllocationScope heap;
+  (void)ntn::hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config, alarms,
+                           times, &checkpoint, nullptr, static_cast<ntn::TeamWork<S>*>(nullptr),
+                           buffers);
+  allocations = heap.counts().allocations;
+  return hash.finish(state);
+}
+
+TEST(RuntimeStorage, LoopAllocatesNothingAndHashesAsCompiled) {
+  namespace mdl = ntn::models::portal_plastic;  // a yielding frame: the hinges' history too
+  constexpr ntn::Sizes S = mdl::kSizes;
+  auto c = std::make_unique<Compiled<S>>();
+  auto checkpoint = std::make_unique<ntn::State<S>>();
+  ASSERT_TRUE(ntn::init(mdl::kSpec, c->model, c->work).ok());
+  std::uint64_t compiled_allocations = 1, runtime_allocations = 1;
+  const std::uint64_t compiled =
+      loop_hash(mdl::kSpec, c->model, c->state, c->scratch, *checkpoint,
+                static_cast<ntn::hil::LoopBuffers<S>*>(nullptr), compiled_allocations);
+
+  ntn::modelc::LoadResult r = ntn::modelc::load_model(NTN_CONFIG_DIR "/portal_plastic.toml");
+  ASSERT_TRUE(r.ok());
+  ntn::run::LoadedModel rt(std::move(*r.model), {.checkpoint = true});
+  ASSERT_TRUE(rt.init().ok());
+  const std::uint64_t runtime = loop_hash(rt.spec(), rt.model(), rt.state(), rt.scratch(),
+                                          rt.checkpoint(), &rt.loop_buffers(), runtime_allocations);
+  EXPECT_EQ(runtime, compiled);
+  EXPECT_EQ(compiled_allocations, 0U);
+  EXPECT_EQ(runtime_allocations, 0U) << "run_loop allocated over run-time storage";
+  EXPECT_GT(ntn::hil::hysteretic_energy(rt.state()), 0.0);  // the connections yielded
 }
 
 using ntn::bench::Grid;
