@@ -1,7 +1,7 @@
-// Failure behaviour end to end (issue 6 item 6): ntn-hil-unstable_cantilever, a model whose dt
-// is ~1.5 x its stable step through the explicit override (tests/hil/unstable_cantilever.toml),
-// run as a subprocess on the virtual clock under El Centro. The loop must catch it, say so on
-// screen and in the JSON (the diverged frame, the safe state), exit with code 3, and write a CSV
+// Failure behaviour end to end (issue 6 item 6): a model whose dt is ~1.5 x its stable step
+// through the explicit override (tests/hil/unstable_cantilever.toml), run by `ntn-hil run
+// MODEL.toml` as a subprocess on the virtual clock under El Centro. The loop must catch it, say so
+// on screen and in the JSON (the diverged frame, the safe state), exit with code 3, and write a CSV
 // without a NaN or Inf whose flag column has the diverged bit from that frame on, with the last
 // good frame's values held.
 #include <gtest/gtest.h>
@@ -33,7 +33,7 @@ double json_number(const std::string& text, const std::string& key) {
 TEST(DivergeE2e, UnstableModelGoesToTheSafeState) {
   const TempDir dir("diverge_e2e");
   constexpr int kFrames = 2000;
-  Child run({NTN_HIL_UNSTABLE, "run", "--clock", "virtual", "--input",
+  Child run({NTN_HIL, "run", NTN_HIL_UNSTABLE, "--clock", "virtual", "--input",
              std::string("ag_x=") + NTN_RECORDS_DIR + "/elCentro.AT2", "--frames",
              std::to_string(kFrames), "--out", dir / "run.csv", "--summary-json", dir / "run.json"},
             dir / "run.txt");
@@ -96,10 +96,10 @@ TEST(DivergeE2e, DivergenceInFrameZeroSaysNoFrameWasGood) {
   for (int i = 0; i <= 50; ++i)
     csv += std::to_string(i * 1e-3) + ",3\n";
   ntn_test::write_file(dir / "step.csv", csv);
-  Child run(
-      {NTN_HIL_UNSTABLE_2MS, "run", "--clock", "virtual", "--input", "ag_x=" + (dir / "step.csv"),
-       "--frames", "20", "--out", dir / "run.csv", "--summary-json", dir / "run.json"},
-      dir / "run.txt");
+  Child run({NTN_HIL, "run", NTN_HIL_UNSTABLE_2MS, "--clock", "virtual", "--input",
+             "ag_x=" + (dir / "step.csv"), "--frames", "20", "--out", dir / "run.csv",
+             "--summary-json", dir / "run.json"},
+            dir / "run.txt");
   ASSERT_TRUE(run.started());
   EXPECT_EQ(run.wait(), 3);
   const std::string screen = read_file(dir / "run.txt");

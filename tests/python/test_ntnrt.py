@@ -93,7 +93,7 @@ def test_run_equals_the_command_line(frame3d, el_centro, tmp_path):
 def test_run_summary_of_a_yielding_frame(el_centro):
     model = ntnrt.load(os.path.join(CONFIG, "portal_plastic.toml"))
     r = model.run(inputs={"ag_x": el_centro})
-    assert r["hash"] == cli_hash([os.path.join(RUNNERS, "ntn-run-portal_plastic"),
+    assert r["hash"] == cli_hash([NTN_RUN, os.path.join(CONFIG, "portal_plastic.toml"),
                                   "--input", "ag_x=" + EL_CENTRO])
     s = r["summary"]
     assert s["plastic_directions"] > 0 and len(s["yielded"]) > 0
