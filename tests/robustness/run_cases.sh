@@ -45,6 +45,9 @@ awk 'BEGIN { print "time[s],a[m]"; for (k = 0; k < 200; ++k) printf "%g,%g\n", k
   >"$tmp/history.csv"
 # A ground motion of 5 g at t = 0.01 s: outside frame3d's accepted range [-3, 3] g of ag_x.
 printf 'time[s],ag_x[g]\n0,0\n0.01,5\n0.02,0\n' >"$tmp/out_of_range.csv"
+# Record lists for ntn-ida: one short real record (10 s); a list naming a file that is not there.
+printf '# one record\n%s\n' "$src/config/ground-motions/suite/PFT135.AT2" >"$tmp/one_record.txt"
+printf 'no_such.AT2\n' >"$tmp/missing_record.txt"
 awk 'BEGIN { print "frequency[Hz],s1[m^2/Hz]"; for (k = 1; k < 200; ++k) printf "%g,%g\n", k / 20, 1 / (1 + (k / 20 - 2) ^ 2) }' \
   >"$tmp/psd.csv"
 

@@ -91,6 +91,11 @@ void check(const Figure& f) {
         input_error(ws + ": " + std::to_string(s.x.size()) + " x values but " +
                     std::to_string(s.y.size()) + " y values");
       if (s.x.empty()) input_error(ws + " is empty");
+      const bool hex = s.colour.size() == 7 && s.colour[0] == '#' &&
+                       s.colour.find_first_not_of("0123456789abcdefABCDEF", 1) == std::string::npos;
+      if (!s.colour.empty() && !hex) input_error(ws + ": colour '" + s.colour + "' is not #rrggbb");
+      if (!(s.width >= 0.1 && s.width <= 10))
+        input_error(ws + ": line width " + num(s.width, "%g") + " is outside 0.1 ... 10");
       std::size_t drawable = 0;
       for (std::size_t i = 0; i < s.x.size(); ++i) {
         for (const auto& [v, axis] : {std::pair{s.x[i], "x"}, std::pair{s.y[i], "y"}}) {
@@ -246,8 +251,9 @@ std::string body(const Figure& f, const std::string& data) {
     s << "plot ";
     for (std::size_t k = 0; k < panel.series.size(); ++k, ++block) {
       if (k > 0) s << ", \\\n     ";
-      s << quote(data) << " index " << block
-        << " using 1:2 with lines linewidth 1.3 linecolor rgb '" << kColours[k % kColourCount]
+      s << quote(data) << " index " << block << " using 1:2 with lines linewidth "
+        << num(panel.series[k].width, "%g") << " linecolor rgb '"
+        << (panel.series[k].colour.empty() ? kColours[k % kColourCount] : panel.series[k].colour)
         << "' title " << quote(panel.series[k].name) << " noenhanced";
     }
     s << "\n";

@@ -18,6 +18,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ntn::plot {
@@ -42,9 +43,15 @@ enum class Scale { kLinear, kLog };
 
 // One line in a panel: y over x, drawn in the panel's next colour and named in its legend.
 struct Series {
-  std::string name;       // legend entry (printed literally: "_" and "^" are not markup)
+  Series() = default;
+  Series(std::string n, std::vector<double> xs, std::vector<double> ys)
+      : name(std::move(n)), x(std::move(xs)), y(std::move(ys)) {}
+  std::string name;       // legend entry (printed literally: "_" and "^" are not markup); empty:
+                          // none
   std::vector<double> x;  // same length as y, finite
   std::vector<double> y;  // finite; on a log axis values <= 0 are left out (a gap)
+  std::string colour;     // "#rrggbb"; empty: the panel's colour for the series' place
+  double width = 1.3;     // line width, in gnuplot's units (0.1 ... 10)
 };
 
 // A vertical dashed line across a panel at x, with its label written along it at the top, right

@@ -1,0 +1,494 @@
+// ntn-ida MODEL.toml --records DIR|LIST --out DIR: incremental dynamic analysis (issue 19). Every
+// (record, intensity) pair is one run of the model (run-time storage, the run of ntn-run); each
+// record is traced by stepping or by hunt and fill (trace.hpp) from its own earlier runs only.
+// Under `mpirun -np N` the records are spread over the N processes as they become free (an
+// atomic counter in an MPI window: the longest records first); without mpirun one process runs
+// them all. Every run is appended to DIR/runs/ as soon as it is done, so a study that was cut
+// short is continued with --resume. At the end the first process writes DIR/results.csv (sorted:
+// the same bytes whatever the number of processes and the order the runs ended),
+// DIR/capacities.csv, DIR/fragility.csv and the plots.
+#include <xxhash.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "cli.hpp"
+#include "ntn/ida/results.hpp"
+#include "ntn/ida/study.hpp"
+
+#ifdef NTN_IDA_MPI
+#include <mpi.h>
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using ntn::ida::RunRow;
+using ntn::ida::Study;
+
+struct Options {
+  std::string model;
+  std::string records;
+  std::string out;
+  std::string im = "sa_t1";
+  double period = 0;
+  double damping = 0.05;
+  std::string scales;
+  ntn::ida::TracePlan plan;
+  std::vector<std::string> edps;
+  std::string input;
+  double tail = 10;
+  double collapse_drift = 0.10;
+  int threads = 1;
+  bool resume = false;
+  bool no_plots = false;
+  bool quiet = false;
+};
+
+// "0.1,0.2,0.5" or "START:STEP:STOP" (START + k STEP up to STOP), or the message.
+std::vector<double> parse_scales(const std::string& text, std::string& error) {
+  std::vector<double> out;
+  const auto number = [&](const std::string& s) -> double {
+    const auto v = ntn::cli::parse_double(s);
+    if (!v) error = "--scales: '" + s + "' is not a number";
+    return v.value_or(0);
+  };
+  if (text.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string p; std::getline(in, p, ':');)
+      parts.push_back(p);
+    if (parts.size() != 3) {
+      error = "--scales: START:STEP:STOP has three numbers";
+      return out;
+    }
+    const double start = number(parts[0]), step = number(parts[1]), stop = number(parts[2]);
+    if (!error.empty()) return out;
+    if (!(step > 0) || !(stop >= start) || (stop - start) / step > 10000) {
+      error = "--scales: START:STEP:STOP needs STEP > 0, STOP >= START and at most 10 000 levels";
+      return out;
+    }
+    for (int k = 0;; ++k) {
+      const double v = start + k * step;
+      if (v > stop * (1 + 1e-12)) break;
+      out.push_back(v);
+    }
+    return out;
+  }
+  std::stringstream in(text);
+  for (std::string p; std::getline(in, p, ',');) {
+    out.push_back(number(p));
+    if (!error.empty()) return out;
+  }
+  return out;
+}
+
+std::string hex64(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+std::uint64_t file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  const std::string text = s.str();
+  return XXH3_64bits(text.data(), text.size());
+}
+
+// What makes two invocations the same study: the model's and records' bytes and every option
+// that changes a run or the tracing (not the number of processes, the output folder or the plots).
+std::string study_key(const Options& o, const Study& study) {
+  std::ostringstream k;
+  k << "ntn-ida study\nmodel " << hex64(file_hash(o.model)) << "\n";
+  for (const auto& r : study.records())
+    k << "record " << r.name << " " << hex64(file_hash(r.path)) << "\n";
+  const auto& p = study.config().plan;
+  k.precision(17);
+  k << "im " << o.im << " period " << study.period() << " damping " << o.damping << "\n"
+    << "mode " << (p.mode == ntn::ida::TraceMode::kStepping ? "stepping" : "hunt-fill");
+  for (const double v : p.levels)
+    k << " " << v;
+  k << "\nfirst " << p.first << " increment " << p.increment << " resolution " << p.resolution
+    << " max " << p.max << " runs " << p.runs << "\ninput " << o.input << " tail " << o.tail
+    << " collapse_drift " << o.collapse_drift << "\nedp";
+  for (const auto& c : study.columns())
+    k << " " << c.name;
+  k << "\n";
+  return k.str();
+}
+
+// A journal line: the results row and the XXH3 of its text (a line cut by a kill is refused).
+std::string journal_line(const std::string& row) {
+  return row + "," + hex64(XXH3_64bits(row.data(), row.size())) + "\n";
+}
+
+// Every complete line of every journal file in `dir`, as rows.
+std::vector<RunRow> read_journal(const Study& study, const fs::path& dir, std::size_t& refused) {
+  std::vector<RunRow> rows;
+  std::error_code ec;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".runs") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const fs::path& f : files) {
+    std::ifstream in(f);
+    for (std::string line; std::getline(in, line);) {
+      const std::size_t comma = line.rfind(',');
+      const bool sealed = comma != std::string::npos && in.good() &&
+                          line.substr(comma + 1) ==
+                              hex64(XXH3_64bits(line.data(), static_cast<std::size_t>(comma)));
+      const auto row =
+          sealed ? study.parse_row(std::string_view(line).substr(0, comma)) : std::nullopt;
+      if (!row) {
+        ++refused;
+        continue;
+      }
+      rows.push_back(*row);
+    }
+  }
+  return rows;
+}
+
+// The first process's part of the set-up: the output folder and its journal. 0 or an exit code.
+int prepare_output(const Options& o, const Study& study, std::vector<std::string>& notes) {
+  const fs::path runs = fs::path(o.out) / "runs";
+  std::error_code ec;
+  fs::create_directories(runs, ec);
+  if (ec || !fs::is_directory(runs)) {
+    std::fprintf(stderr, "error: --out: cannot create %s (%s)\n", runs.string().c_str(),
+                 ec.message().c_str());
+    return 2;
+  }
+  const std::string key = study_key(o, study);
+  const fs::path key_file = runs / "study.txt";
+  if (fs::exists(key_file)) {
+    std::ifstream in(key_file);
+    std::stringstream s;
+    s << in.rdbuf();
+    if (!o.resume) {
+      std::fprintf(stderr,
+                   "error: --out %s holds the runs of an earlier study (%s): give --resume to "
+                   "continue it, or another --out\n",
+                   o.out.c_str(), key_file.string().c_str());
+      return 2;
+    }
+    if (s.str() != key) {
+      std::fprintf(stderr,
+                   "error: --resume: the runs in %s are of another study (model, records or "
+                   "options differ; %s says which)\n",
+                   runs.string().c_str(), key_file.string().c_str());
+      return 2;
+    }
+    notes.push_back("resuming the study in " + runs.string());
+  } else {
+    std::ofstream out(key_file);
+    out << key;
+    out.close();
+    if (!out) {
+      std::fprintf(stderr, "error: --out: cannot write %s\n", key_file.string().c_str());
+      return 2;
+    }
+  }
+  return 0;
+}
+
+int ida(int argc, char** argv, int rank, int size) {
+  Options o;
+  CLI::App app{"Incremental dynamic analysis and fragility of a model over a record suite",
+               "ntn-ida"};
+  app.add_option("model", o.model, "the model file (TOML)")->required();
+  app.add_option("--records", o.records,
+                 "the records: a directory (its .AT2 files) or a list file (one path per line)")
+      ->required();
+  app.add_option("--out", o.out, "the output folder (results, capacities, fragility, plots)")
+      ->required();
+  app.add_option("--im", o.im, "intensity measure: sa_t1 (5 %-damped Sa at T1) or pga")
+      ->check(CLI::IsMember({"sa_t1", "pga"}))
+      ->capture_default_str();
+  app.add_option("--period", o.period,
+                 "T1 [s] for sa_t1 (default: the model's first period "
+                 "along the input's direction)")
+      ->check(ntn::cli::Positive(1e4));
+  app.add_option("--damping", o.damping, "damping ratio of Sa")
+      ->check(ntn::cli::Number(0, 1, false))
+      ->capture_default_str();
+  app.add_option("--scales", o.scales,
+                 "stepping: the intensities [g], '0.1,0.2,0.4' or START:STEP:STOP (default: hunt "
+                 "and fill)");
+  app.add_option("--first", o.plan.first, "hunt and fill: first intensity and step [g]")
+      ->check(ntn::cli::Positive(1e3))
+      ->capture_default_str();
+  app.add_option("--step-increase", o.plan.increment,
+                 "hunt and fill: growth of the step per run [g]")
+      ->check(ntn::cli::NonNegative(1e3))
+      ->capture_default_str();
+  app.add_option("--max", o.plan.max, "hunt and fill: highest intensity [g]")
+      ->check(ntn::cli::Positive(1e3))
+      ->capture_default_str();
+  app.add_option("--runs", o.plan.runs, "hunt and fill: runs per record")
+      ->check(ntn::cli::Integer(1, 1000))
+      ->capture_default_str();
+  app.add_option("--resolution", o.plan.resolution,
+                 "hunt and fill: bracket and gaps closed to this [g]")
+      ->check(ntn::cli::Positive(1e3))
+      ->capture_default_str();
+  app.add_option("--edp", o.edps,
+                 "demand columns: peak_drift, residual_drift, peak_floor_acceleration, "
+                 "hinge_level, or an output channel (its peak)")
+      ->delimiter(',');
+  app.add_option("--input", o.input,
+                 "the input channel the records feed (default: the first "
+                 "ground acceleration)");
+  app.add_option("--tail", o.tail, "free vibration after each record [s]")
+      ->check(ntn::cli::NonNegative(1e4))
+      ->capture_default_str();
+  app.add_option("--collapse-drift", o.collapse_drift,
+                 "a peak storey drift ratio above this is a collapse")
+      ->check(ntn::cli::Positive(10))
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "kernel workers per run")
+      ->check(ntn::cli::Integer(1, 64))
+      ->capture_default_str();
+  app.add_flag("--resume", o.resume, "continue the study whose runs are in --out");
+  app.add_flag("--no-plots", o.no_plots, "no PNG/SVG plots");
+  app.add_flag("-q,--quiet", o.quiet, "only the summary");
+  // CLI11 prints its messages on every process: only the first one speaks.
+  if (rank != 0) {
+    app.failure_message([](const CLI::App*, const CLI::Error&) { return std::string(); });
+  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
+
+  ntn::ida::StudyConfig config;
+  config.model_path = o.model;
+  config.input = o.input;
+  config.measure = o.im == "pga" ? ntn::ida::Measure::kPga : ntn::ida::Measure::kSaT1;
+  config.period = o.period;
+  config.damping = o.damping;
+  config.plan = o.plan;
+  config.tail = o.tail;
+  config.collapse_drift = o.collapse_drift;
+  config.edps = o.edps;
+  config.threads = o.threads;
+  if (!o.scales.empty()) {
+    std::string error;
+    config.plan.mode = ntn::ida::TraceMode::kStepping;
+    config.plan.levels = parse_scales(o.scales, error);
+    if (!error.empty()) {
+      if (rank == 0) std::fprintf(stderr, "error: %s\n", error.c_str());
+      return 2;
+    }
+  }
+  std::string error;
+  config.record_paths = ntn::ida::record_files(o.records, error);
+  if (!error.empty()) {
+    if (rank == 0) std::fprintf(stderr, "error: %s\n", error.c_str());
+    return 2;
+  }
+  std::vector<std::string> errors, notes;
+  int code = 0;
+  std::unique_ptr<Study> study = Study::open(config, errors, notes, code);
+  if (!study) {
+    if (rank == 0) {
+      for (const std::string& e : errors)
+        std::fprintf(
+            stderr, "%s%s\n",
+            e.rfind("error", 0) == 0 || e.find(": error") != std::string::npos ? "" : "error: ",
+            e.c_str());
+      std::fprintf(stderr, "ntn-ida: nothing run\n");
+    }
+    return code;
+  }
+
+  // The output folder and the journal, by the first process; the others wait for its word.
+  int status = rank == 0 ? prepare_output(o, *study, notes) : 0;
+#ifdef NTN_IDA_MPI
+  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+#endif
+  if (status != 0) return status;
+  const fs::path runs_dir = fs::path(o.out) / "runs";
+  std::size_t refused = 0;
+  const std::vector<RunRow> known = read_journal(*study, runs_dir, refused);
+  if (rank == 0 && !o.quiet) {
+    for (const std::string& n : notes)
+      std::printf("note: %s\n", n.c_str());
+    std::printf("ntn-ida: %s, %zu records, %s, %d process%s\n", o.model.c_str(),
+                study->records().size(), study->measure_name().c_str(), size,
+                size == 1 ? "" : "es");
+    if (o.resume)
+      std::printf(
+          "resume: %zu runs done earlier%s\n", known.size(),
+          refused > 0 ? (", " + std::to_string(refused) + " cut lines left out").c_str() : "");
+  }
+
+  // This process's journal file (one per process and start, never shared).
+  const std::string journal_path =
+      (runs_dir / ("p" + std::to_string(rank) + "-" + std::to_string(::getpid()) + ".runs"))
+          .string();
+  std::FILE* journal = std::fopen(journal_path.c_str(), "a");
+  if (journal == nullptr) {
+    std::fprintf(stderr, "error: cannot write %s: %s\n", journal_path.c_str(),
+                 std::strerror(errno));
+#ifdef NTN_IDA_MPI
+    MPI_Abort(MPI_COMM_WORLD, 2);
+#endif
+    return 2;
+  }
+
+  // The records, longest first (the longest runs start early: less time waiting at the end).
+  const auto& records = study->records();
+  std::vector<std::size_t> order(records.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return records[a].record.duration() > records[b].record.duration();
+  });
+
+#ifdef NTN_IDA_MPI
+  std::int64_t* counter = nullptr;
+  MPI_Win window;
+  MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
+                   sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter, &window);
+  if (rank == 0) {
+    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
+    *counter = 0;
+    MPI_Win_unlock(0, window);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+#endif
+  std::int64_t next_local = 0;
+  const auto next_task = [&]() -> std::int64_t {
+#ifdef NTN_IDA_MPI
+    const std::int64_t one = 1;
+    std::int64_t task = 0;
+    MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
+    MPI_Fetch_and_op(&one, &task, MPI_INT64_T, 0, 0, MPI_SUM, window);
+    MPI_Win_unlock(0, window);
+    return task;
+#else
+    return next_local++;
+#endif
+  };
+  (void)next_local;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<RunRow> mine;
+  double busy = 0;
+  std::size_t new_runs = 0;
+  for (std::int64_t task = next_task(); task < static_cast<std::int64_t>(order.size());
+       task = next_task()) {
+    const std::size_t r = order[static_cast<std::size_t>(task)];
+    const auto traced = study->trace(r, known, [&](const RunRow& row) {
+      const std::string line = journal_line(study->csv_row(row));
+      std::fputs(line.c_str(), journal);
+      std::fflush(journal);
+      busy += row.seconds;
+      ++new_runs;
+    });
+    if (!o.quiet) {
+      const auto cap = ntn::ida::capacities(*study, traced);
+      std::string c = "no collapse";
+      // capacities() indexes by record: this record's entry.
+      if (cap[r].collapse.im) c = "collapses from " + ntn::cli::num(*cap[r].collapse.im) + " g";
+      std::printf("[%d] %-14s %2zu runs, %s\n", rank, records[r].name.c_str(), traced.size(),
+                  c.c_str());
+      std::fflush(stdout);
+    }
+    mine.insert(mine.end(), traced.begin(), traced.end());
+  }
+  std::fclose(journal);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Every process's rows to the first one, as text.
+  std::string text;
+  for (const RunRow& row : mine)
+    text += study->csv_row(row) + "\n";
+  std::vector<RunRow> all;
+  std::vector<double> busy_of(static_cast<std::size_t>(size), busy);
+  std::vector<double> runs_of(static_cast<std::size_t>(size), static_cast<double>(new_runs));
+#ifdef NTN_IDA_MPI
+  const int length = static_cast<int>(text.size());
+  std::vector<int> lengths(static_cast<std::size_t>(size)), offsets(static_cast<std::size_t>(size));
+  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  std::string gathered;
+  if (rank == 0) {
+    for (std::size_t k = 1; k < offsets.size(); ++k)
+      offsets[k] = offsets[k - 1] + lengths[k - 1];
+    gathered.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  }
+  MPI_Gatherv(text.data(), length, MPI_CHAR, gathered.data(), lengths.data(), offsets.data(),
+              MPI_CHAR, 0, MPI_COMM_WORLD);
+  MPI_Gather(&busy, 1, MPI_DOUBLE, busy_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  const double my_runs = static_cast<double>(new_runs);
+  MPI_Gather(&my_runs, 1, MPI_DOUBLE, runs_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  MPI_Win_free(&window);
+  text = std::move(gathered);
+#endif
+  if (rank != 0) return 0;
+  std::stringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (auto row = study->parse_row(line)) all.push_back(*row);
+  }
+
+  std::vector<std::string> out_notes;
+  const auto problems = ntn::ida::write_results(*study, all, o.out, !o.no_plots, out_notes);
+  for (const std::string& n : out_notes)
+    std::printf("note: %s\n", n.c_str());
+  std::printf("%s", ntn::ida::summary_text(*study, all).c_str());
+  double total_runs = 0;
+  std::string per_process;
+  for (std::size_t k = 0; k < busy_of.size(); ++k) {
+    total_runs += runs_of[k];
+    char part[64];
+    std::snprintf(part, sizeof part, "%s p%zu %.0f runs %.1f s", k == 0 ? "" : ",", k, runs_of[k],
+                  busy_of[k]);
+    per_process += part;
+  }
+  std::printf(
+      "time %.1f s, %.0f new runs, %.2f runs/s on %d process%s (runs and their time per "
+      "process:%s)\n",
+      wall, total_runs, total_runs / wall, size, size == 1 ? "" : "es", per_process.c_str());
+  std::printf("written: %s/results.csv, capacities.csv, fragility.csv%s\n", o.out.c_str(),
+              o.no_plots ? "" : ", ida.png/.svg, fragility.png/.svg");
+  for (const std::string& p : problems)
+    std::fprintf(stderr, "error: %s\n", p.c_str());
+  return problems.empty() ? 0 : 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int rank = 0, size = 1;
+#ifdef NTN_IDA_MPI
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+#endif
+  const int code = ntn::cli::guarded_main(
+      [](int c, char** v) -> int {
+        int r = 0, s = 1;
+#ifdef NTN_IDA_MPI
+        MPI_Comm_rank(MPI_COMM_WORLD, &r);
+        MPI_Comm_size(MPI_COMM_WORLD, &s);
+#endif
+        return ida(c, v, r, s);
+      },
+      argc, argv);
+  (void)rank, (void)size;
+#ifdef NTN_IDA_MPI
+  MPI_Finalize();
+#endif
+  return code;
+}
