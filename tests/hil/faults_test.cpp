@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-namespace {
+namespace faults_test {
 
 using namespace ntn::hil;
 

@@ -24,7 +24,7 @@
 #include "record.hpp"
 #include "subprocess.hpp"
 
-namespace {
+namespace feeder_test {
 
 using namespace ntn::hil;
 using namespace std::chrono_literals;

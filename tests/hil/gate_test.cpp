@@ -11,7 +11,7 @@
 
 #include "support/alloc_counter.hpp"
 
-namespace {
+namespace gate_test {
 
 using namespace ntn::hil;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -14,7 +14,7 @@
 #include "ntn/hil/recorder.hpp"
 #include "support/temp_files.hpp"
 
-namespace {
+namespace log_format_test {
 
 using ntn::hil::LogFrame;
 using ntn::hil::LogRead;

@@ -21,7 +21,7 @@
 #include "support/frames.hpp"
 #include "support/init_model.hpp"
 
-namespace {
+namespace loop_test {
 
 constexpr ntn::Sizes kS = ntn_test::kFeatureSizes;
 ntn::ModelSpec<kS> spec;

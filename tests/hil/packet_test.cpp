@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-namespace {
+namespace packet_test {
 
 using namespace ntn::hil;
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <limits>
 
-namespace {
+namespace schedule_test {
 
 using namespace ntn::hil;
 constexpr std::int64_t kP = 1'000'000;  // ns: 1 kHz

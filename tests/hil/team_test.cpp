@@ -13,7 +13,7 @@
 #include "support/frames.hpp"
 #include "support/init_model.hpp"
 
-namespace {
+namespace team_test {
 
 constexpr auto S = ntn_test::kFeatureSizes;
 

@@ -12,7 +12,7 @@
 
 #include "ntn/hil/packet.hpp"
 
-namespace {
+namespace udp_test {
 
 using namespace ntn::hil;
 using namespace std::chrono_literals;

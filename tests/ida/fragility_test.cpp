@@ -16,7 +16,7 @@
 #include "ntn/ida/fragility.hpp"
 
 namespace ntn::ida {
-namespace {
+namespace fragility_test {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();

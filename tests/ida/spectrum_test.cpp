@@ -15,7 +15,7 @@
 #include "record.hpp"
 
 namespace ntn::ida {
-namespace {
+namespace spectrum_test {
 
 const std::string kRecords = NTN_RECORDS_DIR;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -8,7 +8,7 @@
 
 #include "ntn/ida/trace.hpp"
 
-namespace {
+namespace trace_test {
 
 using ntn::ida::TraceMode;
 using ntn::ida::TracePlan;

@@ -17,7 +17,7 @@
 #include "support/frames.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace allocation_test {
 
 // Keeps the compiler from proving an allocation unused and removing it.
 void escape(const void* p) {

@@ -17,7 +17,7 @@
 #include "support/relaxation.hpp"
 #include "support/signed_order.hpp"
 
-namespace {
+namespace beam_test {
 
 using Mat12 = Eigen::Matrix<double, 12, 12, Eigen::RowMajor>;
 using Vec12 = Eigen::Matrix<double, 12, 1>;

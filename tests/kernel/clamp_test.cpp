@@ -26,7 +26,7 @@
 #include "support/init_model.hpp"
 #include "support/stop_joint.hpp"
 
-namespace {
+namespace clamp_test {
 
 using ntn_test::dof;
 using B = ntn::HingeBehaviour;

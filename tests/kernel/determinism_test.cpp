@@ -12,7 +12,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace determinism_test {
 
 constexpr ntn::Sizes kS = ntn_test::kFeatureSizes;
 using Inputs = std::array<double, kS.inputs>;

@@ -18,7 +18,7 @@
 #include "support/frames.hpp"
 #include "support/init_model.hpp"
 
-namespace {
+namespace dof_pass_test {
 
 // Random DOF arrays for `nodes` nodes: masses over orders of magnitude, forces and velocities
 // with exact and negative zeros mixed in.

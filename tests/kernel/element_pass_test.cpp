@@ -26,7 +26,7 @@
 #include <hwy/targets.h>
 #endif
 
-namespace {
+namespace element_pass_test {
 
 using ntn::BeamBlock;
 using ntn::BeamData;

@@ -13,7 +13,7 @@
 #include "support/alloc_counter.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace every_key_test {
 
 namespace model = ntn::models::every_key;
 constexpr ntn::Sizes kS = model::kSizes;

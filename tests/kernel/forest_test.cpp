@@ -30,7 +30,7 @@
 #include "ntn/hinge_methods.hpp"
 #include "support/hinges.hpp"
 
-namespace {
+namespace forest_test {
 
 using ntn_test::Behaviour;
 

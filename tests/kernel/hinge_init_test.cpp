@@ -17,7 +17,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_init_test {
 
 using B = ntn::HingeBehaviour;
 

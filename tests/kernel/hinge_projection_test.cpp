@@ -23,7 +23,7 @@
 #include "support/hinges.hpp"
 #include "support/init_model.hpp"
 
-namespace {
+namespace hinge_projection_test {
 
 using ntn_test::dof;
 

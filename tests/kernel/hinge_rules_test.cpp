@@ -22,7 +22,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_rules_test {
 
 using ntn_test::dof;
 using B = ntn::HingeBehaviour;

@@ -25,7 +25,7 @@
 #include "support/assemble.hpp"
 #include "support/hinges.hpp"
 
-namespace {
+namespace hinge_test {
 
 using ntn_test::Mat3;
 

@@ -11,7 +11,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace input_test {
 
 constexpr ntn::Sizes kS = ntn_test::kFeatureSizes;
 using Inputs = std::array<double, kS.inputs>;

@@ -15,7 +15,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace integrator_test {
 
 using ntn_test::dof;
 
@@ -210,7 +210,7 @@ TEST(Integrator, UndampedEnergyIsConservedOver1e5Steps) {
 
 }  // namespace
 
-namespace {
+namespace integrator_test {
 
 // initial_state(): the model's u_0 and v_0 (NodeSpec::u0, v0) into the state, every counter of
 // a previous run reset; a run from it equals a run whose caller wrote the same u_0, v_0 into a

@@ -13,7 +13,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace loads_test {
 
 using ntn_test::dof;
 

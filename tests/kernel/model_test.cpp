@@ -15,7 +15,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace model_test {
 
 using ntn_test::dof;
 

@@ -21,7 +21,7 @@
 #include "ntn/ntn_paper.hpp"
 #include "support/hinges.hpp"
 
-namespace {
+namespace ntn_paper_test {
 
 using ntn_test::Mat3;
 

@@ -13,7 +13,7 @@
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
 
-namespace {
+namespace outputs_test {
 
 using ntn_test::dof;
 using K = ntn::OutputKind;

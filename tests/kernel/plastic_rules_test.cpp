@@ -30,7 +30,7 @@
 #include "support/no_heap.hpp"
 #include "support/plastic_models.hpp"
 
-namespace {
+namespace plastic_rules_test {
 
 using ntn_test::dof;
 using K = ntn::OutputKind;

@@ -13,7 +13,7 @@
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
 
-namespace {
+namespace time_step_extremes_test {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

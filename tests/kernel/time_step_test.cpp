@@ -18,7 +18,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace time_step_test {
 
 using ntn_test::Vec3;
 

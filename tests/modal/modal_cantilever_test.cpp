@@ -30,7 +30,7 @@
 #include "support/assemble.hpp"
 #include "support/closed_forms.hpp"
 
-namespace {
+namespace modal_cantilever_test {
 
 std::string read(const std::string& path) {
   std::string text;

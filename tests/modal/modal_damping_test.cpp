@@ -33,7 +33,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "support/init_model.hpp"
 
-namespace {
+namespace modal_damping_test {
 
 constexpr ntn::Sizes kS{.nodes = 6, .elements = 5};
 

@@ -18,7 +18,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "support/assemble.hpp"
 
-namespace {
+namespace modal_frame3d_test {
 
 TEST(ModalFrame3d, ModesOfTheDefaultModel) {
   const auto loaded = ntn::modelc::load_model(NTN_CONFIG_DIR "/frame3d.toml");

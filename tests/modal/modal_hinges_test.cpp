@@ -32,7 +32,7 @@
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
 
-namespace {
+namespace modal_hinges_test {
 
 using modal_test::B;
 using ntn::modal::ModalOptions;

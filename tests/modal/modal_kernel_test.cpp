@@ -29,7 +29,7 @@
 #include "support/init_model.hpp"
 #include "support/zero_crossings.hpp"
 
-namespace {
+namespace modal_kernel_test {
 
 using ntn_test::Sim;
 

@@ -14,7 +14,7 @@
 #include "ntn/modal/modal.hpp"
 #include "support/assemble.hpp"
 
-namespace {
+namespace modal_solvers_test {
 
 using ntn::modal::ModalOptions;
 using ntn::modal::ModalResult;

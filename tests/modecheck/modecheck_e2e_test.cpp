@@ -42,7 +42,7 @@
 #include "test_files.hpp"
 #include NTN_MODEL_HEADER
 
-namespace {
+namespace modecheck_e2e_test {
 
 namespace mdl = NTN_MODEL_NS;
 namespace mc = ntn::modecheck;

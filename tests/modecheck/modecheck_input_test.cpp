@@ -14,7 +14,7 @@
 #include "ntn/modecheck/modecheck.hpp"
 #include "test_files.hpp"
 
-namespace {
+namespace modecheck_input_test {
 
 namespace mc = ntn::modecheck;
 

@@ -16,7 +16,7 @@
 
 #include "ntn/modecheck/modecheck.hpp"
 
-namespace {
+namespace modecheck_unit_test {
 
 namespace mc = ntn::modecheck;
 namespace sp = ntn::spectral;

@@ -7,7 +7,7 @@
 #include "ntn/modelc/model_bytes.hpp"
 #include "ntn/state.hpp"
 
-namespace {
+namespace modelc_bytes_test {
 
 template <ntn::Sizes S>
 void expect_exact() {

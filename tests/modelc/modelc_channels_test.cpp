@@ -7,7 +7,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_channels_test {
 
 using testing::column;
 using testing::Staged;

@@ -17,7 +17,7 @@
 
 #include "ntn/modelc/load_model.hpp"
 
-namespace {
+namespace modelc_errors_test {
 
 using ntn::modelc::Diagnostic;
 using ntn::modelc::load_model;

@@ -6,7 +6,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_hinges_supports_test {
 
 using testing::column;
 using testing::Staged;

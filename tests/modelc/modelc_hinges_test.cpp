@@ -13,7 +13,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
 
-namespace {
+namespace modelc_hinges_test {
 
 using ntn::HingeBehaviour;
 using ntn::modelc::HingeOrigin;

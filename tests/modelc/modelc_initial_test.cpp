@@ -10,7 +10,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_initial_test {
 
 using testing::column;
 using testing::Staged;
@@ -157,7 +157,7 @@ gravity = "static"
 }  // namespace ntn::modelc::compile
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_initial_test {
 
 // The preload of a simply supported beam under a uniform member load q (L = 6 m, 6 elements,
 // Iy = 1e-5 m^4): the member load's consistent nodal forces and the exact K give the beam's

@@ -18,7 +18,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
 
-namespace {
+namespace modelc_limits_test {
 
 using ntn::modelc::Diagnostic;
 using ntn::modelc::load_model_from_string;

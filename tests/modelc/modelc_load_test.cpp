@@ -17,7 +17,7 @@
 #include "ntn/modelc/model_report.hpp"
 #include "ntn/time_step.hpp"
 
-namespace {
+namespace modelc_load_test {
 
 using ntn::modelc::load_model;
 using ntn::modelc::load_model_from_string;

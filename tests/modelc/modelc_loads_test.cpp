@@ -6,7 +6,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_loads_test {
 
 using testing::column;
 using testing::Staged;

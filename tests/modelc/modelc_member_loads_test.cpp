@@ -10,7 +10,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_member_loads_test {
 
 using testing::column;
 using testing::kColumn;

@@ -27,7 +27,7 @@
 #include "support/zero_crossings.hpp"
 #include "tip_mass_arm_model.hpp"
 
-namespace {
+namespace modelc_nodes_physics_test {
 
 using ntn::modelc::ModelDescription;
 

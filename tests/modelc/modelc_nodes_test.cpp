@@ -9,7 +9,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_nodes_test {
 
 using testing::column;
 using testing::Staged;

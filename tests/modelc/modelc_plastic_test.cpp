@@ -11,7 +11,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
 
-namespace {
+namespace modelc_plastic_test {
 
 using ntn::HingeBehaviour;
 using ntn::modelc::format_all;

@@ -8,7 +8,7 @@
 #include "stage_fixture.hpp"
 
 namespace ntn::modelc::compile {
-namespace {
+namespace modelc_reader_test {
 
 using testing::column;
 using testing::kColumn;

@@ -11,7 +11,7 @@
 #include "ntn/plot/plot.hpp"
 #include "plot_support.hpp"
 
-namespace {
+namespace plot_cli_test {
 
 namespace fs = std::filesystem;
 using ntn::plot::test::parse_svg;
@@ -193,7 +193,7 @@ TEST(PlotCli, Frame3dHingeForces) {
 
 }  // namespace
 
-namespace {
+namespace plot_cli_test {
 
 // A 3 m column whose base is a hinge to the ground with `ry` as its bending direction.
 std::string column_model(const std::string& ry) {

@@ -15,7 +15,7 @@
 
 #include "plot_support.hpp"
 
-namespace {
+namespace plot_test {
 
 namespace pl = ntn::plot;
 namespace fs = std::filesystem;

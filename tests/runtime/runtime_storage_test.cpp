@@ -41,7 +41,7 @@
 #include "slip_connections_model.hpp"
 #include "support/alloc_counter.hpp"
 
-namespace {
+namespace runtime_storage_test {
 
 const std::string kElCentro = NTN_CONFIG_DIR "/ground-motions/elCentro.AT2";
 

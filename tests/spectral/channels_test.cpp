@@ -19,7 +19,7 @@
 #include "signals.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace channels_test {
 
 // Runs f and returns the Error's message; fails the test when f does not throw Error.
 template <class F>

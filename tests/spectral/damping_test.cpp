@@ -11,7 +11,7 @@
 #include "signals.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace damping_test {
 
 // x(t) = sum_j a_j exp(-zeta_j w_j t) cos(w_dj t + phi_j), two modes (2 Hz 1 %, 7.3 Hz 2 %),
 // 100 Hz for 200 s: both have decayed below exp(-25) by the end, so the rectangular window

@@ -13,7 +13,7 @@
 #include "signals.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace fdd_test {
 
 // Masses 2, 1.5, 1 kg; springs 800, 600, 400 N/m (ground-1, 1-2, 2-3); modal damping 1.5 %.
 // K phi = w^2 M phi (Eigen, mass-normalized phi) gives the truth. Forces: independent white noise

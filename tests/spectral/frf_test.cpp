@@ -8,7 +8,7 @@
 #include "signals.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace frf_test {
 
 // Derivatives of the exact transfer function by central differences (step df / 4): the
 // window-smoothing terms below need H' and H''.

@@ -11,7 +11,7 @@
 #include "signals.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace tone_test {
 
 struct Tone {
   double f;    // Hz

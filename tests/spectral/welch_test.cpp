@@ -12,7 +12,7 @@
 #include "signals.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace welch_test {
 
 using test::integral;
 using test::variance;

@@ -8,7 +8,7 @@
 #include "ntn/spectral/window.hpp"
 
 namespace ntn::spectral {
-namespace {
+namespace window_test {
 
 struct Case {
   Window window;

@@ -29,7 +29,7 @@
 #include "support/no_heap.hpp"
 #include "support/plastic_models.hpp"
 
-namespace {
+namespace backbone_hinge_test {
 
 using ntn_test::dof;
 using ntn_test::kSdofK;

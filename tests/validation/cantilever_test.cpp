@@ -19,7 +19,7 @@
 #include "support/relaxation.hpp"
 #include "support/zero_crossings.hpp"
 
-namespace {
+namespace cantilever_test {
 
 using ntn_test::dof;
 constexpr double kPi = 3.14159265358979323846;

@@ -20,7 +20,7 @@
 #include "ntn/kernel.hpp"
 #include "portal_plastic_model.hpp"
 
-namespace {
+namespace energy_balance_test {
 
 namespace portal = ntn::models::portal_plastic;
 constexpr ntn::Sizes kS = portal::kSizes;

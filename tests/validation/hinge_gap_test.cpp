@@ -20,7 +20,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_gap_test {
 
 using ntn_test::dof;
 using ntn_test::Mat3;

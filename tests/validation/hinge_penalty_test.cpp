@@ -29,7 +29,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_penalty_test {
 
 using ntn_test::Mat3;
 using ntn_test::Vec3;

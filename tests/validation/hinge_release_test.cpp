@@ -24,7 +24,7 @@
 #include "support/no_heap.hpp"
 #include "support/zero_crossings.hpp"
 
-namespace {
+namespace hinge_release_test {
 
 using ntn_test::dof;
 using ntn_test::Vec3;

@@ -21,7 +21,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_split_test {
 
 using ntn_test::dof;
 using ntn_test::Vec3;

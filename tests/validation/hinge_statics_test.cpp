@@ -23,7 +23,7 @@
 #include "support/no_heap.hpp"
 #include "support/relaxation.hpp"
 
-namespace {
+namespace hinge_statics_test {
 
 using ntn_test::Mat3;
 using B = ntn::HingeBehaviour;

@@ -37,7 +37,7 @@
 #include "support/init_model.hpp"
 #include "support/stop_joint.hpp"
 
-namespace {
+namespace hinge_stops_test {
 
 using ntn_test::dof;
 using ntn_test::stop_joint::kJoint;

@@ -28,7 +28,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_support_test {
 
 using ntn_test::dof;
 using ntn_test::Mat3;

@@ -24,7 +24,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace hinge_time_step_test {
 
 using ntn_test::dof;
 

@@ -25,7 +25,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace nafems_5t_test {
 
 namespace nafems = ntn::models::nafems_5t;
 constexpr ntn::Sizes kS = nafems::kSizes;

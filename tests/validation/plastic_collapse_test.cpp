@@ -37,7 +37,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace plastic_collapse_test {
 
 // The five plastic hinges, in the order of the channels below.
 constexpr std::array<std::string_view, 5> kHinges = {"base_left", "beam_left", "beam_mid",

@@ -21,7 +21,7 @@
 #include "ntn/kernel.hpp"
 #include "support/init_model.hpp"
 
-namespace {
+namespace preload_test {
 
 namespace preload = ntn::models::frame3d_gravity_static;
 namespace sudden = ntn::models::frame3d_gravity_sudden;

@@ -35,7 +35,7 @@
 #include "support/no_heap.hpp"
 #include "support/plastic_models.hpp"
 
-namespace {
+namespace slip_hinge_test {
 
 using ntn_test::dof;
 using ntn_test::kSdofMass;

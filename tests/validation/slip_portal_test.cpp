@@ -22,7 +22,7 @@
 #include "ntn/kernel.hpp"
 #include "portal_slip_model.hpp"
 
-namespace {
+namespace slip_portal_test {
 
 namespace portal = ntn::models::portal_slip;
 constexpr ntn::Sizes kS = portal::kSizes;

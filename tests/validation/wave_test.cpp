@@ -10,7 +10,7 @@
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
-namespace {
+namespace wave_test {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kN = 1000;                         // elements over 10 m: 10 mm each

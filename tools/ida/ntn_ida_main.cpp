@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using ntn::ida::RunRow;
+
+// Whether this process runs under mpirun (MPI initialized, possibly with others). Without
+// mpirun the program runs alone and does not start MPI: a singleton MPI_Init costs ~0.4 s.
+bool g_mpi = false;
 using ntn::ida::Study;
 
 struct Options {
@@ -316,7 +321,7 @@ int ida(int argc, char** argv, int rank, int size) {
   // The output folder and the journal, by the first process; the others wait for its word.
   int status = rank == 0 ? prepare_output(o, *study, notes) : 0;
 #ifdef NTN_IDA_MPI
-  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (g_mpi) MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
 #endif
   if (status != 0) return status;
   const fs::path runs_dir = fs::path(o.out) / "runs";
@@ -343,7 +348,7 @@ int ida(int argc, char** argv, int rank, int size) {
     std::fprintf(stderr, "error: cannot write %s: %s\n", journal_path.c_str(),
                  std::strerror(errno));
 #ifdef NTN_IDA_MPI
-    MPI_Abort(MPI_COMM_WORLD, 2);
+    if (g_mpi) MPI_Abort(MPI_COMM_WORLD, 2);
 #endif
     return 2;
   }
@@ -358,30 +363,32 @@ int ida(int argc, char** argv, int rank, int size) {
 
 #ifdef NTN_IDA_MPI
   std::int64_t* counter = nullptr;
-  MPI_Win window;
-  MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
-                   sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter, &window);
-  if (rank == 0) {
-    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
-    *counter = 0;
-    MPI_Win_unlock(0, window);
+  MPI_Win window = MPI_WIN_NULL;
+  if (g_mpi) {
+    MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
+                     sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter, &window);
+    if (rank == 0) {
+      MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
+      *counter = 0;
+      MPI_Win_unlock(0, window);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
   }
-  MPI_Barrier(MPI_COMM_WORLD);
 #endif
   std::int64_t next_local = 0;
   const auto next_task = [&]() -> std::int64_t {
 #ifdef NTN_IDA_MPI
-    const std::int64_t one = 1;
-    std::int64_t task = 0;
-    MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
-    MPI_Fetch_and_op(&one, &task, MPI_INT64_T, 0, 0, MPI_SUM, window);
-    MPI_Win_unlock(0, window);
-    return task;
-#else
-    return next_local++;
+    if (g_mpi) {
+      const std::int64_t one = 1;
+      std::int64_t task = 0;
+      MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
+      MPI_Fetch_and_op(&one, &task, MPI_INT64_T, 0, 0, MPI_SUM, window);
+      MPI_Win_unlock(0, window);
+      return task;
+    }
 #endif
+    return next_local++;
   };
-  (void)next_local;
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<RunRow> mine;
@@ -419,22 +426,25 @@ int ida(int argc, char** argv, int rank, int size) {
   std::vector<double> busy_of(static_cast<std::size_t>(size), busy);
   std::vector<double> runs_of(static_cast<std::size_t>(size), static_cast<double>(new_runs));
 #ifdef NTN_IDA_MPI
-  const int length = static_cast<int>(text.size());
-  std::vector<int> lengths(static_cast<std::size_t>(size)), offsets(static_cast<std::size_t>(size));
-  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  std::string gathered;
-  if (rank == 0) {
-    for (std::size_t k = 1; k < offsets.size(); ++k)
-      offsets[k] = offsets[k - 1] + lengths[k - 1];
-    gathered.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  if (g_mpi) {
+    const int length = static_cast<int>(text.size());
+    std::vector<int> lengths(static_cast<std::size_t>(size)),
+        offsets(static_cast<std::size_t>(size));
+    MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::string gathered;
+    if (rank == 0) {
+      for (std::size_t k = 1; k < offsets.size(); ++k)
+        offsets[k] = offsets[k - 1] + lengths[k - 1];
+      gathered.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
+    }
+    MPI_Gatherv(text.data(), length, MPI_CHAR, gathered.data(), lengths.data(), offsets.data(),
+                MPI_CHAR, 0, MPI_COMM_WORLD);
+    MPI_Gather(&busy, 1, MPI_DOUBLE, busy_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    const double my_runs = static_cast<double>(new_runs);
+    MPI_Gather(&my_runs, 1, MPI_DOUBLE, runs_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    MPI_Win_free(&window);
+    text = std::move(gathered);
   }
-  MPI_Gatherv(text.data(), length, MPI_CHAR, gathered.data(), lengths.data(), offsets.data(),
-              MPI_CHAR, 0, MPI_COMM_WORLD);
-  MPI_Gather(&busy, 1, MPI_DOUBLE, busy_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  const double my_runs = static_cast<double>(new_runs);
-  MPI_Gather(&my_runs, 1, MPI_DOUBLE, runs_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  MPI_Win_free(&window);
-  text = std::move(gathered);
 #endif
   if (rank != 0) return 0;
   std::stringstream lines(text);
@@ -470,25 +480,26 @@ int ida(int argc, char** argv, int rank, int size) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int rank = 0, size = 1;
 #ifdef NTN_IDA_MPI
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  // Launched by mpirun (Open MPI's or another PMI launcher): the environment says so.
+  g_mpi = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr ||
+          std::getenv("PMIX_RANK") != nullptr;
+  if (g_mpi) MPI_Init(&argc, &argv);
 #endif
   const int code = ntn::cli::guarded_main(
       [](int c, char** v) -> int {
-        int r = 0, s = 1;
+        int rank = 0, size = 1;
 #ifdef NTN_IDA_MPI
-        MPI_Comm_rank(MPI_COMM_WORLD, &r);
-        MPI_Comm_size(MPI_COMM_WORLD, &s);
+        if (g_mpi) {
+          MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+          MPI_Comm_size(MPI_COMM_WORLD, &size);
+        }
 #endif
-        return ida(c, v, r, s);
+        return ida(c, v, rank, size);
       },
       argc, argv);
-  (void)rank, (void)size;
 #ifdef NTN_IDA_MPI
-  MPI_Finalize();
+  if (g_mpi) MPI_Finalize();
 #endif
   return code;
 }
