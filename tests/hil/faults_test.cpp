@@ -100,4 +100,4 @@ TEST(Faults, HashIsDeterministicAndSpread) {
   EXPECT_NE(fault_hash(1, 5), fault_hash(2, 5));
 }
 
-}  // namespace
+}  // namespace faults_test

@@ -354,4 +354,4 @@ TEST(Feeder, BadArgumentsExitTwo) {
   }
 }
 
-}  // namespace
+}  // namespace feeder_test

@@ -518,4 +518,4 @@ TEST(Gate, NoAllocationInTheFramePath) {
   EXPECT_GT(g.counters().nonfinite, 0u);
 }
 
-}  // namespace
+}  // namespace gate_test

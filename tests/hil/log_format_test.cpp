@@ -257,4 +257,4 @@ TEST(LogFormat, WriteErrorIsReportedByClose) {
   EXPECT_NE(r.error().find("--record"), std::string::npos) << r.error();
 }
 
-}  // namespace
+}  // namespace log_format_test

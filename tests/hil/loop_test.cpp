@@ -709,4 +709,4 @@ TEST_F(Loop, SoakMillionFramesRepeatable) {
   EXPECT_EQ(a2, 0U);
 }
 
-}  // namespace
+}  // namespace loop_test

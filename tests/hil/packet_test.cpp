@@ -231,4 +231,4 @@ TEST(Packet, FrameEndMarker) {
   EXPECT_EQ(p.count, 0);
 }
 
-}  // namespace
+}  // namespace packet_test

@@ -172,4 +172,4 @@ TEST(Schedule, LateSenderIsFollowedAndResyncCanBeOff) {
   EXPECT_EQ(off.resyncs(), 0U);
 }
 
-}  // namespace
+}  // namespace schedule_test

@@ -123,4 +123,4 @@ TEST(Team, PartitionCoversEveryBlockAndNodeOnce) {
   }
 }
 
-}  // namespace
+}  // namespace team_test

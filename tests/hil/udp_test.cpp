@@ -98,4 +98,4 @@ TEST(Udp, MoveTransfersTheSocket) {
   EXPECT_TRUE(d.open(port).ok());
 }
 
-}  // namespace
+}  // namespace udp_test

@@ -291,5 +291,5 @@ TEST(Fractile, NaNCases) {
   EXPECT_TRUE(std::isnan(fractile({1, -kInf, 3}, 0.5)));
 }
 
-}  // namespace
+}  // namespace fragility_test
 }  // namespace ntn::ida

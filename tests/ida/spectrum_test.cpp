@@ -156,5 +156,5 @@ TEST(PeakGroundAcceleration, LargestMagnitude) {
   EXPECT_TRUE(std::isnan(peak_ground_acceleration(with_nan)));
 }
 
-}  // namespace
+}  // namespace spectrum_test
 }  // namespace ntn::ida

@@ -107,4 +107,4 @@ TEST(IdaTrace, BadPlansAreNamed) {
   EXPECT_TRUE(ntn::ida::check_plan(hunt));
 }
 
-}  // namespace
+}  // namespace trace_test

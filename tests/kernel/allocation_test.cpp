@@ -185,4 +185,4 @@ void expect_no_allocations(double beta_ratio) {
   }
 }
 
-}  // namespace
+}  // namespace allocation_test

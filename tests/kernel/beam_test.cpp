@@ -414,4 +414,4 @@ TEST(BeamStiffness, TimoshenkoShortThickCantilever) {
   check_timoshenko_cantilever<4>(ntn::kUy);
 }
 
-}  // namespace
+}  // namespace beam_test

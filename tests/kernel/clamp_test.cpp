@@ -228,4 +228,4 @@ TEST(Clamp, StopRangesOfTwoTreesAreTheSameWhenAModelIsBuiltAgain) {
   }
 }
 
-}  // namespace
+}  // namespace clamp_test

@@ -147,4 +147,4 @@ TEST_F(Determinism, ATinyChangeOfOneInputChangesTheState) {
   EXPECT_NE(std::memcmp(a.u.data(), b.u.data(), sizeof(a.u)), 0);
 }
 
-}  // namespace
+}  // namespace determinism_test

@@ -192,4 +192,4 @@ TEST(DofPass, FusedPassIsTheUnfusedStages) {
   }
 }
 
-}  // namespace
+}  // namespace dof_pass_test

@@ -283,4 +283,4 @@ TEST(ElementPass, RunsHaveTheSameStatesStepByStep) {
   }
 }
 
-}  // namespace
+}  // namespace element_pass_test

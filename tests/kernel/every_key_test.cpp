@@ -79,4 +79,4 @@ TEST(EveryKeyModel, RepeatAndCheckpointGiveTheSameBits) {
   EXPECT_GT(moved, 1e-5);  // measured 6e-5 m
 }
 
-}  // namespace
+}  // namespace every_key_test

@@ -272,4 +272,4 @@ TEST(Forest, ATreeGroundedTwiceIsACycle) {
   EXPECT_EQ(b2.fb.status.where, 2);
 }
 
-}  // namespace
+}  // namespace forest_test

@@ -296,4 +296,4 @@ TEST(HingeInit, PlasticLawsAreChecked) {
   expect_error(ntn::InitError::kBadHinge, {2}, "plastic with a negative dashpot");
 }
 
-}  // namespace
+}  // namespace hinge_init_test

@@ -170,4 +170,4 @@ TEST(HingeProjection, StartPutsInitialConditionsOnTheConstraints) {
   EXPECT_EQ(g.node2, ntn::kGround);
 }
 
-}  // namespace
+}  // namespace hinge_projection_test

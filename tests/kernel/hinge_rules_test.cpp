@@ -222,4 +222,4 @@ INSTANTIATE_TEST_SUITE_P(Methods, HingeRules,
                            return std::string(name(i.param));
                          });
 
-}  // namespace
+}  // namespace hinge_rules_test

@@ -371,4 +371,4 @@ TEST(Hysteresis, ReturnMappingFollowsAHandComputedPath) {
   EXPECT_NEAR(peak, 0.2, 1e-15);  // |d_p| went 0.2, then 0.05
 }
 
-}  // namespace
+}  // namespace hinge_test

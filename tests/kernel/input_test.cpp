@@ -162,4 +162,4 @@ TEST(ChannelReferences, InitRefusesBadInputsAndOutputs) {
   }
 }
 
-}  // namespace
+}  // namespace input_test

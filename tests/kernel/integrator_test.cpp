@@ -208,7 +208,7 @@ TEST(Integrator, UndampedEnergyIsConservedOver1e5Steps) {
   EXPECT_LE(last, first * (1 + 1e-9));
 }
 
-}  // namespace
+}  // namespace integrator_test
 
 namespace integrator_test {
 
@@ -248,4 +248,4 @@ TEST(Integrator, InitialStateIsTheModelsU0AndV0) {
   EXPECT_EQ(std::memcmp(own.v.data(), state.v.data(), sizeof own.v), 0);
 }
 
-}  // namespace
+}  // namespace integrator_test

@@ -159,4 +159,4 @@ TEST(Loads, BaseExcitationAndForceInputsEqualTheEquivalentLoads) {
   EXPECT_NE(state.u[dof(7, ntn::kUy)], 0.0);
 }
 
-}  // namespace
+}  // namespace loads_test

@@ -201,4 +201,4 @@ TEST(Status, EveryInitErrorHasItsOwnMessage) {
   }
 }
 
-}  // namespace
+}  // namespace model_test

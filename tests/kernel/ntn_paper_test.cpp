@@ -174,4 +174,4 @@ TEST(NtnPaper, AfterUpdateScalesAPairPastItsRigidBranchOntoIt) {
     EXPECT_EQ(u[j], inside[j]) << j;
 }
 
-}  // namespace
+}  // namespace ntn_paper_test

@@ -170,4 +170,4 @@ TEST(Outputs, AbsoluteAccelerationAndReactionUnderGroundAcceleration) {
   EXPECT_NEAR(sc.outputs[3] / (total_mass * ag * g), 1.0, 1e-8);
 }
 
-}  // namespace
+}  // namespace outputs_test

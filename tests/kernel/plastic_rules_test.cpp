@@ -233,4 +233,4 @@ TEST(PlasticRules, NoHeapAllocationAndBitIdenticalCheckpointsWithAFrictionCircle
   repeat_runs_and_checkpoints(Law::kFrictionCircle);
 }
 
-}  // namespace
+}  // namespace plastic_rules_test

@@ -197,4 +197,4 @@ TEST(FrameSubsteps, AutoStepsPassTheRule) {
   }
 }
 
-}  // namespace
+}  // namespace time_step_extremes_test

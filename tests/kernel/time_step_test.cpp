@@ -289,4 +289,4 @@ INSTANTIATE_TEST_SUITE_P(
                     0.4}),
     [](const ::testing::TestParamInfo<ElementCase>& i) { return std::string(i.param.name); });
 
-}  // namespace
+}  // namespace time_step_test

@@ -151,4 +151,4 @@ TEST(ModalCantilever, EqualsTheDenseReferenceOfTheKernelMatrices) {
   EXPECT_LT(worst, 1e-9);
 }
 
-}  // namespace
+}  // namespace modal_cantilever_test

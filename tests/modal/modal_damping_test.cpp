@@ -154,4 +154,4 @@ TEST(RayleighDamping, FreeDecayOfBothModesGivesTheRatio) {
   }
 }
 
-}  // namespace
+}  // namespace modal_damping_test

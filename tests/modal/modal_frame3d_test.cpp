@@ -57,4 +57,4 @@ TEST(ModalFrame3d, ModesOfTheDefaultModel) {
   EXPECT_NEAR(r.damping_ratio(ix), d.damping_ratio, 0.005 / 1.74 * d.damping_ratio);
 }
 
-}  // namespace
+}  // namespace modal_frame3d_test

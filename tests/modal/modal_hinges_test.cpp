@@ -378,4 +378,4 @@ TEST(ModalHinges, CyclesAndBadHingesAreRefused) {
   EXPECT_NE(r.error.find("hinge 0"), std::string::npos) << r.error;
 }
 
-}  // namespace
+}  // namespace modal_hinges_test

@@ -131,4 +131,4 @@ TEST(ModalKernel, EccentricHingesWithReleasedRotations) {
   check("eccentric chain, beam ends as node 2", eccentric);
 }
 
-}  // namespace
+}  // namespace modal_kernel_test

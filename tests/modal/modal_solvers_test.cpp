@@ -196,4 +196,4 @@ TEST(ModalSolvers, ModeTable) {
   EXPECT_NE(ntn::modal::mode_table(bad).find("failed: x"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace modal_solvers_test

@@ -296,4 +296,4 @@ TEST_F(ModeCheckEndToEnd, TooShortForTheResolutionSaysTheDurationNeeded) {
   EXPECT_NE(p.output.find("give a record of at least 200 s"), std::string::npos) << p.output;
 }
 
-}  // namespace
+}  // namespace modecheck_e2e_test

@@ -307,4 +307,4 @@ TEST_F(ModeCheckInput, LibraryThrowsInputError) {
   EXPECT_THROW((void)mc::check_files(model(), path, o), mc::InputError);
 }
 
-}  // namespace
+}  // namespace modecheck_input_test

@@ -462,4 +462,4 @@ TEST(ModeCheckOptions, NanIsRefusedByTheSteps) {
   }
 }
 
-}  // namespace
+}  // namespace modecheck_unit_test

@@ -66,4 +66,4 @@ TEST(ModelBytes, PerElementNodeAndHinge) {
             64 * (f.per_node + f.per_node_with_hinges));
 }
 
-}  // namespace
+}  // namespace modelc_bytes_test

@@ -99,5 +99,5 @@ fix = ["ux"]
             "supports with axes)\n");
 }
 
-}  // namespace
+}  // namespace modelc_channels_test
 }  // namespace ntn::modelc::compile

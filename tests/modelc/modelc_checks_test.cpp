@@ -159,5 +159,5 @@ fix = ["ux", "uy", "uz"]
       << n;
 }
 
-}  // namespace
+}  // namespace modelc_checks_test
 }  // namespace ntn::modelc::compile

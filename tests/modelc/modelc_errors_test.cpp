@@ -364,4 +364,4 @@ TEST(ModelErrors, SortedByPosition) {
   }));
 }
 
-}  // namespace
+}  // namespace modelc_errors_test

@@ -116,5 +116,5 @@ fix = "pinned"
       "m.toml:50:8: error: key 'supports[1].node': node 1 already has a support (line 33)\n");
 }
 
-}  // namespace
+}  // namespace modelc_hinges_supports_test
 }  // namespace ntn::modelc::compile

@@ -441,4 +441,4 @@ TEST(Hinges, InfoPrintsPenaltyRatio) {
   }
 }
 
-}  // namespace
+}  // namespace modelc_hinges_test

@@ -153,7 +153,7 @@ gravity = "static"
       << format_all(u.errors);
 }
 
-}  // namespace
+}  // namespace modelc_initial_test
 }  // namespace ntn::modelc::compile
 
 namespace ntn::modelc::compile {
@@ -223,5 +223,5 @@ gravity = "static"
   EXPECT_NEAR(d.nodes[1].u0[4], -theta, 1e-9 * theta);
 }
 
-}  // namespace
+}  // namespace modelc_initial_test
 }  // namespace ntn::modelc::compile

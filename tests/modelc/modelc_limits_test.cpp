@@ -356,4 +356,4 @@ TEST(ModelFrames, InfoHasNoRunawayNumbers) {
   EXPECT_LE(longest, 17) << info;
 }
 
-}  // namespace
+}  // namespace modelc_limits_test

@@ -570,4 +570,4 @@ TEST(ModelInfo, ReportsFigures) {
   }
 }
 
-}  // namespace
+}  // namespace modelc_load_test

@@ -59,5 +59,5 @@ TEST(ModelcLoads, UnknownNodeOrFunctionAddsNothing) {
             "m.toml:45:12: error: key 'loads[1].function': unknown time function 'nope'\n");
 }
 
-}  // namespace
+}  // namespace modelc_loads_test
 }  // namespace ntn::modelc::compile

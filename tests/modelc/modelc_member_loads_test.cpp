@@ -176,5 +176,5 @@ TEST(MemberLoads, ReleasedEndLoadsTheReleaseNode) {
   EXPECT_TRUE(on_release);
 }
 
-}  // namespace
+}  // namespace modelc_member_loads_test
 }  // namespace ntn::modelc::compile

@@ -108,5 +108,5 @@ section = "s"
             "are both at (0, 0, 3)\n");
 }
 
-}  // namespace
+}  // namespace modelc_mesh_test
 }  // namespace ntn::modelc::compile

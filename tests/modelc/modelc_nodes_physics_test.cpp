@@ -344,4 +344,4 @@ TEST(ModelcPointMassOffsetPhysics, PenaltySpringsApproachTheExactOffset) {
   }
 }
 
-}  // namespace
+}  // namespace modelc_nodes_physics_test

@@ -405,5 +405,5 @@ ry = "free"
   }
 }
 
-}  // namespace
+}  // namespace modelc_nodes_test
 }  // namespace ntn::modelc::compile

@@ -593,4 +593,4 @@ INSTANTIATE_TEST_SUITE_P(
                 "'plastic'"}),
     [](const ::testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
-}  // namespace
+}  // namespace modelc_plastic_test

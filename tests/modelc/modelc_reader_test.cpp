@@ -85,5 +85,5 @@ TEST(ModelcReader, HingeAxesMustBeARotation) {
       << e;
 }
 
-}  // namespace
+}  // namespace modelc_reader_test
 }  // namespace ntn::modelc::compile

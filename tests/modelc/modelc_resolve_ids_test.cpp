@@ -66,5 +66,5 @@ TEST(ModelcResolveIds, UnknownReferencesAreReportedWhereTheyAre) {
             "m.toml:41:12: error: key 'members[0].section': unknown section 't'\n");
 }
 
-}  // namespace
+}  // namespace modelc_resolve_ids_test
 }  // namespace ntn::modelc::compile

@@ -58,5 +58,5 @@ TEST(ModelcTimeStep, DtMustDivideTheFrame) {
             "3333.33); use dt = \"auto\" or the period / N\n");
 }
 
-}  // namespace
+}  // namespace modelc_time_step_test
 }  // namespace ntn::modelc::compile

@@ -191,7 +191,7 @@ TEST(PlotCli, Frame3dHingeForces) {
 }
 #endif
 
-}  // namespace
+}  // namespace plot_cli_test
 
 namespace plot_cli_test {
 
@@ -305,4 +305,4 @@ TEST(PlotCli, HysteresisWithABackbone) {
   EXPECT_EQ(r.err.find("not drawn"), std::string::npos) << r.err;
 }
 
-}  // namespace
+}  // namespace plot_cli_test

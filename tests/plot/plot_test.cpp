@@ -262,4 +262,4 @@ TEST(Plot, FailingGnuplotIsReported) {
   EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
-}  // namespace
+}  // namespace plot_test

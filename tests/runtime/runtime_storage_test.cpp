@@ -324,4 +324,4 @@ TEST(RuntimeStorage, BenchFramePlastic) {
 
 #endif
 
-}  // namespace
+}  // namespace runtime_storage_test

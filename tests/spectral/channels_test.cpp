@@ -224,5 +224,5 @@ TEST(Errors, BadOptionsAndShapes) {
              "no spectral line in the band");
 }
 
-}  // namespace
+}  // namespace channels_test
 }  // namespace ntn::spectral

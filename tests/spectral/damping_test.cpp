@@ -98,5 +98,5 @@ TEST(Damping, ShortSegmentsOverestimateTheDamping) {
   EXPECT_GT(hp->resolution_ratio, 0.6);
 }
 
-}  // namespace
+}  // namespace damping_test
 }  // namespace ntn::spectral

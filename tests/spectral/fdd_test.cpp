@@ -94,5 +94,5 @@ TEST(Fdd, ShapeUtilities) {
   EXPECT_THROW((void)mac(Eigen::VectorXd(v), Eigen::VectorXd(Eigen::Vector2d(1, 2))), Error);
 }
 
-}  // namespace
+}  // namespace fdd_test
 }  // namespace ntn::spectral

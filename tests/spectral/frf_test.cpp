@@ -107,5 +107,5 @@ TEST(Frf, CoherenceFallsWithOutputNoiseAsPredicted) {
   EXPECT_NEAR(mean_diff / lines, 0.0, 0.005);
 }
 
-}  // namespace
+}  // namespace frf_test
 }  // namespace ntn::spectral

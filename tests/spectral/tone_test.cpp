@@ -165,5 +165,5 @@ TEST(Tone, AmplitudeWithinTheScallopingBound) {
   }
 }
 
-}  // namespace
+}  // namespace tone_test
 }  // namespace ntn::spectral

@@ -210,5 +210,5 @@ TEST(Welch, Grid) {
   EXPECT_NEAR(g.enbw_hz, 1.5 * g.df(), 1e-12);  // Hann: 1.5 bins exactly (window_test)
 }
 
-}  // namespace
+}  // namespace welch_test
 }  // namespace ntn::spectral

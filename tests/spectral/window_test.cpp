@@ -110,5 +110,5 @@ TEST(Window, Names) {
   EXPECT_THROW((void)make_window(Window::kHann, 0), Error);
 }
 
-}  // namespace
+}  // namespace window_test
 }  // namespace ntn::spectral

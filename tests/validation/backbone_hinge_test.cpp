@@ -303,4 +303,4 @@ TEST(BackboneCycles, ACheckpointInTheMiddleResumesToTheSameBits) {
   }
 }
 
-}  // namespace
+}  // namespace backbone_hinge_test

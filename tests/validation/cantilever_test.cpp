@@ -270,4 +270,4 @@ TEST(Cantilever, SuddenlyAppliedLoadPeaksAtTwiceTheStaticDeflection) {
   EXPECT_LE(peak, 2.0 * static_closed * (1 + 1e-9));  // the upper bound above, to rounding
 }
 
-}  // namespace
+}  // namespace cantilever_test

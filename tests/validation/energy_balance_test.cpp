@@ -55,4 +55,4 @@ TEST(EnergyBalance, YieldingPortalUnderElCentroClosesToRounding) {
   std::printf("  plastic directions that yielded: %d of %zu\n", yielded, kS.hystereses);
 }
 
-}  // namespace
+}  // namespace energy_balance_test

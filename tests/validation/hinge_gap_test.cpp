@@ -424,4 +424,4 @@ TEST(HingeGap, Equation33ByHand) {
   }
 }
 
-}  // namespace
+}  // namespace hinge_gap_test

@@ -222,4 +222,4 @@ TEST(HingePenalty, EccentricRigidHinge) {
   check_against_penalty<kEccentric>("eccentric rigid hinge", build_eccentric, 3.0, 0.05);
 }
 
-}  // namespace
+}  // namespace hinge_penalty_test

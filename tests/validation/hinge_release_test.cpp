@@ -311,4 +311,4 @@ TEST(HingeRelease, TimeHistoryAgreesWithPenalty) {
   EXPECT_LT(b.own[kRefinements - 1], 1e-3);
 }
 
-}  // namespace
+}  // namespace hinge_release_test

@@ -144,4 +144,4 @@ TEST(HingeRotatedFrame, NtnPaperDriftIsReported) {
   EXPECT_GT(p.peak_translation, 1e-5);
 }
 
-}  // namespace
+}  // namespace hinge_rotated_frame_test

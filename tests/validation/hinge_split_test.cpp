@@ -170,4 +170,4 @@ TEST(HingeSplit, AReleasedDirectionDoesChangeTheResponse) {
   EXPECT_GT(e.rotation, 1e-2);
 }
 
-}  // namespace
+}  // namespace hinge_split_test

@@ -191,4 +191,4 @@ TEST(HingeStatics, LinearSpringCarriesTheStaticMoment) {
   }
 }
 
-}  // namespace
+}  // namespace hinge_statics_test

@@ -118,4 +118,4 @@ TEST(HingeStops, TwoStopsSqueezingOneJointHoldAndTakeNoEnergy) {
   }
 }
 
-}  // namespace
+}  // namespace hinge_stops_test

@@ -202,4 +202,4 @@ TEST(HingeSupport, MasslessRotationsOfThePinAreHeld) {
   }
 }
 
-}  // namespace
+}  // namespace hinge_support_test

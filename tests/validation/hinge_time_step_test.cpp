@@ -374,4 +374,4 @@ TEST(HingeTimeStep, StiffnessProportionalDampedSpringStepIsConservative) {
   damped_check("two hinges on a joint node, beta", shared, 0.3);
 }
 
-}  // namespace
+}  // namespace hinge_time_step_test

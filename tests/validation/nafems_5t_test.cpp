@@ -58,4 +58,4 @@ TEST(Nafems5T, DeepSimplySupportedBeamStepLoadRayleighDamping) {
   EXPECT_NEAR(t_peak / 11.7e-3, 1.0, 0.02);
 }
 
-}  // namespace
+}  // namespace nafems_5t_test

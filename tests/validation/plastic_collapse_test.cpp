@@ -232,4 +232,4 @@ TEST(PlasticCollapse, PortalCombinedMechanismUnderMidspanLoad) {
                  ntn::models::portal_collapse_combined::kOutputNames, "portal, H and V");
 }
 
-}  // namespace
+}  // namespace plastic_collapse_test

@@ -402,4 +402,4 @@ TEST(PlasticBelowYield, IsBitIdenticalToLinear) {
   EXPECT_GT(pla.state.dissipated[1], 0.0);
 }
 
-}  // namespace
+}  // namespace plastic_hinge_test

@@ -208,4 +208,4 @@ TEST(MemberLoadForces, ElementChannelsReadTheLoadedBeamsEndForces) {
   EXPECT_NEAR(out[3], 0.0, 1e-9 * v_support);
 }
 
-}  // namespace
+}  // namespace preload_test

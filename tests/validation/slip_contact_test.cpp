@@ -437,4 +437,4 @@ TEST(FrictionCircle, ABlockPulledObliquelySlidesAlongThePullOnceItPassesTheCircl
   }
 }
 
-}  // namespace
+}  // namespace slip_contact_test

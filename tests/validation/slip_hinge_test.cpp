@@ -445,4 +445,4 @@ TEST(SlipRules, RepeatRunsAreBitIdenticalAndNtnPaperRefuses) {
   EXPECT_EQ(st.where, 0);
 }
 
-}  // namespace
+}  // namespace slip_hinge_test

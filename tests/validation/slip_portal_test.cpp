@@ -93,4 +93,4 @@ TEST(SlipPortal, BasesSlideByCoulombsLawAndTheEnergyBalanceCloses) {
   EXPECT_GT(w->outputs[work], 0.0);  // friction work, f ds with f the limit: positive
 }
 
-}  // namespace
+}  // namespace slip_portal_test

@@ -110,4 +110,4 @@ TEST(Wave, AxialPulseTravelsAtTheBarWaveSpeed) {
   EXPECT_NEAR((p1.time - 0.5 * T) / (kStation1 * L / kN / c), 1.0, 1e-2);
 }
 
-}  // namespace
+}  // namespace wave_test
