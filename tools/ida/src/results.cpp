@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "ntn/plot/plot.hpp"
+#include "numbers.hpp"
 
 namespace ntn::ida {
 namespace {
@@ -15,15 +16,10 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  return detail::exact(v);
 }
-
 std::string short_number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
+  return detail::rounded(v, 3);
 }
 
 // The rows of record r, by intensity.

@@ -15,6 +15,7 @@
 #include "ntn/modelc/diagnostic.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/run/loaded_model.hpp"
+#include "numbers.hpp"
 #include "run_driver.hpp"
 
 namespace ntn::ida {
@@ -24,15 +25,10 @@ constexpr double kG = 9.80665;  // m/s^2 per g
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  return detail::exact(v);
 }
-
 std::string short_number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
+  return detail::rounded(v, 4);
 }
 
 // A status is one CSV field: no commas, no line breaks.
