@@ -31,11 +31,11 @@ std::vector<const RunRow*> rows_of(const std::vector<RunRow>& rows, std::size_t 
   return out;
 }
 
-int hinge_level(const Study& study, const RunRow& row) {
+// The hinge_level column, or nothing (a model without plastic hinges, or --edp left it out).
+std::optional<std::size_t> level_column(const Study& study) {
   for (std::size_t k = 0; k < study.columns().size(); ++k)
-    if (study.columns()[k].kind == EdpColumn::Kind::kHingeLevel)
-      return static_cast<int>(row.edps[k]);
-  return 0;
+    if (study.columns()[k].kind == EdpColumn::Kind::kHingeLevel) return k;
+  return std::nullopt;
 }
 
 std::optional<std::string> write_file(const std::string& path, const std::string& text) {
@@ -98,8 +98,10 @@ const Capacity& RecordCapacities::of(LimitState s) const {
 
 std::vector<RecordCapacities> capacities(const Study& study, const std::vector<RunRow>& rows) {
   std::vector<RecordCapacities> out(study.records().size());
+  const std::optional<std::size_t> levels = level_column(study);
   for (std::size_t r = 0; r < out.size(); ++r) {
     RecordCapacities& c = out[r];
+    c.levels = levels.has_value();
     double highest = 0;
     for (const RunRow* row : rows_of(rows, r)) {
       if (row->error()) {
@@ -107,10 +109,12 @@ std::vector<RecordCapacities> capacities(const Study& study, const std::vector<R
         continue;
       }
       highest = std::max(highest, row->im);
-      const int level = row->collapse ? 4 : hinge_level(study, *row);
-      Capacity* reached[3] = {&c.io, &c.ls, &c.cp};
-      for (int k = 0; k < 3; ++k)
-        if (level >= k + 2 && !reached[k]->im) reached[k]->im = row->im;
+      if (levels) {
+        const int level = row->collapse ? 4 : static_cast<int>(row->edps[*levels]);
+        Capacity* reached[3] = {&c.io, &c.ls, &c.cp};
+        for (int k = 0; k < 3; ++k)
+          if (level >= k + 2 && !reached[k]->im) reached[k]->im = row->im;
+      }
       if (row->collapse && !c.collapse.im) c.collapse.im = row->im;
     }
     c.io.highest = c.ls.highest = c.cp.highest = c.collapse.highest = highest;
@@ -121,6 +125,14 @@ std::vector<RecordCapacities> capacities(const Study& study, const std::vector<R
 std::vector<Fragility> fragilities(const std::vector<RecordCapacities>& caps) {
   std::vector<Fragility> out;
   for (const LimitState s : kLimitStates) {
+    if (s != LimitState::kCollapse && !caps.empty() && !caps[0].levels) {
+      LognormalFit none;
+      none.error =
+          "no performance levels: the model has no plastic hinge directions (or --edp "
+          "left out hinge_level)";
+      out.push_back({s, none});
+      continue;
+    }
     std::vector<double> observed, censored;
     for (const RecordCapacities& c : caps) {
       if (!c.traced) continue;

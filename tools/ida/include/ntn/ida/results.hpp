@@ -32,6 +32,7 @@ struct RecordCapacities {
   Capacity io, ls, cp, collapse;
   const Capacity& of(LimitState s) const;
   bool traced = true;  // false: an error ended the trace (left out of the fits)
+  bool levels = true;  // false: no hinge_level column (IO, LS and CP unknown, not fitted)
 };
 
 // `rows`: every run of the study, in any order. The capacities of each record: for each limit
