@@ -143,7 +143,11 @@ std::vector<Fragility> fragilities(const std::vector<RecordCapacities>& caps) {
         censored.push_back(k.highest);
       }
     }
-    out.push_back({s, fit_lognormal(observed, censored)});
+    LognormalFit fit = fit_lognormal(observed, censored);
+    if (!fit.ok() && observed.empty())
+      fit.error = "no record reached it (" + std::to_string(censored.size()) +
+                  " ran without reaching it up to their highest intensity)";
+    out.push_back({s, fit});
   }
   return out;
 }
