@@ -4,6 +4,13 @@
 
 namespace ntn::hil {
 
+std::optional<std::size_t> first_out_of_range(const InputSpec& spec,
+                                              std::span<const double> values) {
+  for (std::size_t s = 0; s < values.size(); ++s)
+    if (!(values[s] >= spec.min && values[s] <= spec.max)) return s;
+  return std::nullopt;
+}
+
 std::optional<std::string> load_input_record(const InputSpec& spec, const std::string& name,
                                              const std::string& file, const std::string& column,
                                              bool check_range, io::Record& record) {
@@ -13,17 +20,14 @@ std::optional<std::string> load_input_record(const InputSpec& spec, const std::s
       io::input_unit(spec.kind == InputKind::kGroundAcceleration, spec.dof, spec.scale);
   if (const auto e = r.record->to_unit(unit)) return file + ": error: input '" + name + "': " + *e;
   if (check_range) {
-    for (std::size_t s = 0; s < r.record->values.size(); ++s) {
-      const double v = r.record->values[s];
-      if (v < spec.min || v > spec.max) {
-        char text[512];
-        std::snprintf(text, sizeof text,
-                      "%s: error: sample %zu (t = %g s) = %g %s is outside the accepted range "
-                      "[%g, %g] of input '%s'",
-                      file.c_str(), s + 1, r.record->t0 + static_cast<double>(s) * r.record->dt, v,
-                      unit.name.c_str(), spec.min, spec.max, name.c_str());
-        return std::string(text);
-      }
+    if (const auto s = first_out_of_range(spec, r.record->values)) {
+      char text[512];
+      std::snprintf(text, sizeof text,
+                    "%s: error: sample %zu (t = %g s) = %g %s is outside the accepted range "
+                    "[%g, %g] of input '%s'",
+                    file.c_str(), *s + 1, r.record->t0 + static_cast<double>(*s) * r.record->dt,
+                    r.record->values[*s], unit.name.c_str(), spec.min, spec.max, name.c_str());
+      return std::string(text);
     }
   }
   record = std::move(*r.record);

@@ -201,8 +201,10 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
     }
   }
 
-  // The records: in the input's unit for the runs, in g for the intensity measure.
-  const io::Unit g = *io::parse_unit("g");
+  // The records, in the input's unit. Their intensity measures are in g: PGA and Sa are linear
+  // in the record, so they are computed on it and converted once (exactly unchanged for an
+  // input in g).
+  const double to_g = io::input_unit(true, in.dof, in.scale).si / io::parse_unit("g")->si;
   for (const std::string& path : config.record_paths) {
     RecordEntry e;
     e.path = path;
@@ -212,22 +214,12 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
       exit_code = 2;
       return nullptr;
     }
-    io::ReadResult raw = io::read_record(path);
-    if (!raw.record) {
-      errors.push_back(path + ": cannot be read");
-      exit_code = 2;
-      return nullptr;
-    }
-    if (const auto err = raw.record->to_unit(g)) {
-      errors.push_back(path + ": " + *err);
-      exit_code = 2;
-      return nullptr;
-    }
-    e.pga = peak_ground_acceleration(raw.record->values);
+    e.pga = peak_ground_acceleration(e.record.values) * to_g;
     e.im = config.measure == Measure::kPga
                ? e.pga
-               : pseudo_spectral_acceleration(raw.record->values, raw.record->dt, s->period_,
-                                              config.damping);
+               : pseudo_spectral_acceleration(e.record.values, e.record.dt, s->period_,
+                                              config.damping) *
+                     to_g;
     if (!(e.im > 0) || !std::isfinite(e.im)) {
       errors.push_back(path + ": its intensity measure is " + short_number(e.im) +
                        ": it cannot be scaled to an intensity");
@@ -268,8 +260,8 @@ std::string Study::measure_name() const {
 
 RunRow Study::run(std::size_t r, double im) {
   const RecordEntry& e = records_[r];
-  const run::LoadedModel& lm = *model_;
-  const ModelSpec<kRunTime>& spec = lm.spec();
+  run::LoadedModel& m = *model_;
+  const ModelSpec<kRunTime>& spec = m.spec();
   const InputSpec& in = spec.inputs[input_];
   RunRow row;
   row.record = r;
@@ -286,17 +278,15 @@ RunRow Study::run(std::size_t r, double im) {
   }
   io::Record& scaled = feed[input_];
   scaled = e.record;
-  for (double& v : scaled.values) {
+  for (double& v : scaled.values)
     v *= row.scale;
-    if (!std::isfinite(v) || v < in.min || v > in.max) {
-      row.status = "error: scaled by " + short_number(row.scale) + " the record reaches " +
-                   short_number(v) + " " + scaled.units + "; the input accepts " +
-                   short_number(in.min) + " to " + short_number(in.max);
-      return row;
-    }
+  if (const auto k = hil::first_out_of_range(in, scaled.values)) {
+    row.status = "error: scaled by " + short_number(row.scale) + " the record reaches " +
+                 short_number(scaled.values[*k]) + " " + scaled.units + "; the input accepts " +
+                 short_number(in.min) + " to " + short_number(in.max);
+    return row;
   }
 
-  run::LoadedModel& m = *model_;
   const double seconds = scaled.duration() + config_.tail;
   run::RunRequest request;
   request.steps = static_cast<std::int64_t>(std::ceil(seconds / m.model().dt - 1e-9));

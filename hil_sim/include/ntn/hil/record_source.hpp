@@ -22,6 +22,11 @@ namespace ntn::hil {
 // gate, so they are checked whole here, before the run. Returns the message (one line, as the
 // programs print it: "FILE:LINE:COL: error: ..." or "FILE: error: ..."), or nothing when
 // `record` holds the converted record.
+// The first sample outside the input's accepted range [spec.min, spec.max] (a NaN is outside
+// it), or nothing: what load_input_record checks, and ntn-ida for a record it scaled.
+std::optional<std::size_t> first_out_of_range(const InputSpec& spec,
+                                              std::span<const double> values);
+
 std::optional<std::string> load_input_record(const InputSpec& spec, const std::string& name,
                                              const std::string& file, const std::string& column,
                                              bool check_range, io::Record& record);
