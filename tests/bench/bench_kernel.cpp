@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <random>
 #include <string>
 
 #include <Eigen/SparseCore>
@@ -226,7 +227,19 @@ void peer_step(SparsePeer& p) {
 
 // kOnTheFly: the kernel's step (its SIMD element pass); kScalar: the same with the scalar
 // reference element pass (element_pass.hpp: the same bits).
-enum class Formulation { kOnTheFly, kScalar, kStored, kSparse, kSparsePruned, kTeam1, kTeam2 };
+// kFileOrder, kFileShuffled: the kernel's step on the model with its elements in the file's own
+// order (file_order_model), the grid's or a shuffled one.
+enum class Formulation {
+  kOnTheFly,
+  kScalar,
+  kStored,
+  kSparse,
+  kSparsePruned,
+  kTeam1,
+  kTeam2,
+  kFileOrder,
+  kFileShuffled
+};
 
 // The multi-core step's workers (hil_sim's WorkerTeam), made once before the first timed loop
 // that uses them: a team of 1 (the team's phases on this thread alone) and of 2.
@@ -262,6 +275,44 @@ const Model<sizes_of(G)>& model_of() {
   }();
   (void)ready;
   return static_instance<Model<S>>();
+}
+
+// The grid's model with its elements taken in the file's own order, as the kernel took them
+// before the model's element order (element_order.hpp): built by init(), then its blocks laid
+// out again with element e at place e. kShuffle: the file's elements first put in a random order
+// (seed 7), as a file written by another program may list them. For comparison only.
+template <Grid G, bool kShuffle>
+Model<sizes_of(G)>& file_order_model() {
+  static constexpr Sizes S = sizes_of(G);
+  static constexpr int kTag = kShuffle ? 2 : 1;
+  static const bool ready = [] {
+    auto& spec = static_instance<ModelSpec<S>, kTag>();
+    build_frame<G>(spec);
+    if constexpr (kShuffle) {
+      std::vector<ElementSpec> elements(spec.elements.begin(), spec.elements.end());
+      std::mt19937_64 rng(7);
+      std::shuffle(elements.begin(), elements.end(), rng);
+      std::copy(elements.begin(), elements.end(), spec.elements.begin());
+    }
+    Model<S>& m = static_instance<Model<S>, kTag>();
+    const InitStatus st = init(spec, m, static_instance<InitWorkspace<S>>());
+    if (!st.ok()) {
+      std::fprintf(stderr, "init failed: %s at %d\n", to_string(st.error), st.where);
+      std::abort();
+    }
+    std::vector<BeamData> beams(S.elements);
+    for (std::size_t e = 0; e < S.elements; ++e)
+      beams[e] = m.beam(e);
+    m.beams.fill(BeamBlock{});
+    m.rotations.fill(BeamRotations{});
+    for (std::size_t e = 0; e < S.elements; ++e) {
+      set_lane(m.beams[e / kBeamLanes], m.rotations[e / kBeamLanes], e % kBeamLanes, beams[e]);
+      m.element_slot[e] = static_cast<std::int32_t>(e);
+    }
+    return true;
+  }();
+  (void)ready;
+  return static_instance<Model<S>, kTag>();
 }
 
 template <Grid G>
@@ -324,7 +375,8 @@ void reset(State<S>& s) {
 // One step of either formulation; `sb` is used (and must be set) by the stored one only.
 template <Formulation F, Sizes S>
 StepStatus advance(const Model<S>& m, const StoredBeams<S>* sb, State<S>& s, Scratch<S>& w) {
-  if constexpr (F == Formulation::kOnTheFly || F == Formulation::kScalar) {
+  if constexpr (F == Formulation::kOnTheFly || F == Formulation::kScalar ||
+                F == Formulation::kFileOrder || F == Formulation::kFileShuffled) {
     return step(m, s, w, kGround);
   } else if constexpr (F == Formulation::kTeam1 || F == Formulation::kTeam2) {
     static const Team team = workers<team_size(F)>().team();
@@ -365,7 +417,10 @@ void bm_step(benchmark::State& bs) {
   State<S>& s = static_instance<State<S>>();
   Scratch<S>& w = static_instance<Scratch<S>>();
   (void)model_of<G>();
-  Model<S>& m = static_instance<Model<S>>();  // built by model_of; only its element pass is set
+  // Built by model_of (or file_order_model); only its element pass is set here.
+  Model<S>& m = F == Formulation::kFileOrder      ? file_order_model<G, false>()
+                : F == Formulation::kFileShuffled ? file_order_model<G, true>()
+                                                  : static_instance<Model<S>>();
   m.element_pass = F == Formulation::kScalar ? ElementPass::kScalar : ElementPass::kSimd;
   // The on-the-fly runs never build (or touch) the stored matrices.
   const StoredBeams<S>* sb = F == Formulation::kStored ? &stored_of<G>() : nullptr;
@@ -543,6 +598,12 @@ void register_frame() {
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark(("step/on_the_fly_scalar/elements:" + n).c_str(),
                                bm_step<G, Formulation::kScalar>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/file_order/elements:" + n).c_str(),
+                               bm_step<G, Formulation::kFileOrder>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/file_order_shuffled/elements:" + n).c_str(),
+                               bm_step<G, Formulation::kFileShuffled>)
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark(("step/stored_matrix/elements:" + n).c_str(),
                                bm_step<G, Formulation::kStored>)

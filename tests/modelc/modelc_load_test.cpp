@@ -562,6 +562,7 @@ TEST(ModelInfo, ReportsFigures) {
   const std::string per_element = "per element " + std::to_string(sizeof(ntn::BeamData)) + " B";
   for (const std::string& s :
        {std::string("nodes        104"), std::string("elements     104 in 26 members"),
+        std::string("order        26 blocks of 4, "),
         std::string("hinges       8: 0 explicit, 8 member-end releases, 0 supports with axes"),
         std::string("ntn_exact / penalty = "), std::string("stable dt"),
         std::string("set by member"), std::string("CFL (seed)"), std::string("substeps"),

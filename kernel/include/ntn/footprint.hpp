@@ -33,6 +33,7 @@ constexpr void model_members(const Sizes& s, V&& v) {
   const std::size_t blocks = beam_blocks(s.elements);
   v(&M::beams, blocks);
   v(&M::rotations, blocks);
+  v(&M::element_slot, s.elements);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);
   v(&M::damping, dofs);
@@ -147,6 +148,8 @@ constexpr void init_workspace_members(const Sizes& s, V&& v) {
   v(&M::slip_impulse, s.hystereses > 0 ? dofs : 0);
   v(&M::slip_response, s.hystereses > 0 ? dofs : 0);
   v(&M::slot_used, s.hystereses);
+  v(&M::order_elements, s.elements);
+  v(&M::order, s.elements);
 }
 
 template <class V>

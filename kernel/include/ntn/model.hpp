@@ -10,6 +10,7 @@
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
+#include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
@@ -25,10 +26,13 @@ struct Model : SizesOf<S> {
   static constexpr Sizes kSizes = S;
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
 
-  // The elements, kBeamLanes to a block in the model's order, and their rotations block by block
-  // (element_pass.hpp): beam(e) is one.
+  // The elements, kBeamLanes to a block in the model's order (element_order.hpp), and their
+  // rotations block by block (element_pass.hpp): beam(e) is element e of the model file.
   Array<BeamBlock, S, beam_blocks(S.elements)> beams{};
   Array<BeamRotations, S, beam_blocks(S.elements)> rotations{};
+  // Element e of the file -> its place k in the model's order (block k / kBeamLanes, lane
+  // k % kBeamLanes).
+  Array<std::int32_t, S, S.elements> element_slot{};
   Array<double, S, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
   // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
@@ -114,7 +118,8 @@ struct Model : SizesOf<S> {
   std::size_t dofs() const { return kDofsPerNode * this->sizes.nodes; }  // kDofs, in any storage
 
   BeamData beam(std::size_t e) const {
-    return lane(beams[e / kBeamLanes], rotations[e / kBeamLanes], e % kBeamLanes);
+    const auto k = static_cast<std::size_t>(element_slot[e]);
+    return lane(beams[k / kBeamLanes], rotations[k / kBeamLanes], k % kBeamLanes);
   }
 };
 
@@ -130,6 +135,9 @@ struct InitWorkspace : SizesOf<S> {
   Array<double, S, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_impulse{};
   Array<double, S, (S.hystereses > 0 ? Model<S>::kDofs : 0)> slip_response{};
   Array<std::uint8_t, S, S.hystereses> slot_used{};  // check_references: each slot used once
+  // The element order's (element_order.hpp): each element's nodes and AxisMap, and the order.
+  Array<OrderElement, S, S.elements> order_elements{};
+  Array<std::int32_t, S, S.elements> order{};
 };
 
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
@@ -290,11 +298,22 @@ template <Sizes S>
                                          spec.nodes[static_cast<std::size_t>(e.node_j)], e);
     if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, where};
     if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, where};
+    work.order_elements[i] = {e.node_i, e.node_j, axis_map(g.rotation)};
+  }
+  // The model's order (element_order.hpp), then each element into its lane.
+  element_order(std::span<const OrderElement>(work.order_elements.data(), sz.elements),
+                std::span<std::int32_t>(work.order.data(), sz.elements));
+  for (std::size_t k = 0; k < sz.elements; ++k) {
+    const auto i = static_cast<std::size_t>(work.order[k]);
+    const ElementSpec& e = spec.elements[i];
+    const BeamGeometry g = beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
+                                         spec.nodes[static_cast<std::size_t>(e.node_j)], e);
     BeamData b;
     b.node_i = e.node_i, b.node_j = e.node_j;
     b.rotation = g.rotation;
     b.k = beam_stiffness(e, g.length);
-    set_lane(model.beams[i / kBeamLanes], model.rotations[i / kBeamLanes], i % kBeamLanes, b);
+    set_lane(model.beams[k / kBeamLanes], model.rotations[k / kBeamLanes], k % kBeamLanes, b);
+    model.element_slot[i] = static_cast<std::int32_t>(k);
   }
 
   const SpecView v = view(spec);

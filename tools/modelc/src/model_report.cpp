@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 #include <vector>
 
 #include "ntn/beam.hpp"
+#include "ntn/element_order.hpp"
+#include "ntn/element_pass.hpp"
 #include "ntn/model.hpp"
 #include "ntn/modelc/model_bytes.hpp"
 
@@ -41,6 +44,36 @@ const char* method_name(HingeMethod h) {
       return "penalty (rigid directions as stiff springs)";
   }
   return "?";
+}
+
+// The kernel's element order of the model (ntn::element_order): its blocks of one orientation,
+// and the elements it takes in another place than the file's.
+std::string order_line(const ModelDescription& m) {
+  const std::size_t n = m.elements.size();
+  std::vector<OrderElement> el(n);
+  for (std::size_t e = 0; e < n; ++e) {
+    const ElementSpec& s = m.elements[e];
+    const BeamGeometry g = beam_geometry(m.nodes[static_cast<std::size_t>(s.node_i)],
+                                         m.nodes[static_cast<std::size_t>(s.node_j)], s);
+    el[e] = {s.node_i, s.node_j, axis_map(g.rotation)};
+  }
+  std::vector<std::int32_t> order(n);
+  element_order(el, order);
+  std::size_t moved = 0, uniform = 0;
+  const std::size_t blocks = beam_blocks(n);
+  for (std::size_t k = 0; k < n; ++k)
+    moved += order[k] != static_cast<std::int32_t>(k) ? 1 : 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    bool same = true;
+    for (std::size_t k = b * kBeamLanes + 1; k < std::min(n, (b + 1) * kBeamLanes); ++k)
+      same = same && el[static_cast<std::size_t>(order[k])].axes ==
+                         el[static_cast<std::size_t>(order[b * kBeamLanes])].axes;
+    uniform += same ? 1 : 0;
+  }
+  return std::to_string(blocks) + " blocks of " + std::to_string(kBeamLanes) + ", " +
+         std::to_string(uniform) + " of one orientation; " + std::to_string(moved) + " of " +
+         std::to_string(n) + " elements away from their place in the file (kernel/README, the " +
+         "model's element order)";
 }
 
 }  // namespace
@@ -103,6 +136,7 @@ std::string info_text(const ModelDescription& m) {
   }
   line("elements",
        std::to_string(z.elements) + " in " + std::to_string(m.members.size()) + " members");
+  line("order", order_line(m));
   line("DOFs", std::to_string(kDofsPerNode * z.nodes) + " (" + std::to_string(mt.free_dofs) +
                    " free, " +
                    std::to_string(kDofsPerNode * z.nodes - static_cast<std::size_t>(mt.free_dofs)) +
