@@ -34,8 +34,7 @@ double residual(const ntn::SpecView& v, const ntn::modal::ModalResult& r) {
                                          [&t](int i, int j, double x) { t.emplace_back(i, j, x); });
   Eigen::SparseMatrix<double> K(n, n);
   K.setFromTriplets(t.begin(), t.end());
-  std::vector<double> m(static_cast<std::size_t>(n));
-  ntn::assemble_lumped_mass(v, m);
+  const std::vector<double> m = ntn::modal::lumped_mass(v);
   double worst = 0;
   for (int i = 0; i < r.modes(); ++i) {
     const Eigen::VectorXd kphi = K * r.shapes.col(i);

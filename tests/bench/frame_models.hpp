@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ntn/kernel.hpp"
+#include "ntn/modal/assembly.hpp"
 
 namespace ntn::bench {
 
@@ -137,9 +138,7 @@ inline ElementSpec element(int i, int j, const Section& s, double rx, double ry,
 
 // dt_stable of a spec with its hinges' springs (DESIGN §6), from the lumped masses.
 inline StableStepReport stable_step_with_hinges(const SpecView& v) {
-  std::vector<double> mass(kDofsPerNode * v.nodes.size());
-  assemble_lumped_mass(v, mass);
-  return stable_time_step(v, mass);
+  return stable_time_step(v, modal::lumped_mass(v));
 }
 
 // Fills `spec` with the frame of grid G. Node and element numbering go storey by storey (columns,

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "ntn/kernel.hpp"
+#include "ntn/modal/assembly.hpp"
 #include "support/builders.hpp"
 #include "support/hinges.hpp"
 
@@ -71,8 +72,7 @@ void build(double k, double c) {
 
 // w = b^T M^-1 b of the ry spring: 1 / m_ry at each node (rigid directions add no mass here).
 double spring_w() {
-  std::array<double, ntn::kDofsPerNode * kS.nodes> mass{};
-  ntn::assemble_lumped_mass(ntn::view(spec), mass);
+  const std::vector<double> mass = ntn::modal::lumped_mass(ntn::view(spec));
   return 1.0 / mass[ntn::kDofsPerNode * kExtra + ntn::kRy] +
          1.0 / mass[ntn::kDofsPerNode * kMid + ntn::kRy];
 }

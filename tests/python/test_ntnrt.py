@@ -25,7 +25,7 @@ CHECK_MODES = os.environ["NTN_CHECK_MODES"]
 EXAMPLE = os.environ["NTN_EXAMPLE"]
 
 # ntn-run-frame3d on El Centro since issue 17 (tests/tools/runner_test.cmake, tests/determinism).
-FRAME3D_EL_CENTRO = "d0c35560af7c6163"
+FRAME3D_EL_CENTRO = "fe2a0f51b4edafe7"
 
 
 def cli_hash(args):

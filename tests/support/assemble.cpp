@@ -27,9 +27,8 @@ Eigen::MatrixXd global_stiffness(const ntn::SpecView& spec) {
 }
 
 Eigen::VectorXd lumped_mass(const ntn::SpecView& spec) {
-  Eigen::VectorXd m(dofs_of(spec));
-  ntn::assemble_lumped_mass(spec, std::span<double>(m.data(), static_cast<std::size_t>(m.size())));
-  return m;
+  const std::vector<double> mass = ntn::modal::lumped_mass(spec);
+  return Eigen::Map<const Eigen::VectorXd>(mass.data(), static_cast<Eigen::Index>(mass.size()));
 }
 
 std::vector<Eigen::Index> free_dofs(const ntn::SpecView& spec) {

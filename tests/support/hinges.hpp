@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "ntn/modal/assembly.hpp"
 #include "ntn/model.hpp"
 #include "ntn/model_spec.hpp"
 #include "ntn/time_step.hpp"
@@ -126,9 +127,7 @@ inline std::array<ntn::TimePoint, 3> triangle_pulse(double duration) {
 // hinges' springs with the lumped masses (DESIGN §6).
 template <ntn::Sizes S>
 ntn::StableStepReport hinged_stable_step(const ntn::ModelSpec<S>& spec) {
-  std::array<double, ntn::kDofsPerNode * S.nodes> mass{};
-  ntn::assemble_lumped_mass(ntn::view(spec), mass);
-  return ntn::stable_time_step(ntn::view(spec), mass);
+  return ntn::stable_time_step(ntn::view(spec), ntn::modal::lumped_mass(ntn::view(spec)));
 }
 
 }  // namespace ntn_test

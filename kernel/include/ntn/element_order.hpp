@@ -15,7 +15,9 @@
 //   3. the higher node, the lower node, and the file's index (a total order: the same order on
 //      every build).
 // The higher node, not the lower: a member meshed into several elements usually has its interior
-// nodes numbered after the joints, and by their higher node its elements stay together.
+// nodes numbered after the joints, and by their higher node its elements stay together. The
+// lumped masses sum the element ends at each node in the same order (assemble_lumped_mass), so a
+// file that lists the same elements in another order is the same model, to the bit.
 #pragma once
 
 #include <algorithm>

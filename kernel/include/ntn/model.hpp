@@ -140,11 +140,31 @@ struct InitWorkspace : SizesOf<S> {
   Array<std::int32_t, S, S.elements> order{};
 };
 
-// Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses).
-inline void assemble_lumped_mass(const SpecView& spec, std::span<double> out) {
+// The model's element order of a spec (element_order.hpp): order[k] = the file index of the k-th
+// element; `elements` holds one OrderElement per element (an element whose geometry is invalid,
+// which init() refuses, counts as a general rotation). init() and every tool take the order here.
+inline void spec_element_order(const SpecView& spec, std::span<OrderElement> elements,
+                               std::span<std::int32_t> order) {
+  for (std::size_t i = 0; i < spec.elements.size(); ++i) {
+    const ElementSpec& e = spec.elements[i];
+    const BeamGeometry g = beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
+                                         spec.nodes[static_cast<std::size_t>(e.node_j)], e);
+    elements[i] = {e.node_i, e.node_j,
+                   g.check == ElementCheck::kOk ? axis_map(g.rotation) : kGeneralAxes};
+  }
+  element_order(std::span<const OrderElement>(elements.data(), spec.elements.size()), order);
+}
+
+// Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses), the
+// element ends summed at each node in the model's element order (`order`, spec_element_order), so
+// that the masses, like the element blocks, do not depend on the order the file lists the
+// elements in.
+inline void assemble_lumped_mass(const SpecView& spec, std::span<const std::int32_t> order,
+                                 std::span<double> out) {
   for (double& m : out)
     m = 0;
-  for (const ElementSpec& e : spec.elements) {
+  for (std::size_t k = 0; k < spec.elements.size(); ++k) {
+    const ElementSpec& e = spec.elements[static_cast<std::size_t>(order[k])];
     const NodeSpec& a = spec.nodes[static_cast<std::size_t>(e.node_i)];
     const NodeSpec& b = spec.nodes[static_cast<std::size_t>(e.node_j)];
     const BeamGeometry g = beam_geometry(a, b, e);
@@ -298,11 +318,12 @@ template <Sizes S>
                                          spec.nodes[static_cast<std::size_t>(e.node_j)], e);
     if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, where};
     if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, where};
-    work.order_elements[i] = {e.node_i, e.node_j, axis_map(g.rotation)};
   }
   // The model's order (element_order.hpp), then each element into its lane.
-  element_order(std::span<const OrderElement>(work.order_elements.data(), sz.elements),
-                std::span<std::int32_t>(work.order.data(), sz.elements));
+  const SpecView v = view(spec);
+  const std::span<const std::int32_t> order(work.order.data(), sz.elements);
+  spec_element_order(v, std::span<OrderElement>(work.order_elements.data(), sz.elements),
+                     std::span<std::int32_t>(work.order.data(), sz.elements));
   for (std::size_t k = 0; k < sz.elements; ++k) {
     const auto i = static_cast<std::size_t>(work.order[k]);
     const ElementSpec& e = spec.elements[i];
@@ -316,9 +337,8 @@ template <Sizes S>
     model.element_slot[i] = static_cast<std::int32_t>(k);
   }
 
-  const SpecView v = view(spec);
   model.num_supported = 0;
-  assemble_lumped_mass(v, model.mass);
+  assemble_lumped_mass(v, order, model.mass);
 
   // Hinges (DESIGN §7): each hinge resolved for the method, the lists the step visits, then
   // what the method precomputes (the forest, or the S 22-26 masses in work.divided_mass).

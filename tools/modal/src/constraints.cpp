@@ -10,6 +10,7 @@
 #include "ntn/forest_matrices.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
+#include "ntn/modal/assembly.hpp"
 #include "ntn/model.hpp"
 
 namespace ntn::modal {
@@ -140,8 +141,7 @@ ConstraintMap build_constraints(const SpecView& spec, const std::vector<LinearHi
     hd.frame = hs.frame, hd.eccentricity = hs.eccentricity;
     hd.rigid = hinges[h].rigid;
   }
-  std::vector<double> mass(static_cast<std::size_t>(6 * n));
-  assemble_lumped_mass(spec, mass);
+  const std::vector<double> mass = lumped_mass(spec);
   std::vector<std::int32_t> node_tree(static_cast<std::size_t>(n));
   std::vector<ForestEdge> edges(data.size());
   std::vector<ForestRoot> roots(data.size());

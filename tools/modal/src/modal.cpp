@@ -262,8 +262,7 @@ ModalResult modal_analysis(const SpecView& spec, const ModalOptions& options) {
               "or a property not positive)";
     return r;
   }
-  std::vector<double> mass(static_cast<std::size_t>(n));
-  assemble_lumped_mass(spec, mass);
+  const std::vector<double> mass = lumped_mass(spec);
   const Eigen::Map<const Eigen::VectorXd> m(mass.data(), n);
   const SpMat& T = cm.T;
   const SpMat Kq = SpMat(T.transpose() * K * T);

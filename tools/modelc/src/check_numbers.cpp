@@ -12,6 +12,7 @@
 #include "messages.hpp"
 #include "ntn/beam.hpp"
 #include "ntn/hinge.hpp"
+#include "ntn/modal/assembly.hpp"
 #include "ntn/model.hpp"
 
 namespace ntn::modelc::compile {
@@ -115,8 +116,7 @@ void assemble_mass(Compilation& comp) {
   const SourceModel& p = comp.p;
   const ModelDescription& d = comp.d;
   std::vector<double>& mass = comp.mass;
-  mass.assign(static_cast<std::size_t>(kDofsPerNode) * d.nodes.size(), 0.0);
-  assemble_lumped_mass(d.view(), mass);
+  mass = modal::lumped_mass(d.view());
   // Point masses add up with the elements' masses on a node: the sum must stay finite, and be
   // 0 (no mass) or a normal number (1 / m finite).
   for (std::size_t i = 0; i < d.nodes.size(); ++i) {

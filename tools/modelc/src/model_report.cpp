@@ -10,6 +10,7 @@
 #include "ntn/beam.hpp"
 #include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
+#include "ntn/modal/assembly.hpp"
 #include "ntn/model.hpp"
 #include "ntn/modelc/model_bytes.hpp"
 
@@ -51,14 +52,8 @@ const char* method_name(HingeMethod h) {
 std::string order_line(const ModelDescription& m) {
   const std::size_t n = m.elements.size();
   std::vector<OrderElement> el(n);
-  for (std::size_t e = 0; e < n; ++e) {
-    const ElementSpec& s = m.elements[e];
-    const BeamGeometry g = beam_geometry(m.nodes[static_cast<std::size_t>(s.node_i)],
-                                         m.nodes[static_cast<std::size_t>(s.node_j)], s);
-    el[e] = {s.node_i, s.node_j, axis_map(g.rotation)};
-  }
   std::vector<std::int32_t> order(n);
-  element_order(el, order);
+  spec_element_order(m.view(), el, order);
   std::size_t moved = 0, uniform = 0;
   const std::size_t blocks = beam_blocks(n);
   for (std::size_t k = 0; k < n; ++k)
@@ -82,15 +77,12 @@ StableStepReport stable_step_with(const ModelDescription& m, HingeMethod method)
   if (method == m.settings.hinge_method) return m.stable;  // the compiler's, computed once
   SpecView v = m.view();
   v.settings.hinge_method = method;
-  std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * m.nodes.size());
-  assemble_lumped_mass(v, mass);
-  return stable_time_step(v, mass);
+  return stable_time_step(v, modal::lumped_mass(v));
 }
 
 MassTotals mass_totals(const ModelDescription& m) {
   MassTotals t;
-  std::vector<double> mass(static_cast<std::size_t>(kDofsPerNode) * m.nodes.size());
-  assemble_lumped_mass(m.view(), mass);
+  const std::vector<double> mass = modal::lumped_mass(m.view());
   for (std::size_t n = 0; n < m.nodes.size(); ++n) {
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       const double v = mass[n * kDofsPerNode + d];

@@ -1,17 +1,31 @@
 // Global stiffness of a model's beam elements, entry by entry, from the kernel's own element
 // functions (ntn::beam_geometry, ntn::beam_stiffness, ntn::beam_global_stiffness: DESIGN §4), so
 // that modal analysis and the tests' dense reference solutions use exactly the discrete model the
-// kernel integrates. Header-only, no Eigen, no heap: the caller decides the storage (a dense
-// matrix in tests, sparse triplets in ntn::modal). The lumped mass is the kernel's
-// ntn::assemble_lumped_mass.
+// kernel integrates. Header-only, no Eigen: the caller decides the storage (a dense matrix in
+// tests, sparse triplets in ntn::modal). The lumped mass is the kernel's ntn::assemble_lumped_mass,
+// which lumped_mass() calls with storage of its own (the one function here that allocates).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "ntn/beam.hpp"
+#include "ntn/model.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn::modal {
+
+// The kernel's lumped masses of a spec, out[6 n + d] (ntn::assemble_lumped_mass), summed in the
+// model's element order (ntn::spec_element_order), as init() sums them.
+inline std::vector<double> lumped_mass(const SpecView& spec) {
+  std::vector<OrderElement> elements(spec.elements.size());
+  std::vector<std::int32_t> order(spec.elements.size());
+  spec_element_order(spec, elements, order);
+  std::vector<double> mass(kDofsPerNode * spec.nodes.size());
+  assemble_lumped_mass(spec, order, mass);
+  return mass;
+}
 
 // Calls add(row, column, value) for every entry of every element's 12 x 12 global stiffness
 // T^T K_L T, with global DOF indices 6 node + d; entries that are exactly zero are skipped.
