@@ -37,8 +37,8 @@ endif()
 # The El Centro reference (README, tests/determinism): the default (--sampling step, the records
 # at every kernel step) is the runner's input semantics before the loop library ran it, to the bit.
 # Since issue 17's element order (kernel/README, "The model's element order"), fe2a0f51b4edafe7:
-# the nodes sum their elements' forces and masses in another order. Before it b75556fff5aab1d0, and before the
-# aligned elements (kernel/README, "Aligned elements pick") fa89d903ee8d9aa5.
+# the nodes sum their elements' forces and masses in another order. Before it b75556fff5aab1d0,
+# and before the aligned elements (kernel/README, "Aligned elements pick") fa89d903ee8d9aa5.
 if(NOT hash_a STREQUAL "fe2a0f51b4edafe7")
   message(FATAL_ERROR "El Centro output hash ${hash_a}, the reference is fe2a0f51b4edafe7")
 endif()
