@@ -94,7 +94,7 @@ struct Outputs {
     have[k] = true;
     flags[k] = p.flags;
     if (keep_values)
-      std::copy_n(p.values.begin(), count, values.begin() + static_cast<std::ptrdiff_t>(k * count));
+      std::copy_n(p.values.begin(), count, values.begin() + static_cast<std::ptrdiff_t>(k) * count);
     highest = std::max(highest, p.frame);
   }
 };

@@ -196,7 +196,7 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
       s->period_ = m.period(best);
       notes.push_back("T1 = " + short_number(s->period_) + " s: mode " + std::to_string(best + 1) +
                       ", " +
-                      short_number(100 * m.effective_mass(best, dir) / m.total_mass[in.dof]) +
+                      short_number(100 * m.effective_mass(best, dir) / m.total_mass[static_cast<std::size_t>(in.dof)]) +
                       " % of the mass along the input's direction");
     }
   }

@@ -111,8 +111,10 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
     Table dmp(L, *dt, "model.damping",
               {"alpha", "beta", "ratio", "frequency", "frequencies", "modes"});
     dmp.check_unknown();
-    // Both pairs are reported (| rather than ||).
-    if (dmp.conflict("alpha", "ratio") | dmp.conflict("beta", "ratio")) return;
+    // Every conflicting pair is reported (each checked before any return).
+    const bool alpha_ratio = dmp.conflict("alpha", "ratio");
+    const bool beta_ratio = dmp.conflict("beta", "ratio");
+    if (alpha_ratio || beta_ratio) return;
     if (dmp.has("alpha") || dmp.has("beta")) {
       // C = alpha M + beta K_el as given.
       if (auto a = dmp.non_negative("alpha", Need::kOptional)) m.alpha = *a;
@@ -123,9 +125,10 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
       return;
     }
     const auto ratio = dmp.non_negative("ratio", Need::kRequired);
-    if (dmp.conflict("frequency", "frequencies") | dmp.conflict("frequency", "modes") |
-        dmp.conflict("frequencies", "modes"))
-      return;
+    const bool frequency_frequencies = dmp.conflict("frequency", "frequencies");
+    const bool frequency_modes = dmp.conflict("frequency", "modes");
+    const bool frequencies_modes = dmp.conflict("frequencies", "modes");
+    if (frequency_frequencies || frequency_modes || frequencies_modes) return;
     if (dmp.has("frequencies")) {
       // Rayleigh damping with `ratio` at two frequencies: the ratio alpha / (2 omega) +
       // beta omega / 2 equals xi at omega_1 and omega_2 for alpha = 2 xi omega_1 omega_2 /
