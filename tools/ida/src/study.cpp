@@ -194,10 +194,10 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
       for (Eigen::Index k = 1; k < m.effective_mass.rows(); ++k)
         if (m.effective_mass(k, dir) > m.effective_mass(best, dir)) best = k;
       s->period_ = m.period(best);
+      const double share =
+          100 * m.effective_mass(best, dir) / m.total_mass[static_cast<std::size_t>(in.dof)];
       notes.push_back("T1 = " + short_number(s->period_) + " s: mode " + std::to_string(best + 1) +
-                      ", " +
-                      short_number(100 * m.effective_mass(best, dir) / m.total_mass[static_cast<std::size_t>(in.dof)]) +
-                      " % of the mass along the input's direction");
+                      ", " + short_number(share) + " % of the mass along the input's direction");
     }
   }
 
