@@ -9,7 +9,6 @@
 #include <sys/mman.h>
 #include <time.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -123,7 +122,8 @@ constexpr std::array<const char*, 16> kFlagNames{
 }  // namespace
 
 int feeder_main(int argc, char** argv) {
-  CLI::App app{"Stream recorded inputs over UDP to the real-time loop and read its outputs back"};
+  ntn::cli::App app{
+      "Stream recorded inputs over UDP to the real-time loop and read its outputs back"};
   int port = 0, listen_port = 0;
   std::vector<std::string> input_args;
   std::string record_arg;
@@ -170,12 +170,7 @@ int feeder_main(int argc, char** argv) {
                  "real time: run under SCHED_FIFO at this priority with memory locked (falls "
                  "back with a warning where not permitted)")
       ->check(ntn::cli::Integer(0, 99));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {  // usage errors exit 2 (CLI11's own codes are 100+)
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
 
   // Output files first: an unwritable path ends here, not after the run.
   for (const auto& [path, option] :

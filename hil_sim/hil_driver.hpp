@@ -8,7 +8,6 @@
 // output hash and CSV.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -400,7 +399,7 @@ struct HilOptions {
 // `model_file`). The exit code when the program ends there (--help: 0, a usage error: 2).
 inline std::optional<int> parse_args(int argc, char** argv, const std::string& title,
                                      bool model_file, HilOptions& o) {
-  CLI::App app{title};
+  ntn::cli::App app{title};
   app.require_subcommand(1);
   auto* run = app.add_subcommand("run", "run the loop");
   auto* replay = app.add_subcommand("replay", "re-run a log on the virtual clock and compare");
@@ -436,7 +435,7 @@ inline std::optional<int> parse_args(int argc, char** argv, const std::string& t
   run->add_option("--clock", clock_name,
                   "real (absolute deadlines) or virtual (as fast as "
                   "possible; lock-step with UDP)")
-      ->check(CLI::IsMember({"real", "virtual"}));
+      ->check(ntn::cli::IsMember({"real", "virtual"}));
   run->add_option("--wait-first", first_wait_s,
                   "real time with --listen: seconds to wait for the sender's first packet, which "
                   "fixes the frame deadlines (default 10, at most 3600)")
@@ -450,7 +449,7 @@ inline std::optional<int> parse_args(int argc, char** argv, const std::string& t
                       "hold (inputs at frame times, held over the frame; default), interpolate "
                       "(linear over the frame, one frame of delay) or step (--input records at "
                       "every kernel step, as ntn-run-<model> by default)")
-          ->check(CLI::IsMember({"step", "hold", "interpolate"}));
+          ->check(ntn::cli::IsMember({"step", "hold", "interpolate"}));
   run->add_flag("--interpolate", interpolate, "the same as --sampling interpolate")
       ->excludes(sampling_option);
   run->add_option("--alarm", alarm_args,

@@ -6,7 +6,6 @@
 // no UDP, since the criterion is about the loop's compute and deadlines. SCHED_FIFO and mlockall
 // where permitted. A plain program, not Google Benchmark: each size is one long real-time run on
 // absolute deadlines, not a repeated timed loop. README.md "Real-time capacity (issue 4)".
-#include <CLI/CLI.hpp>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli.hpp"  // tools/io
 #include "frame_models.hpp"
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/loop.hpp"
@@ -205,24 +205,24 @@ constexpr Grid kG9900{8, 8, 11, 4, 4};
 int main(int argc, char** argv) {
   using namespace ntn::bench;
   Options o;
-  CLI::App app{"Real-time capacity of the frame loop at 1 kHz (issue 4)"};
+  ntn::cli::App app{"Real-time capacity of the frame loop at 1 kHz (issue 4)"};
   app.add_option("--duration", o.duration, "real-time seconds per size")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--period", o.period, "frame period, s")->check(CLI::PositiveNumber);
+      ->check(ntn::cli::Positive());
+  app.add_option("--period", o.period, "frame period, s")->check(ntn::cli::Positive());
   app.add_flag("--held", o.held, "inputs held at (0.10 g, 0.05 g) instead of two sines");
   app.add_option("--cpu", o.cpu, "pin to this CPU (and worker k to the k-th next one)");
   app.add_option("--threads", o.threads, "workers of the multi-core step (1: single-core)")
-      ->check(CLI::Range(1, ntn::kMaxTeam));
+      ->check(ntn::cli::Integer(1, ntn::kMaxTeam));
   app.add_option("--spin", o.spin,
                  "pauses a waiting worker spins before it sleeps (large: never sleeps in a run)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(ntn::cli::NonNegative());
   app.add_option("--max-elements", o.max_elements, "skip larger frames");
   bool no_fifo = false, no_mlock = false, no_screen = false;
   app.add_flag("--no-fifo", no_fifo, "do not ask for SCHED_FIFO");
   app.add_flag("--no-mlock", no_mlock, "do not mlockall");
   app.add_flag("--no-screen", no_screen,
                "run every size in real time, even when a 1 s virtual-clock trial has p50 > 0.5");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   o.fifo = !no_fifo, o.mlock = !no_mlock, o.screen = !no_screen;
 
   for (const std::string& w : ntn::hil::apply_real_time({o.fifo, o.priority, o.mlock, o.cpu}))

@@ -8,7 +8,6 @@
 // the same bytes whatever the number of processes and the order the runs ended),
 // DIR/capacities.csv, DIR/fragility.csv and the plots.
 #include <xxhash.h>
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -213,8 +212,8 @@ int prepare_output(const Options& o, const Study& study, std::vector<std::string
 
 int ida(int argc, char** argv, int rank, int size) {
   Options o;
-  CLI::App app{"Incremental dynamic analysis and fragility of a model over a record suite",
-               "ntn-ida"};
+  ntn::cli::App app{"Incremental dynamic analysis and fragility of a model over a record suite",
+                    "ntn-ida"};
   app.add_option("model", o.model, "the model file (TOML)")->required();
   app.add_option("--records", o.records,
                  "the records: a directory (its .AT2 files) or a list file (one path per line)")
@@ -222,7 +221,7 @@ int ida(int argc, char** argv, int rank, int size) {
   app.add_option("--out", o.out, "the output folder (results, capacities, fragility, plots)")
       ->required();
   app.add_option("--im", o.im, "intensity measure: sa_t1 (5 %-damped Sa at T1) or pga")
-      ->check(CLI::IsMember({"sa_t1", "pga"}))
+      ->check(ntn::cli::IsMember({"sa_t1", "pga"}))
       ->capture_default_str();
   app.add_option("--period", o.period,
                  "T1 [s] for sa_t1 (default: the model's first period "
@@ -273,7 +272,7 @@ int ida(int argc, char** argv, int rank, int size) {
   app.add_flag("-q,--quiet", o.quiet, "only the summary");
   // CLI11 prints its messages on every process: only the first one speaks.
   if (rank != 0) {
-    app.failure_message([](const CLI::App*, const CLI::Error&) { return std::string(); });
+    app.silence_failures();
   }
   if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
 

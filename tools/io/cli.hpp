@@ -1,14 +1,19 @@
-// Command-line checks shared by every ntn tool (CLI11 validators and argument parsers): numbers
-// must be finite and in range, counts must be whole numbers within bounds, output paths must be
-// writable before a run starts, and NAME=FILE[:COLUMN] input arguments are read one way
-// everywhere. Messages print numbers with %g (never DBL_MAX in 300 digits) and name the option:
-// CLI11 puts the option's name in front of a validator's message.
+// The command line of every ntn tool: the parser, and the checks the tools share (numbers must be
+// finite and in range, counts must be whole numbers within bounds, output paths must be writable
+// before a run starts, and NAME=FILE[:COLUMN] input arguments are read one way everywhere).
+// Messages print numbers with %g (never DBL_MAX in 300 digits) and name the option: CLI11 puts
+// the option's name in front of a validator's message.
+//
+// The parser is CLI11's (Debian libcli11-dev), behind the few classes below, which cli.cpp alone
+// implements: CLI11 2.1 is header-only (its precompiled mode came with 2.3), and a file that builds
+// a CLI::App compiles ~16 s of CLI11's code at -O3 (~19 s under the sanitizers), once per program
+// and per compiled runner. Through this header a program compiles none of it. The names are
+// CLI11's: App, Option, Validator, add_option, check, required, ...
 #pragma once
 
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -18,13 +23,98 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
 namespace ntn::cli {
+
+// A check of one argument's text (CLI11's Validator): it returns the message, or "" when the
+// text is fine; it may rewrite the text. `description` is what --help shows for it.
+class Validator {
+ public:
+  Validator(std::function<std::string(std::string&)> check, std::string description)
+      : check_(std::move(check)), description_(std::move(description)) {}
+  std::string operator()(std::string& text) const { return check_(text); }
+  std::string operator()(const std::string& text) const {
+    std::string copy = text;
+    return check_(copy);
+  }
+  const std::string& description() const { return description_; }
+
+ private:
+  std::function<std::string(std::string&)> check_;
+  std::string description_;
+};
+
+// One of the text's values, exactly (CLI::IsMember).
+Validator IsMember(std::vector<std::string> values);
+
+class App;
+
+// An option or positional argument of an App (CLI::Option); every call returns the option, so
+// that calls chain as in CLI11.
+class Option {
+ public:
+  Option* check(const Validator& v);
+  Option* required();
+  Option* capture_default_str();           // --help shows the variable's value before parsing
+  Option* needs(const std::string& name);  // given only with that option
+  Option* excludes(Option* other);         // never with that option
+  Option* delimiter(char c);               // one argument may hold several values: a,b,c
+  std::size_t count() const;               // how often it was given
+
+ private:
+  friend class App;
+  explicit Option(CLI::Option* o) : o_(o) {}
+  CLI::Option* o_;
+};
+
+// A command line or one of its subcommands (CLI::App). The top App owns everything made through
+// it; the pointers it hands out live as long as it does.
+class App {
+ public:
+  explicit App(std::string description = "", std::string name = "");
+  ~App();
+  App(const App&) = delete;
+  App& operator=(const App&) = delete;
+
+  Option* add_option(std::string name, std::string& value, std::string description = "");
+  Option* add_option(std::string name, std::vector<std::string>& value,
+                     std::string description = "");
+  Option* add_option(std::string name, std::vector<double>& value, std::string description = "");
+  Option* add_option(std::string name, double& value, std::string description = "");
+  Option* add_option(std::string name, int& value, std::string description = "");
+  Option* add_option(std::string name, long& value, std::string description = "");
+  Option* add_option(std::string name, unsigned& value, std::string description = "");
+  Option* add_option(std::string name, unsigned long& value, std::string description = "");
+  Option* add_flag(std::string name, bool& value, std::string description = "");
+  App* add_subcommand(std::string name, std::string description);
+  App* require_subcommand(int count);
+  // No message of a failed parse (ntn-ida's processes but the first: one speaks for all).
+  void silence_failures();
+  bool parsed() const;                               // this subcommand was given
+  std::size_t count(const std::string& name) const;  // how often option `name` was given
+  // Parses argv: nothing when the program goes on, else its exit code after CLI11 printed the
+  // help (0) or the message (2: every ntn tool's code for bad input; CLI11's own are 100+).
+  std::optional<int> parse(int argc, const char* const* argv);
+
+ private:
+  struct Parts;  // everything the top App owns
+  App(CLI::App* app, Parts* parts);
+  CLI::App* app_;
+  Parts* parts_;
+  std::unique_ptr<Parts> owned_;  // the top App's
+};
 
 // %g with 6 significant digits: how every message prints a number.
 inline std::string num(double v) {
@@ -46,7 +136,7 @@ inline std::optional<double> parse_double(const std::string& text) {
 
 // A finite number within [lo, hi] (either bound may be infinite). `open_lo` excludes lo itself,
 // for "positive" (> 0). The message says what was wanted and what was given.
-inline CLI::Validator Number(double lo, double hi, bool open_lo = false) {
+inline Validator Number(double lo, double hi, bool open_lo = false) {
   std::string wanted;
   if (std::isinf(lo) && std::isinf(hi)) {
     wanted = "a finite number";
@@ -55,7 +145,7 @@ inline CLI::Validator Number(double lo, double hi, bool open_lo = false) {
   } else {
     wanted = std::string("a number in ") + (open_lo ? "(" : "[") + num(lo) + ", " + num(hi) + "]";
   }
-  return CLI::Validator(
+  return Validator(
       [lo, hi, open_lo, wanted](std::string& text) -> std::string {
         const std::optional<double> v = parse_double(text);
         if (!v || !std::isfinite(*v) || *v < lo || *v > hi || (open_lo && *v == lo)) {
@@ -65,22 +155,22 @@ inline CLI::Validator Number(double lo, double hi, bool open_lo = false) {
       },
       wanted);
 }
-inline CLI::Validator Finite() {
+inline Validator Finite() {
   return Number(-INFINITY, INFINITY);
 }
-inline CLI::Validator Positive(double hi = INFINITY) {
+inline Validator Positive(double hi = INFINITY) {
   return Number(0.0, hi, true);
 }
-inline CLI::Validator NonNegative(double hi = INFINITY) {
+inline Validator NonNegative(double hi = INFINITY) {
   return Number(0.0, hi);
 }
 
 // A whole number in [lo, hi] written as digits (an optional sign): refuses 1.5, 1e3, nan and
 // 99999999999999999999 with the bounds in the message, before CLI11's conversion sees them.
-inline CLI::Validator Integer(std::int64_t lo, std::int64_t hi) {
+inline Validator Integer(std::int64_t lo, std::int64_t hi) {
   const std::string wanted =
       "a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  return CLI::Validator(
+  return Validator(
       [lo, hi, wanted](std::string& text) -> std::string {
         bool digits = !text.empty();
         for (std::size_t i = 0; i < text.size(); ++i) {
@@ -140,17 +230,9 @@ inline std::optional<std::string> close_output(std::ofstream& out, std::string_v
          std::strerror(errno != 0 ? errno : EIO);
 }
 
-// Parses the command line. The program's exit code when it ends there: 0 after --help, 2 on a
-// usage error (every ntn tool's code for bad input; CLI11's own codes are 100+), after CLI11
-// printed the message.
-inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
-  return std::nullopt;
+// Parses the command line (App::parse): nothing when the program goes on, else its exit code.
+inline std::optional<int> parse(App& app, int argc, const char* const* argv) {
+  return app.parse(argc, argv);
 }
 
 // main()'s backstop: no exception may end a program unreported. Whatever is left after the

@@ -3,7 +3,6 @@
 // Exit 0: the first N (selected) modes are found within the tolerance (and MAC >= the threshold
 // where the channels give shapes); 1: they are not (the table and the last line say which mode
 // and why); 2: bad input (a message on stderr). tools/modecheck/README.md.
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -16,7 +15,7 @@
 
 int main(int argc, char** argv) {
   namespace mc = ntn::modecheck;
-  CLI::App app{
+  ntn::cli::App app{
       "Check a response's spectrum against a model's natural frequencies and mode shapes "
       "(exit 0 pass, 1 fail, 2 bad input)"};
   std::string model_path, response_path, json_path, psd_path, plot_base, window = "hann", direction;
@@ -48,7 +47,7 @@ int main(int argc, char** argv) {
   app.add_option("-d,--direction", direction,
                  "check only modes with effective mass along x, y or z (base excitation in that "
                  "direction)")
-      ->check(CLI::IsMember({"x", "y", "z"}));
+      ->check(ntn::cli::IsMember({"x", "y", "z"}));
   app.add_option("--min-mass", min_mass_pct,
                  "with --direction: effective mass a mode needs, % of the total")
       ->check(ntn::cli::Number(0.0, 100.0))
@@ -81,12 +80,7 @@ int main(int argc, char** argv) {
   app.add_option("--plot", plot_base,
                  "draw the spectrum with the model frequencies marked to BASE.png and BASE.svg "
                  "(gnuplot)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   o.tolerance = tolerance_pct / 100;
   o.search_band = band_pct / 100;
   o.min_mass_fraction = min_mass_pct / 100;

@@ -8,7 +8,6 @@
 // Notes (mechanisms: DOFs without mass or stiffness, held at zero) go to stderr with exit 0.
 // Exit 1: the model has errors (modes: or its modal analysis fails). Exit 2 on a usage error
 // (also a model file that cannot be read: missing, a directory; a bad -n).
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -28,16 +27,16 @@ constexpr int kMaxSparseModes = 500;
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Validate and inspect an ntn-rt model file (TOML)"};
+  ntn::cli::App app{"Validate and inspect an ntn-rt model file (TOML)"};
   app.require_subcommand(1);
   std::string check_path, info_path, modes_path;
   int modes_count = 12;
   bool modes_json = false;
-  CLI::App* check = app.add_subcommand("check", "validate a model; print its errors");
+  ntn::cli::App* check = app.add_subcommand("check", "validate a model; print its errors");
   check->add_option("model", check_path, "model file (.toml)")->required();
-  CLI::App* info = app.add_subcommand("info", "print sizes, masses, time step and memory");
+  ntn::cli::App* info = app.add_subcommand("info", "print sizes, masses, time step and memory");
   info->add_option("model", info_path, "model file (.toml)")->required();
-  CLI::App* modes = app.add_subcommand(
+  ntn::cli::App* modes = app.add_subcommand(
       "modes",
       "print the lowest modes with the hinges applied exactly (Hz, period, effective mass)");
   modes->add_option("model", modes_path, "model file (.toml)")->required();
@@ -48,18 +47,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   modes->add_flag("--json", modes_json,
                   "print JSON (schema ntn-model-modes/2) instead of the table");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "check" &&
-        std::string(argv[1]) != "info" && std::string(argv[1]) != "modes") {
-      std::fprintf(stderr, "ntn-model: unknown command '%s' (give check, info or modes)\n",
-                   argv[1]);
-      return 2;
-    }
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+  // A first word that is neither an option nor a command: say so (CLI11 would speak of an
+  // extra argument).
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "check" &&
+      std::string(argv[1]) != "info" && std::string(argv[1]) != "modes") {
+    std::fprintf(stderr, "ntn-model: unknown command '%s' (give check, info or modes)\n", argv[1]);
+    return 2;
   }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
 
   const std::string& path =
       check->parsed() ? check_path : (info->parsed() ? info_path : modes_path);

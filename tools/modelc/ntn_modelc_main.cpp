@@ -3,7 +3,6 @@
 // file:line:column: error: ...), 2 on a usage error (also a model file that cannot be read, or
 // an output that cannot be written, checked before the model is read). Notes (file:line:column:
 // note: ...) go to stderr and do not change the exit code.
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,18 +13,13 @@
 #include "ntn/modelc/load_model.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"Compile an ntn-rt model file (TOML) into a C++ header of constexpr data"};
+  ntn::cli::App app{"Compile an ntn-rt model file (TOML) into a C++ header of constexpr data"};
   std::string model_path, out_path, ns_name;
   app.add_option("model", model_path, "model file (.toml)")->required();
   app.add_option("-o,--output", out_path, "header to write")->required();
   app.add_option("-n,--name", ns_name,
                  "namespace: ntn::models::NAME (default: the model's [model] name)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   if (app.count("--name") > 0 && !ntn::modelc::is_cpp_identifier(ns_name)) {
     std::fprintf(stderr, "ntn-modelc: --name '%s' is not a C++ identifier\n", ns_name.c_str());
     return 2;

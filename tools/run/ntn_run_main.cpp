@@ -3,7 +3,6 @@
 // goes into run-time storage (one block, allocated before init) and runs the compiled runners'
 // code (run_driver.hpp) on the same kernel code: ntn-run config/frame3d.toml and ntn-run-frame3d
 // give the same bits for the same options.
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
 
@@ -11,7 +10,7 @@
 #include "run_driver.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"Run a model file (TOML) on recorded inputs, without compiling it"};
+  ntn::cli::App app{"Run a model file (TOML) on recorded inputs, without compiling it"};
   std::string model_path;
   app.add_option("model", model_path, "model file (.toml)")->required();
   ntn::run::RunOptions options;

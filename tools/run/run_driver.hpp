@@ -4,7 +4,6 @@
 // lines on the same kernel code: the same model and records give the same bits either way.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -49,7 +48,7 @@ struct RunOptions {
   int threads = 1;
 };
 
-inline void add_options(CLI::App& app, RunOptions& o) {
+inline void add_options(ntn::cli::App& app, RunOptions& o) {
   auto& input_args = o.input_args;
   auto& duration = o.duration;
   auto& out_path = o.out_path;
@@ -68,7 +67,7 @@ inline void add_options(CLI::App& app, RunOptions& o) {
                  "step (the records at every kernel step; default), hold (at frame times, held "
                  "over the frame) or interpolate (at frame times, linear over the frame, one "
                  "frame of delay): hold and interpolate are what ntn-hil's loop does")
-      ->check(CLI::IsMember({"step", "hold", "interpolate"}));
+      ->check(ntn::cli::IsMember({"step", "hold", "interpolate"}));
   app.add_option("-o,--out", out_path, "CSV file for the response, one row per I/O frame");
   app.add_flag("--flags", flags,
                "add the loop's flags column to the CSV (input gate, alarm, diverged bits), as "
@@ -78,7 +77,7 @@ inline void add_options(CLI::App& app, RunOptions& o) {
   app.add_option("--element-pass", element_pass,
                  "simd (default: the widest vectors this CPU has) or scalar (the reference): the "
                  "same bits either way")
-      ->check(CLI::IsMember({"simd", "scalar"}));
+      ->check(ntn::cli::IsMember({"simd", "scalar"}));
   app.add_option("--threads", threads,
                  "workers of the multi-core step (1 = the caller's thread alone): the same bits "
                  "for any number")

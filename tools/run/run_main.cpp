@@ -9,7 +9,6 @@
 // inputs are fed at every kernel step by default (--sampling step), every record sample is
 // checked against the input's range before the run, no kinetic energy limit (a run is diverged
 // when its state is no longer finite) and the run ends at the frame that diverged.
-#include <CLI/CLI.hpp>
 #include <string>
 
 #include "run_driver.hpp"
@@ -32,8 +31,8 @@ ntn::TeamWork<kS> g_team_work;  // the multi-core step's partition and end force
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Run the model '" + std::string(mdl::kName) + "' (" + std::string(mdl::kSourceFile) +
-               ") on recorded inputs"};
+  ntn::cli::App app{"Run the model '" + std::string(mdl::kName) + "' (" +
+                    std::string(mdl::kSourceFile) + ") on recorded inputs"};
   ntn::run::RunOptions options;
   ntn::run::add_options(app, options);
   if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;

@@ -3,7 +3,6 @@
 //   ntn-plot psd SPECTRUM.csv [--columns a,b] [--marks 1.60,mode 2=1.739] --out BASE
 // Exit 0 ok; 2 bad input or usage (unreadable file, unknown channel, NaN, an output directory
 // that does not exist, ...); 3 gnuplot missing or failed. README.md has the details.
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -71,7 +70,7 @@ struct Common {
   bool no_svg = false;
 };
 
-void add_common(CLI::App* c, Common& o) {
+void add_common(ntn::cli::App* c, Common& o) {
   c->add_option("file", o.file, "input file")->required();
   c->add_option("-o,--out", o.out, "output base: writes BASE.png and BASE.svg")->required();
   c->add_option("--title", o.title, "figure title (default: the file name)");
@@ -395,13 +394,13 @@ pl::Figure psd(const Common& o, const PsdArgs& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"PNG and SVG plots of histories and spectra (gnuplot)"};
+  ntn::cli::App app{"PNG and SVG plots of histories and spectra (gnuplot)"};
   app.require_subcommand(1);
   Common ho, po, yo;
   HistoryArgs ha;
   PsdArgs pa;
   HysteresisArgs ya;
-  CLI::App* h = app.add_subcommand(
+  ntn::cli::App* h = app.add_subcommand(
       "history", "one panel per channel (or group) of a run's CSV (time[s],name[unit],...) or AT2");
   add_common(h, ho);
   h->add_option("-c,--channels", ha.channels,
@@ -411,7 +410,7 @@ int main(int argc, char** argv) {
       ->needs("--model");
   h->add_option("--from", ha.from, "start time in s")->check(ntn::cli::Finite());
   h->add_option("--to", ha.to, "end time in s")->check(ntn::cli::Finite());
-  CLI::App* s = app.add_subcommand(
+  ntn::cli::App* s = app.add_subcommand(
       "psd", "spectra from a CSV (frequency[Hz],name[unit],...), with marked frequencies");
   add_common(s, po);
   s->add_option("--columns", pa.columns, "columns to draw, separated by ',' (default: all)");
@@ -421,7 +420,7 @@ int main(int argc, char** argv) {
   s->add_option("--fmax", pa.fmax, "highest frequency drawn, Hz")->check(ntn::cli::Finite());
   s->add_flag("--linear", pa.linear, "linear y axis (default: log)");
   s->add_flag("--logx", pa.log_x, "log frequency axis");
-  CLI::App* y = app.add_subcommand(
+  ntn::cli::App* y = app.add_subcommand(
       "hysteresis", "a hinge direction's force over its deformation (two channels of a run's CSV)");
   add_common(y, yo);
   y->add_option("-x,--deformation", ya.deformation, "deformation channel (x)")->required();
@@ -431,12 +430,7 @@ int main(int argc, char** argv) {
   y->add_option("--direction", ya.direction, "its direction (ux ... rz)")->needs("--model");
   y->add_option("--from", ya.from, "start time in s")->check(ntn::cli::Finite());
   y->add_option("--to", ya.to, "end time in s")->check(ntn::cli::Finite());
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
 
   try {
     const bool is_history = h->parsed();
