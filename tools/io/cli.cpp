@@ -62,18 +62,11 @@ App::App(CLI::App* app, Parts* parts) : app_(app), parts_(parts) {}
 
 App::~App() = default;
 
-namespace {
-template <class T>
-CLI::Option* add(CLI::App& app, std::string name, T& value, std::string description) {
-  return app.add_option(std::move(name), value, std::move(description));
-}
-}  // namespace
-
-#define NTN_CLI_ADD_OPTION(T)                                                     \
-  Option* App::add_option(std::string name, T& value, std::string description) {  \
-    parts_->options.push_back(std::unique_ptr<Option>(                            \
-        new Option(add(*app_, std::move(name), value, std::move(description))))); \
-    return parts_->options.back().get();                                          \
+#define NTN_CLI_ADD_OPTION(T)                                                           \
+  Option* App::add_option(std::string name, T& value, std::string description) {        \
+    parts_->options.push_back(std::unique_ptr<Option>(                                  \
+        new Option(app_->add_option(std::move(name), value, std::move(description))))); \
+    return parts_->options.back().get();                                                \
   }
 NTN_CLI_ADD_OPTION(std::string)
 NTN_CLI_ADD_OPTION(std::vector<std::string>)

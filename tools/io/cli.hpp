@@ -59,8 +59,6 @@ class Validator {
 // One of the text's values, exactly (CLI::IsMember).
 Validator IsMember(std::vector<std::string> values);
 
-class App;
-
 // An option or positional argument of an App (CLI::Option); every call returns the option, so
 // that calls chain as in CLI11.
 class Option {
