@@ -115,6 +115,19 @@ TEST(Team, PartitionCoversEveryBlockAndNodeOnce) {
         EXPECT_EQ(owner[n], k) << "node " << n << " is interior to two workers";
       }
     }
+    // Phase A zeroes F_n at a worker's interior nodes: every node that is not shared is in the
+    // list of the worker that adds to it, once; a shared one in none (phase B writes it).
+    std::vector<int> listed(S.nodes, -1);
+    for (int k = 0; k < size; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      for (auto i = work.interior_split[kk]; i < work.interior_split[kk + 1]; ++i) {
+        const auto n = static_cast<std::size_t>(work.interior[static_cast<std::size_t>(i)]);
+        EXPECT_EQ(listed[n], -1) << "node " << n << " listed twice";
+        listed[n] = k;
+      }
+    }
+    for (std::size_t n = 0; n < S.nodes; ++n)
+      EXPECT_EQ(listed[n], shared[n] ? -1 : owner[n]) << "node " << n;
     if (size == 1) {
       EXPECT_EQ(shared_end, 0U) << "every node has elements: all interior";
     } else {

@@ -343,11 +343,18 @@ struct TeamStep {
   TeamWork<S>* t;
 };
 
-// A: worker k's element blocks, their ends added to F_n at its interior nodes, stored for the
-// shared ones.
+// A: F_n zeroed at worker k's interior nodes, then worker k's element blocks, their ends added to
+// F_n at its interior nodes, stored for the shared ones.
 template <Sizes S>
 void team_element_forces(void* arg, int k) {
   const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
+  const auto from = static_cast<std::size_t>(c.t->interior_split[static_cast<std::size_t>(k)]);
+  const auto to = static_cast<std::size_t>(c.t->interior_split[static_cast<std::size_t>(k) + 1]);
+  for (std::size_t i = from; i < to; ++i) {
+    double* f = &c.w->f[kDofsPerNode * static_cast<std::size_t>(c.t->interior[i])];
+    for (std::size_t d = 0; d < kDofsPerNode; ++d)
+      f[d] = 0.0;
+  }
   const auto first = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k)]);
   const auto last = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k) + 1]);
   element_forces_split(c.m->element_pass, c.m->beams.data(), c.m->rotations.data(), first, last,
@@ -392,8 +399,7 @@ template <Sizes S>
   apply_loads(m, s, w, t);  // loads P_n: M g, -M iota a_g, nodal loads, inputs (§5)
   if (team == nullptr) {
     element_forces(m, s, w);  // element forces F_n = sum T^T K_L T u_n (+ beta v) (§4)
-  } else {
-    w.f.fill(0.0);
+  } else {                    // F_n: zeroed and summed by the team (team.hpp)
     team->run(team->self, team_element_forces<S>, &c);
     team->run(team->self, team_shared_forces<S>, &c);
   }

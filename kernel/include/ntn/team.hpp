@@ -9,12 +9,15 @@
 // range of element blocks; a node all of whose elements are in one worker's range is that
 // worker's ("interior"), the others are shared (a storey's nodes where two ranges meet, in a
 // frame). The team's pass:
-//   A. each worker computes the end forces of its blocks in element order: an end at an interior
-//      node is added to F_n there and then (F_n zeroed before: the single-core sums, operation
-//      for operation); an end at a shared node is stored (TeamWork::end_forces);
+//   A. each worker zeroes F_n at its interior nodes (on its own core: no cache line of F crosses
+//      to another core to be cleared), then computes the end forces of its blocks in element
+//      order: an end at an interior node is added to F_n there and then (from +0.0: the
+//      single-core sums, operation for operation); an end at a shared node is stored
+//      (TeamWork::end_forces);
 //   B. each worker sums, for its part of the shared nodes, the stored end forces of every
 //      element at that node in element order (TeamWork::incidence) from +0.0: again the
-//      single-core sums;
+//      single-core sums (F_n written, not added to: every node is interior to one worker or
+//      shared, so no F_n is left from the last step);
 //   C. (no hinges) after the outputs, each worker runs the DOF pass (residual, a_n and update:
 //      residual_update(), dof_pass.hpp) over a fixed range of nodes.
 // Between the phases the team's run() returns only when every worker has finished. Everything
@@ -58,6 +61,10 @@ struct TeamWork : SizesOf<S> {
   std::array<std::int32_t, kMaxTeam + 1> node_split{};
   // Per block, bit 2 l + end (direct_end): that end's node is interior to the block's worker.
   Array<std::uint8_t, S, kBlocks> direct{};
+  // The interior nodes, worker by worker and in node order within a worker's part: worker k's
+  // are interior[interior_split[k] .. interior_split[k + 1]).
+  Array<std::int32_t, S, S.nodes> interior{};
+  std::array<std::int32_t, kMaxTeam + 1> interior_split{};
   // The shared nodes, in node order (the nodes with no element too: their F_n is +0.0), and
   // worker k's part of them: shared[shared_split[k] .. shared_split[k + 1]).
   Array<std::int32_t, S, S.nodes> shared{};
@@ -132,9 +139,26 @@ template <Sizes S>
     }
   }
   std::int64_t num_shared = 0;
+  t.interior_split.fill(0);
   for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
-    if (!interior(n))
+    if (!interior(n)) {
       t.shared[static_cast<std::size_t>(num_shared++)] = static_cast<std::int32_t>(n);
+    } else {  // counted: interior_split[k + 1] ends up as worker k's count
+      const int k = worker_of(t.incidence[static_cast<std::size_t>(t.node_start[n])] / 12);
+      ++t.interior_split[static_cast<std::size_t>(k) + 1];
+    }
+  }
+  for (int k = 0; k < size; ++k)
+    t.interior_split[static_cast<std::size_t>(k) + 1] +=
+        t.interior_split[static_cast<std::size_t>(k)];
+  std::array<std::int32_t, kMaxTeam> next{};
+  for (int k = 0; k < size; ++k)
+    next[static_cast<std::size_t>(k)] = t.interior_split[static_cast<std::size_t>(k)];
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
+    if (!interior(n)) continue;
+    const int k = worker_of(t.incidence[static_cast<std::size_t>(t.node_start[n])] / 12);
+    t.interior[static_cast<std::size_t>(next[static_cast<std::size_t>(k)]++)] =
+        static_cast<std::int32_t>(n);
   }
   for (int k = 0; k <= size; ++k)
     t.shared_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(num_shared * k / size);
