@@ -151,9 +151,7 @@ template <Sizes S>
   for (int k = 0; k < size; ++k)
     t.interior_split[static_cast<std::size_t>(k) + 1] +=
         t.interior_split[static_cast<std::size_t>(k)];
-  std::array<std::int32_t, kMaxTeam> next{};
-  for (int k = 0; k < size; ++k)
-    next[static_cast<std::size_t>(k)] = t.interior_split[static_cast<std::size_t>(k)];
+  std::array<std::int32_t, kMaxTeam + 1> next = t.interior_split;  // worker k's next slot
   for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
     if (!interior(n)) continue;
     const int k = worker_of(t.incidence[static_cast<std::size_t>(t.node_start[n])] / 12);
