@@ -132,8 +132,8 @@ HWY_INLINE void repick_global(V aligned, const V* axis, const V* sign, const V* 
 // beam_force from the global displacements ug [u_i, theta_i, u_j, theta_j] (one vector per DOF,
 // lanes [first, first + Lanes) of the block) to the global end forces g, in the same order.
 template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1>
-HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot, std::size_t first,
-                            const V* ug, V* g) {
+HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
+                            const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
   const D d;
   [[maybe_unused]] V R[9];     // the rotation, for the full products
   [[maybe_unused]] V aligned;  // a mixed block's lanes (lane_axes)
@@ -158,18 +158,18 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot, std:
 
   // beam_local_force
   V f[12];
-  const V n = hn::Mul(hn::LoadU(d, blk.axial.data() + first), hn::Sub(dl[6], dl[0]));
-  const V t = hn::Mul(hn::LoadU(d, blk.torsion.data() + first), hn::Sub(dl[9], dl[3]));
+  const V n = hn::Mul(hn::LoadU(d, st.axial.data() + first), hn::Sub(dl[6], dl[0]));
+  const V t = hn::Mul(hn::LoadU(d, st.torsion.data() + first), hn::Sub(dl[9], dl[3]));
   f[0] = hn::Neg(n), f[6] = n, f[3] = hn::Neg(t), f[9] = t;
-  const V p0 = hn::LoadU(d, blk.xy[0].data() + first), p1 = hn::LoadU(d, blk.xy[1].data() + first);
-  const V p2 = hn::LoadU(d, blk.xy[2].data() + first), p3 = hn::LoadU(d, blk.xy[3].data() + first);
+  const V p0 = hn::LoadU(d, st.xy[0].data() + first), p1 = hn::LoadU(d, st.xy[1].data() + first);
+  const V p2 = hn::LoadU(d, st.xy[2].data() + first), p3 = hn::LoadU(d, st.xy[3].data() + first);
   const V dv = hn::Sub(dl[1], dl[7]);
   f[1] = hn::Add(hn::Mul(p0, dv), hn::Mul(p1, hn::Add(dl[5], dl[11])));
   f[7] = hn::Neg(f[1]);
   f[5] = hn::Add(hn::Add(hn::Mul(p1, dv), hn::Mul(p2, dl[5])), hn::Mul(p3, dl[11]));
   f[11] = hn::Add(hn::Add(hn::Mul(p1, dv), hn::Mul(p3, dl[5])), hn::Mul(p2, dl[11]));
-  const V q0 = hn::LoadU(d, blk.xz[0].data() + first), q1 = hn::LoadU(d, blk.xz[1].data() + first);
-  const V q2 = hn::LoadU(d, blk.xz[2].data() + first), q3 = hn::LoadU(d, blk.xz[3].data() + first);
+  const V q0 = hn::LoadU(d, st.xz[0].data() + first), q1 = hn::LoadU(d, st.xz[1].data() + first);
+  const V q2 = hn::LoadU(d, st.xz[2].data() + first), q3 = hn::LoadU(d, st.xz[3].data() + first);
   const V dw = hn::Sub(dl[2], dl[8]);
   f[2] = hn::Sub(hn::Mul(q0, dw), hn::Mul(q1, hn::Add(dl[4], dl[10])));
   f[8] = hn::Neg(f[2]);
@@ -193,45 +193,46 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot, std:
 }
 
 // lane_forces for the block's kind of axes.
-HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot, std::size_t first,
-                            const V* ug, V* g) {
+HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
+                            const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
   switch (block_axes(blk)) {
     case Axes::kUniform:
       switch (3 * axis_of(blk.axes[0], 0) + axis_of(blk.axes[0], 1)) {
         case 1:
-          lane_forces<Axes::kUniform, 0, 1>(blk, rot, first, ug, g);
+          lane_forces<Axes::kUniform, 0, 1>(blk, rot, st, first, ug, g);
           return;
         case 2:
-          lane_forces<Axes::kUniform, 0, 2>(blk, rot, first, ug, g);
+          lane_forces<Axes::kUniform, 0, 2>(blk, rot, st, first, ug, g);
           return;
         case 3:
-          lane_forces<Axes::kUniform, 1, 0>(blk, rot, first, ug, g);
+          lane_forces<Axes::kUniform, 1, 0>(blk, rot, st, first, ug, g);
           return;
         case 5:
-          lane_forces<Axes::kUniform, 1, 2>(blk, rot, first, ug, g);
+          lane_forces<Axes::kUniform, 1, 2>(blk, rot, st, first, ug, g);
           return;
         case 6:
-          lane_forces<Axes::kUniform, 2, 0>(blk, rot, first, ug, g);
+          lane_forces<Axes::kUniform, 2, 0>(blk, rot, st, first, ug, g);
           return;
         default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
-          lane_forces<Axes::kUniform, 2, 1>(blk, rot, first, ug, g);
+          lane_forces<Axes::kUniform, 2, 1>(blk, rot, st, first, ug, g);
           return;
       }
     case Axes::kGeneral:
-      lane_forces<Axes::kGeneral>(blk, rot, first, ug, g);
+      lane_forces<Axes::kGeneral>(blk, rot, st, first, ug, g);
       return;
     case Axes::kMixed:
-      lane_forces<Axes::kMixed>(blk, rot, first, ug, g);
+      lane_forces<Axes::kMixed>(blk, rot, st, first, ug, g);
       return;
   }
 }
 
 // Any vector width: the displacements gathered DOF by DOF, the end forces stored lane by lane
 // into fi, fj [DOF][lane].
-HWY_INLINE void block_gather(const BeamBlock& blk, const BeamRotations& rot, const double* u,
+HWY_INLINE void block_gather(const BeamArrays& a, std::size_t blk_index, const double* u,
                              const double* v, double beta, double (*fi)[kBeamLanes],
                              double (*fj)[kBeamLanes]) {
   const D d;
+  const BeamBlock& blk = a.blocks[blk_index];
   const hn::Rebind<std::int32_t, D> d32;
   const hn::Rebind<std::int64_t, D> d64;
   for (std::size_t first = 0; first < kBeamLanes; first += hn::Lanes(d)) {
@@ -250,7 +251,7 @@ HWY_INLINE void block_gather(const BeamBlock& blk, const BeamRotations& rot, con
       }
     }
     V g[12];
-    lane_forces(blk, rot, first, ug, g);
+    lane_forces(blk, a.rotations[blk_index], a.stiffness[blk.stiffness], first, ug, g);
     for (std::size_t c = 0; c < 6; ++c) {
       hn::StoreU(g[c], d, fi[c] + first);
       hn::StoreU(g[6 + c], d, fj[c] + first);
@@ -323,9 +324,10 @@ HWY_INLINE void load_end(const double* x, const std::int32_t* dof, V* out) {
 // Vectors of 4 (AVX2, AVX-512): the displacements loaded node by node and transposed into lanes,
 // then the end forces g [DOF] of the 4 lanes.
 template <bool kBeta>
-HWY_INLINE void block_transpose(const BeamBlock& blk, const BeamRotations& rot, const double* u,
+HWY_INLINE void block_transpose(const BeamArrays& a, std::size_t b, const double* u,
                                 const double* v, double beta, V* g) {
   const D d;
+  const BeamBlock& blk = a.blocks[b];
   V ug[12];
   load_end(u, blk.dof_i.data(), ug);
   load_end(u, blk.dof_j.data(), ug + 6);
@@ -337,7 +339,7 @@ HWY_INLINE void block_transpose(const BeamBlock& blk, const BeamRotations& rot, 
     for (std::size_t c = 0; c < 12; ++c)
       ug[c] = hn::Add(ug[c], hn::Mul(b, vg[c]));
   }
-  lane_forces(blk, rot, 0, ug, g);
+  lane_forces(blk, a.rotations[b], a.stiffness[blk.stiffness], 0, ug, g);
 }
 
 // The end forces g [DOF] of one node end transposed back, lane by lane: DOFs 0..3 in r[l], DOFs
@@ -402,57 +404,55 @@ HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g
 }
 
 template <bool kBeta>
-HWY_INLINE void forces_transpose(const BeamBlock* blocks, const BeamRotations* rotations,
-                                 std::size_t elements, const double* u, const double* v,
-                                 double beta, double* f) {
+HWY_INLINE void forces_transpose(const BeamArrays& a, std::size_t elements, const double* u,
+                                 const double* v, double beta, double* f) {
   const D d;
   const std::size_t full = elements / kBeamLanes;
   for (std::size_t b = 0; b < full; ++b) {
     V g[12];
-    block_transpose<kBeta>(blocks[b], rotations[b], u, v, beta, g);
-    add_rows(blocks[b], g, f);
+    block_transpose<kBeta>(a, b, u, v, beta, g);
+    add_rows(a.blocks[b], g, f);
   }
   if (const std::size_t lanes = elements - full * kBeamLanes; lanes > 0) {
     V g[12];
-    block_transpose<kBeta>(blocks[full], rotations[full], u, v, beta, g);
+    block_transpose<kBeta>(a, full, u, v, beta, g);
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
     for (std::size_t c = 0; c < 6; ++c) {
       hn::Store(g[c], d, fi[c]);
       hn::Store(g[6 + c], d, fj[c]);
     }
-    add_lanes(blocks[full], lanes, fi, fj, f);
+    add_lanes(a.blocks[full], lanes, fi, fj, f);
   }
 }
 
 // Whole blocks whose ends all go to f (the common case) take add_rows, as the single-core pass.
 template <bool kBeta>
-HWY_INLINE void split_transpose(const BeamBlock* blocks, const BeamRotations* rotations,
-                                std::size_t first, std::size_t last, const std::uint8_t* direct,
-                                const double* u, const double* v, double beta, double* f,
-                                double* fe) {
+HWY_INLINE void split_transpose(const BeamArrays& a, std::size_t first, std::size_t last,
+                                const std::uint8_t* direct, const double* u, const double* v,
+                                double beta, double* f, double* fe) {
   constexpr std::uint8_t kAll = (1U << (2 * kBeamLanes)) - 1U;
   for (std::size_t b = first; b < last; ++b) {
     V g[12];
-    block_transpose<kBeta>(blocks[b], rotations[b], u, v, beta, g);
+    block_transpose<kBeta>(a, b, u, v, beta, g);
     if (direct[b] == kAll) {
-      add_rows(blocks[b], g, f);
+      add_rows(a.blocks[b], g, f);
     } else {
-      split_rows(blocks[b], direct[b], g, f, fe + 12 * kBeamLanes * b);
+      split_rows(a.blocks[b], direct[b], g, f, fe + 12 * kBeamLanes * b);
     }
   }
 }
 
 #endif  // HWY_TARGET != HWY_SCALAR
 
-void ElementForces(const BeamBlock* blocks, const BeamRotations* rotations, std::size_t elements,
-                   const double* u, const double* v, double beta, double* f) {
+void ElementForces(const BeamArrays& a, std::size_t elements, const double* u, const double* v,
+                   double beta, double* f) {
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
     if (beta != 0.0) {
-      forces_transpose<true>(blocks, rotations, elements, u, v, beta, f);
+      forces_transpose<true>(a, elements, u, v, beta, f);
     } else {
-      forces_transpose<false>(blocks, rotations, elements, u, v, beta, f);
+      forces_transpose<false>(a, elements, u, v, beta, f);
     }
     return;
   }
@@ -461,20 +461,20 @@ void ElementForces(const BeamBlock* blocks, const BeamRotations* rotations, std:
   for (std::size_t b = 0; b < num_blocks; ++b) {
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
-    block_gather(blocks[b], rotations[b], u, v, beta, fi, fj);
-    add_lanes(blocks[b], b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes, fi, fj, f);
+    block_gather(a, b, u, v, beta, fi, fj);
+    add_lanes(a.blocks[b], b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes, fi, fj, f);
   }
 }
 
-void ElementForcesSplit(const BeamBlock* blocks, const BeamRotations* rotations, std::size_t first,
-                        std::size_t last, const std::uint8_t* direct, const double* u,
-                        const double* v, double beta, double* f, double* fe) {
+void ElementForcesSplit(const BeamArrays& a, std::size_t first, std::size_t last,
+                        const std::uint8_t* direct, const double* u, const double* v, double beta,
+                        double* f, double* fe) {
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
     if (beta != 0.0) {
-      split_transpose<true>(blocks, rotations, first, last, direct, u, v, beta, f, fe);
+      split_transpose<true>(a, first, last, direct, u, v, beta, f, fe);
     } else {
-      split_transpose<false>(blocks, rotations, first, last, direct, u, v, beta, f, fe);
+      split_transpose<false>(a, first, last, direct, u, v, beta, f, fe);
     }
     return;
   }
@@ -482,8 +482,8 @@ void ElementForcesSplit(const BeamBlock* blocks, const BeamRotations* rotations,
   for (std::size_t b = first; b < last; ++b) {
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
-    block_gather(blocks[b], rotations[b], u, v, beta, fi, fj);
-    split_lanes(blocks[b], direct[b], fi, fj, f, fe + 12 * kBeamLanes * b);
+    block_gather(a, b, u, v, beta, fi, fj);
+    split_lanes(a.blocks[b], direct[b], fi, fj, f, fe + 12 * kBeamLanes * b);
   }
 }
 
@@ -503,18 +503,15 @@ HWY_EXPORT(ElementForces);
 HWY_EXPORT(ElementForcesSplit);
 HWY_EXPORT(Target);
 
-void element_forces_simd(const BeamBlock* blocks, const BeamRotations* rotations,
-                         std::size_t elements, const double* u, const double* v, double beta,
-                         double* f) {
-  HWY_DYNAMIC_DISPATCH(ElementForces)(blocks, rotations, elements, u, v, beta, f);
+void element_forces_simd(const BeamArrays& a, std::size_t elements, const double* u,
+                         const double* v, double beta, double* f) {
+  HWY_DYNAMIC_DISPATCH(ElementForces)(a, elements, u, v, beta, f);
 }
 
-void element_forces_split_simd(const BeamBlock* blocks, const BeamRotations* rotations,
-                               std::size_t first, std::size_t last, const std::uint8_t* direct,
-                               const double* u, const double* v, double beta, double* f,
-                               double* fe) {
-  HWY_DYNAMIC_DISPATCH(ElementForcesSplit)
-  (blocks, rotations, first, last, direct, u, v, beta, f, fe);
+void element_forces_split_simd(const BeamArrays& a, std::size_t first, std::size_t last,
+                               const std::uint8_t* direct, const double* u, const double* v,
+                               double beta, double* f, double* fe) {
+  HWY_DYNAMIC_DISPATCH(ElementForcesSplit)(a, first, last, direct, u, v, beta, f, fe);
 }
 
 // Unqualified names only in HWY_DYNAMIC_DISPATCH: where the build's own instruction set is the

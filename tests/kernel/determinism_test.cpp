@@ -67,6 +67,9 @@ TEST_F(Determinism, InitIsRepeatable) {
   EXPECT_EQ(
       std::memcmp(model_a.rotations.data(), model_b.rotations.data(), sizeof(model_a.rotations)),
       0);
+  EXPECT_EQ(
+      std::memcmp(model_a.stiffness.data(), model_b.stiffness.data(), sizeof(model_a.stiffness)),
+      0);
   EXPECT_EQ(model_a.dt, model_b.dt);
   EXPECT_EQ(model_a.stable.dt_stable, model_b.stable.dt_stable);
 }

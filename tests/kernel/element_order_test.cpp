@@ -106,6 +106,10 @@ TEST(ElementOrder, TheFilesOrderDoesNotChangeTheModel) {
   EXPECT_EQ(
       std::memcmp(a.model.rotations.data(), b.model.rotations.data(), sizeof(a.model.rotations)),
       0);
+  EXPECT_EQ(
+      std::memcmp(a.model.stiffness.data(), b.model.stiffness.data(), sizeof(a.model.stiffness)),
+      0);
+  EXPECT_EQ(a.model.num_stiffness, b.model.num_stiffness);
   EXPECT_EQ(std::memcmp(a.model.mass.data(), b.model.mass.data(), sizeof(a.model.mass)), 0);
   ntn::initial_state(a.model, a.state), ntn::initial_state(b.model, b.state);
   std::array<double, kGridSizes.inputs> in{};

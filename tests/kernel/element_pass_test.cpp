@@ -41,7 +41,14 @@ struct Elements {
   std::vector<BeamData> beams;
   std::vector<BeamBlock> blocks;
   std::vector<BeamRotations> rotations;
+  std::vector<ntn::BeamStiffnessBlock> stiffness;
   std::vector<double> u, v;
+
+  ntn::BeamArrays arrays() const { return {blocks.data(), rotations.data(), stiffness.data()}; }
+  void set(std::size_t k) {
+    ntn::set_lane(blocks.data(), rotations.data(), stiffness.data(), k / ntn::kBeamLanes,
+                  k % ntn::kBeamLanes, beams[k]);
+  }
 };
 
 double pick(std::mt19937_64& rng) {
@@ -88,10 +95,9 @@ Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
   }
   e.blocks.resize(ntn::beam_blocks(count));
   e.rotations.resize(ntn::beam_blocks(count));
-  for (std::size_t k = 0; k < count; ++k) {
-    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], e.rotations[k / ntn::kBeamLanes],
-                  k % ntn::kBeamLanes, e.beams[k]);
-  }
+  e.stiffness.resize(ntn::beam_blocks(count));
+  for (std::size_t k = 0; k < count; ++k)
+    e.set(k);
   const auto dofs = static_cast<std::size_t>(ntn::kDofsPerNode * nodes);
   e.u.resize(dofs), e.v.resize(dofs);
   for (std::size_t j = 0; j < dofs; ++j)
@@ -103,8 +109,7 @@ Elements random_elements(std::size_t count, int nodes, std::uint64_t seed) {
 // into +0.0; -0.0 keeps the signs visible).
 std::vector<double> forces(const Elements& e, ntn::ElementPass path, double beta, double f0 = 0.0) {
   std::vector<double> f(e.u.size(), f0);
-  ntn::element_forces(path, e.blocks.data(), e.rotations.data(), e.beams.size(), e.u.data(),
-                      e.v.data(), beta, f.data());
+  ntn::element_forces(path, e.arrays(), e.beams.size(), e.u.data(), e.v.data(), beta, f.data());
   return f;
 }
 
@@ -114,9 +119,8 @@ std::vector<double> split_forces(const Elements& e, ntn::ElementPass path, doubl
                                  const std::vector<std::uint8_t>& direct) {
   std::vector<double> out(e.u.size(), 0.5);
   out.resize(e.u.size() + 12 * ntn::kBeamLanes * e.blocks.size(), 7.0);
-  ntn::element_forces_split(path, e.blocks.data(), e.rotations.data(), 0, e.blocks.size(),
-                            direct.data(), e.u.data(), e.v.data(), beta, out.data(),
-                            out.data() + e.u.size());
+  ntn::element_forces_split(path, e.arrays(), 0, e.blocks.size(), direct.data(), e.u.data(),
+                            e.v.data(), beta, out.data(), out.data() + e.u.size());
   return out;
 }
 
@@ -173,8 +177,7 @@ TEST(ElementPass, ZerosKeepTheirSign) {
     e.beams[k].rotation =
         k % 2 == 0 ? std::array<double, 9>{1.0, -0.0, -0.0, -0.0, -1.0, -0.0, -0.0, -0.0, -1.0}
                    : std::array<double, 9>{0.6, -0.0, -0.8, -0.0, 1.0, -0.0, 0.8, -0.0, 0.6};
-    ntn::set_lane(e.blocks[k / ntn::kBeamLanes], e.rotations[k / ntn::kBeamLanes],
-                  k % ntn::kBeamLanes, e.beams[k]);
+    e.set(k);
     ASSERT_EQ(e.blocks[k / ntn::kBeamLanes].axes[k % ntn::kBeamLanes] != ntn::kGeneralAxes,
               k % 2 == 0);
   }
@@ -187,6 +190,86 @@ TEST(ElementPass, ZerosKeepTheirSign) {
   ASSERT_GT(negative, 0) << "the case must have both signs of zero to mean anything";
   ASSERT_GT(positive, 0);
   EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kSimd, 0.0, -0.0), f));
+}
+
+// Elements of `types` stiffness kinds in runs (members of a few sections meshed in place): the
+// random set of random_elements with each element's stiffness replaced by its kind's.
+Elements typed_elements(std::size_t count, std::size_t types, std::uint64_t seed) {
+  Elements e = random_elements(count, 40, seed);
+  const Elements kinds = random_elements(types, 40, seed + 1);
+  std::mt19937_64 rng(seed);
+  std::size_t kind = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (k % 4 == 0 && rng() % 3 == 0) kind = rng() % types;  // mostly whole blocks of one kind
+    e.beams[k].k = kinds.beams[kind].k;
+    e.set(k);
+  }
+  return e;
+}
+
+// dedupe_stiffness moves where a block reads its stiffness, never what it reads: every element's
+// data (lane()) and the forces of both paths keep their bits, the table keeps only distinct
+// entries, and a frame of a few kinds shares them.
+TEST(ElementPass, SharedStiffnessKeepsTheBits) {
+  for (const std::size_t types : {std::size_t{1}, std::size_t{3}, std::size_t{200}}) {
+    const Elements before = typed_elements(401, types, 50 + types);
+    Elements after = before;
+    const std::size_t distinct =
+        ntn::dedupe_stiffness(after.blocks.data(), after.stiffness.data(), after.blocks.size());
+    for (std::size_t k = 0; k < before.beams.size(); ++k) {
+      const BeamData a = ntn::lane(before.arrays(), k / ntn::kBeamLanes, k % ntn::kBeamLanes);
+      const BeamData b = ntn::lane(after.arrays(), k / ntn::kBeamLanes, k % ntn::kBeamLanes);
+      ASSERT_EQ(std::memcmp(&a.k, &b.k, sizeof a.k), 0) << types << " kinds, element " << k;
+    }
+    for (const ntn::ElementPass path : {ntn::ElementPass::kScalar, ntn::ElementPass::kSimd}) {
+      EXPECT_TRUE(same_bits(forces(after, path, 2e-3), forces(before, path, 2e-3)))
+          << types << " kinds";
+    }
+    for (std::size_t i = 0; i < distinct; ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        EXPECT_NE(
+            std::memcmp(&after.stiffness[i], &after.stiffness[j], sizeof(ntn::BeamStiffnessBlock)),
+            0)
+            << types << " kinds: entries " << j << " and " << i;
+      }
+    }
+    // Fewer distinct blocks than the window: every repeat is shared, so the table holds exactly
+    // the distinct blocks (counted here pair by pair).
+    std::size_t unique = 0;
+    for (std::size_t i = 0; i < before.blocks.size(); ++i) {
+      bool repeat = false;
+      for (std::size_t j = 0; j < i && !repeat; ++j) {
+        repeat = std::memcmp(&before.stiffness[i], &before.stiffness[j],
+                             sizeof(ntn::BeamStiffnessBlock)) == 0;
+      }
+      unique += repeat ? 0 : 1;
+    }
+    ASSERT_LE(unique, ntn::kStiffnessWindow);
+    EXPECT_EQ(distinct, unique) << types << " kinds";
+    // One kind: the whole blocks and the last one (one element, three empty lanes); three: at
+    // most one entry per kind and the last block; 200 in runs: more than that.
+    const std::size_t least = types == 200 ? 5 : 2, most = types == 1 ? 2 : types == 3 ? 4 : 64;
+    EXPECT_GE(distinct, least) << types << " kinds";
+    EXPECT_LE(distinct, most) << types << " kinds";
+  }
+}
+
+// An entry repeated after more than kStiffnessWindow distinct ones is kept, not shared (the
+// bounded search), and its block still reads its own bits.
+TEST(ElementPass, SharedStiffnessSearchIsBounded) {
+  const std::size_t w = ntn::kStiffnessWindow;
+  Elements e = random_elements(4 * (w + 3), 40, 9);  // w + 3 blocks, all different
+  for (std::size_t l = 0; l < ntn::kBeamLanes; ++l) {
+    e.beams[4 * (w + 1) + l].k = e.beams[l].k;          // block w + 1 repeats block 0: too far back
+    e.beams[4 * (w + 2) + l].k = e.beams[4 * w + l].k;  // block w + 2 repeats block w
+    e.set(4 * (w + 1) + l), e.set(4 * (w + 2) + l);
+  }
+  const Elements before = e;
+  EXPECT_EQ(ntn::dedupe_stiffness(e.blocks.data(), e.stiffness.data(), e.blocks.size()), w + 2);
+  EXPECT_EQ(e.blocks[w + 1].stiffness, static_cast<std::int32_t>(w + 1));
+  EXPECT_EQ(e.blocks[w + 2].stiffness, static_cast<std::int32_t>(w));
+  EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kSimd, 0.0),
+                        forces(before, ntn::ElementPass::kSimd, 0.0)));
 }
 
 #if defined(NTN_SIMD)

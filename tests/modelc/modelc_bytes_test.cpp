@@ -40,13 +40,18 @@ TEST(ModelBytes, EqualsSizeofExactlyWithHinges) {
 }
 
 // The marginal cost of more elements, nodes or hinges, as ntn-model prints it. The Model is
-// aligned to 32 bytes (the element blocks' vectors), so the steps below are ones that keep
-// its end padding: an element block and its rotations (4 elements, 672 bytes), 64 nodes, 16 hinges.
+// aligned to 32 bytes (the stiffness and rotation blocks' vectors), so the steps below are ones
+// that keep its end padding: 8 element blocks (32 elements: 8 blocks of 44 bytes, 8 rotations and
+// 8 stiffness entries), 64 nodes, 16 hinges.
 TEST(ModelBytes, PerElementNodeAndHinge) {
-  constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 12, 0, 0, 0, 0, 0};
+  constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 40, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(e) - ntn::modelc::model_bytes(a),
-            4 * ntn::modelc::memory_footprint(a).per_element);
-  EXPECT_EQ(ntn::modelc::memory_footprint(a).per_element, sizeof(ntn::BeamData));
+            32 * ntn::modelc::memory_footprint(a).per_element);
+  EXPECT_EQ(
+      ntn::modelc::memory_footprint(a).per_element,
+      (sizeof(ntn::BeamBlock) + sizeof(ntn::BeamRotations) + sizeof(ntn::BeamStiffnessBlock)) /
+              ntn::kBeamLanes +
+          sizeof(std::int32_t));
   // 64 more nodes keep the 1-byte `fixed` array a multiple of 8: no new padding.
   constexpr ntn::Sizes n{72, 8, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(n) - ntn::modelc::model_bytes(a),

@@ -14,6 +14,7 @@
 #include "ntn/beam.hpp"
 #include "ntn/modelc/emit_header.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "ntn/modelc/model_bytes.hpp"
 #include "ntn/modelc/model_report.hpp"
 #include "ntn/time_step.hpp"
 
@@ -559,7 +560,9 @@ TEST(ModelInfo, ReportsFigures) {
   const std::string t = ntn::modelc::info_text(*r.model);
   // Per node: 6 DOFs x 7 double arrays (mass, inv_mass, damping, u, v, f, a) + 1 + 4.
   const std::string per_node = "per node " + std::to_string(6 * 9 * 8 + 1 + 4) + " B";
-  const std::string per_element = "per element " + std::to_string(sizeof(ntn::BeamData)) + " B";
+  const std::string per_element =
+      "per element " + std::to_string(ntn::modelc::memory_footprint(r.model->sizes()).per_element) +
+      " B";
   for (const std::string& s :
        {std::string("nodes        104"), std::string("elements     104 in 26 members"),
         std::string("order        26 blocks of 4, "),

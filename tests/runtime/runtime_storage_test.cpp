@@ -34,6 +34,7 @@
 #include "ntn/hil/record_source.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "ntn/modelc/model_report.hpp"
 #include "ntn/run/loaded_model.hpp"
 #include "pinned_joint_model.hpp"
 #include "portal_plastic_model.hpp"
@@ -191,6 +192,33 @@ void expect_frame_same(std::int64_t steps) {
   ntn::run::LoadedModel rt(std::move(d), {});
   ASSERT_TRUE(rt.bound());
   expect_same_run(*spec, rt, steps);
+}
+
+// `ntn-model info` reports the stiffness entries the blocks share as init() fills them (the
+// kernel's fill_beam_blocks, run by both): the same count as the model in run-time storage, and
+// frame3d's 26 blocks (members of 4 elements, four kinds of member) share a few.
+TEST(RuntimeStorage, InfoCountsTheStiffnessEntriesInitShares) {
+  for (const char* name : {"frame3d.toml", "cantilever.toml", "hinged_beam.toml",
+                           "portal_plastic.toml", "portal_slip.toml"}) {
+    ntn::modelc::LoadResult r = ntn::modelc::load_model(NTN_CONFIG_DIR "/" + std::string(name));
+    ASSERT_TRUE(r.ok()) << name;
+    const std::string info = ntn::modelc::info_text(*r.model);
+    ntn::run::LoadedModel rt(std::move(*r.model), {});
+    ASSERT_TRUE(rt.init().ok()) << name;
+    const ntn::Model<ntn::kRunTime>& m = rt.model();
+    const std::size_t blocks = ntn::beam_blocks(m.sizes.elements);
+    EXPECT_GE(m.num_stiffness, 1U) << name;
+    EXPECT_LE(m.num_stiffness, blocks) << name;
+    EXPECT_NE(info.find(", " + std::to_string(m.num_stiffness) + " distinct stiffness blocks;"),
+              std::string::npos)
+        << name << "\n"
+        << info;
+    for (std::size_t b = 0; b < blocks; ++b)
+      ASSERT_LT(static_cast<std::size_t>(m.beams[b].stiffness), m.num_stiffness) << name;
+    if (std::string(name) == "frame3d.toml") {
+      EXPECT_LE(m.num_stiffness, blocks / 2);
+    }
+  }
 }
 
 // Of El Centro: its strong motion (peak at 2.1 s) and after; under the sanitizers (~10x slower)

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "ntn/beam.hpp"
 #include "ntn/model_spec.hpp"
@@ -26,58 +27,110 @@ constexpr std::size_t beam_blocks(std::size_t elements) {
   return (elements + kBeamLanes - 1) / kBeamLanes;
 }
 
-// kBeamLanes elements, field by field (BeamData's fields but the rotation, lane l of each).
-// Lanes past the model's last element have zero stiffness and DOF offset 0; the pass computes
-// them and adds them nowhere. Every lane array is 32-byte aligned (one AVX2 vector, never across a
-// cache line).
-struct alignas(32) BeamBlock {
+// The stiffness of kBeamLanes elements, lane l of each field (BeamStiffness, beam.hpp). Lanes past
+// the model's last element have zero stiffness. Every lane array is 32-byte aligned (one AVX2
+// vector, never across a cache line).
+struct alignas(32) BeamStiffnessBlock {
   using Lanes = std::array<double, kBeamLanes>;
   Lanes axial{};
   Lanes torsion{};
   std::array<Lanes, 4> xy{};
   std::array<Lanes, 4> xz{};
+};
+
+// kBeamLanes elements: their nodes, how they rotate, and which entry of the model's stiffness
+// table (BeamArrays::stiffness) holds their stiffness. Blocks of equal stiffness (the same bits in
+// every lane) share one entry, so that a frame of a few member types streams 40 bytes per block
+// and finds its stiffness in L1 (dedupe_stiffness). Lanes past the model's last element have DOF
+// offset 0; the pass computes them and adds them nowhere.
+struct BeamBlock {
   std::array<std::int32_t, kBeamLanes> dof_i{};  // kDofsPerNode * node_i
   std::array<std::int32_t, kBeamLanes> dof_j{};  // kDofsPerNode * node_j
   std::array<AxisMap, kBeamLanes> axes{};        // axis_map(rotation), lane by lane
+  std::int32_t stiffness = 0;                    // its entry of the stiffness table
 };
 
 // The rotations of a block's elements (BeamData::rotation[k], lane by lane), in an array of their
 // own beside the blocks: a block of aligned elements (beam.hpp, AxisMap) never reads its
-// rotations, so a pass over an aligned frame streams 384 bytes per block instead of 672.
+// rotations, so a pass over an aligned frame streams the blocks alone.
 struct alignas(32) BeamRotations {
-  std::array<BeamBlock::Lanes, 9> rotation{};
+  std::array<BeamStiffnessBlock::Lanes, 9> rotation{};
 };
-static_assert(sizeof(BeamBlock) + sizeof(BeamRotations) == kBeamLanes * sizeof(BeamData),
-              "one BeamData per lane");
 
-inline void set_lane(BeamBlock& blk, BeamRotations& rot, std::size_t l, const BeamData& b) {
-  blk.dof_i[l] = kDofsPerNode * b.node_i;
-  blk.dof_j[l] = kDofsPerNode * b.node_j;
-  blk.axes[l] = axis_map(b.rotation);  // from the rotation: the one rule, whatever b.axes says
+// What the element pass reads: the blocks, their rotations (block by block) and the stiffness
+// table (by BeamBlock::stiffness).
+struct BeamArrays {
+  const BeamBlock* blocks = nullptr;
+  const BeamRotations* rotations = nullptr;
+  const BeamStiffnessBlock* stiffness = nullptr;
+};
+
+// Element b * kBeamLanes + l into lane l of block b, its stiffness into entry b of the table
+// (each block its own entry until dedupe_stiffness shares them).
+inline void set_lane(BeamBlock* blocks, BeamRotations* rotations, BeamStiffnessBlock* stiffness,
+                     std::size_t b, std::size_t l, const BeamData& data) {
+  BeamBlock& blk = blocks[b];
+  blk.dof_i[l] = kDofsPerNode * data.node_i;
+  blk.dof_j[l] = kDofsPerNode * data.node_j;
+  blk.axes[l] =
+      axis_map(data.rotation);  // from the rotation: the one rule, whatever data.axes says
+  blk.stiffness = static_cast<std::int32_t>(b);
   for (std::size_t k = 0; k < 9; ++k)
-    rot.rotation[k][l] = b.rotation[k];
-  blk.axial[l] = b.k.axial;
-  blk.torsion[l] = b.k.torsion;
+    rotations[b].rotation[k][l] = data.rotation[k];
+  BeamStiffnessBlock& st = stiffness[b];
+  st.axial[l] = data.k.axial;
+  st.torsion[l] = data.k.torsion;
   for (std::size_t k = 0; k < 4; ++k) {
-    blk.xy[k][l] = b.k.xy[k];
-    blk.xz[k][l] = b.k.xz[k];
+    st.xy[k][l] = data.k.xy[k];
+    st.xz[k][l] = data.k.xz[k];
   }
 }
 
-inline BeamData lane(const BeamBlock& blk, const BeamRotations& rot, std::size_t l) {
-  BeamData b;
-  b.node_i = blk.dof_i[l] / kDofsPerNode;
-  b.node_j = blk.dof_j[l] / kDofsPerNode;
-  b.axes = blk.axes[l];
+inline BeamData lane(const BeamArrays& a, std::size_t b, std::size_t l) {
+  const BeamBlock& blk = a.blocks[b];
+  const BeamStiffnessBlock& st = a.stiffness[blk.stiffness];
+  BeamData data;
+  data.node_i = blk.dof_i[l] / kDofsPerNode;
+  data.node_j = blk.dof_j[l] / kDofsPerNode;
+  data.axes = blk.axes[l];
   for (std::size_t k = 0; k < 9; ++k)
-    b.rotation[k] = rot.rotation[k][l];
-  b.k.axial = blk.axial[l];
-  b.k.torsion = blk.torsion[l];
+    data.rotation[k] = a.rotations[b].rotation[k][l];
+  data.k.axial = st.axial[l];
+  data.k.torsion = st.torsion[l];
   for (std::size_t k = 0; k < 4; ++k) {
-    b.k.xy[k] = blk.xy[k][l];
-    b.k.xz[k] = blk.xz[k][l];
+    data.k.xy[k] = st.xy[k][l];
+    data.k.xz[k] = st.xz[k][l];
   }
-  return b;
+  return data;
+}
+
+// Shares the stiffness table's equal entries after set_lane has given every block its own: block
+// b's entry is replaced by the first earlier entry with the same bytes (so the same bits: -0.0 and
+// +0.0 differ) among the last kStiffnessWindow distinct ones, and the table compacted to the
+// distinct entries, in block order. Returns their number. The window bounds the work (blocks x
+// kStiffnessWindow comparisons) whatever the model; a frame of a few member types, meshed member by
+// member, has far fewer distinct blocks than that, and a model with more keeps the entries it
+// cannot share (the bits are the same either way: only where a block reads its stiffness moves).
+inline constexpr std::size_t kStiffnessWindow = 64;
+
+inline std::size_t dedupe_stiffness(BeamBlock* blocks, BeamStiffnessBlock* stiffness,
+                                    std::size_t num_blocks) {
+  std::size_t distinct = 0;
+  for (std::size_t b = 0; b < num_blocks; ++b) {
+    const BeamStiffnessBlock st = stiffness[b];
+    std::size_t found = distinct;
+    for (std::size_t k = distinct; k-- > 0 && distinct - k <= kStiffnessWindow;) {
+      if (std::memcmp(&stiffness[k], &st, sizeof st) == 0) {
+        found = k;
+        break;
+      }
+    }
+    if (found == distinct) stiffness[distinct++] = st;
+    blocks[b].stiffness = static_cast<std::int32_t>(found);
+  }
+  for (std::size_t k = distinct; k < num_blocks; ++k)
+    stiffness[k] = BeamStiffnessBlock{};
+  return distinct;
 }
 
 // Which path the step's element pass and DOF pass (dof_pass.hpp) take (Model::element_pass). kSimd
@@ -96,11 +149,11 @@ constexpr bool direct_end(std::uint8_t direct, std::size_t l, std::size_t end) {
 namespace detail {
 
 // Element l of a block: its global end forces fi (on node i), fj at u (+ beta v when beta != 0).
-inline void lane_force(const BeamBlock& blk, const BeamRotations& rot, std::size_t l,
-                       const double* u, const double* v, double beta, double* fi, double* fj) {
-  const BeamData b = lane(blk, rot, l);
-  const auto i = static_cast<std::size_t>(blk.dof_i[l]);
-  const auto j = static_cast<std::size_t>(blk.dof_j[l]);
+inline void lane_force(const BeamArrays& a, std::size_t blk, std::size_t l, const double* u,
+                       const double* v, double beta, double* fi, double* fj) {
+  const BeamData b = lane(a, blk, l);
+  const auto i = static_cast<std::size_t>(a.blocks[blk].dof_i[l]);
+  const auto j = static_cast<std::size_t>(a.blocks[blk].dof_j[l]);
   if (beta != 0.0) {
     double ui[6], uj[6];
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
@@ -114,14 +167,13 @@ inline void lane_force(const BeamBlock& blk, const BeamRotations& rot, std::size
 }
 
 // The scalar reference: f += the elements' forces at u (+ beta v when beta != 0), in order.
-inline void element_forces_scalar(const BeamBlock* blocks, const BeamRotations* rotations,
-                                  std::size_t elements, const double* u, const double* v,
-                                  double beta, double* f) {
+inline void element_forces_scalar(const BeamArrays& a, std::size_t elements, const double* u,
+                                  const double* v, double beta, double* f) {
   for (std::size_t e = 0; e < elements; ++e) {
-    const BeamBlock& blk = blocks[e / kBeamLanes];
+    const BeamBlock& blk = a.blocks[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     double fi[6], fj[6];
-    lane_force(blk, rotations[e / kBeamLanes], l, u, v, beta, fi, fj);
+    lane_force(a, e / kBeamLanes, l, u, v, beta, fi, fj);
     const auto i = static_cast<std::size_t>(blk.dof_i[l]);
     const auto j = static_cast<std::size_t>(blk.dof_j[l]);
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
@@ -135,15 +187,14 @@ inline void element_forces_scalar(const BeamBlock* blocks, const BeamRotations* 
 // [first, last), whole blocks, in element order: each end's force added to f at its node where
 // direct[block] has the end's bit (direct_end), else stored into fe[12 e + 6 end + c] (the lanes
 // past the model's last element have no bit: stored, never read).
-inline void element_forces_split_scalar(const BeamBlock* blocks, const BeamRotations* rotations,
-                                        std::size_t first, std::size_t last,
+inline void element_forces_split_scalar(const BeamArrays& a, std::size_t first, std::size_t last,
                                         const std::uint8_t* direct, const double* u,
                                         const double* v, double beta, double* f, double* fe) {
   for (std::size_t e = first * kBeamLanes; e < last * kBeamLanes; ++e) {
-    const BeamBlock& blk = blocks[e / kBeamLanes];
+    const BeamBlock& blk = a.blocks[e / kBeamLanes];
     const std::size_t l = e % kBeamLanes;
     double fij[12];
-    lane_force(blk, rotations[e / kBeamLanes], l, u, v, beta, fij, fij + 6);
+    lane_force(a, e / kBeamLanes, l, u, v, beta, fij, fij + 6);
     const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
     for (std::size_t end = 0; end < 2; ++end) {
       if (direct_end(direct[e / kBeamLanes], l, end)) {
@@ -159,13 +210,11 @@ inline void element_forces_split_scalar(const BeamBlock* blocks, const BeamRotat
 
 #if defined(NTN_SIMD)
 // kernel/src/element_pass.cpp: the same, kBeamLanes elements at a time.
-void element_forces_simd(const BeamBlock* blocks, const BeamRotations* rotations,
-                         std::size_t elements, const double* u, const double* v, double beta,
-                         double* f);
-void element_forces_split_simd(const BeamBlock* blocks, const BeamRotations* rotations,
-                               std::size_t first, std::size_t last, const std::uint8_t* direct,
-                               const double* u, const double* v, double beta, double* f,
-                               double* fe);
+void element_forces_simd(const BeamArrays& a, std::size_t elements, const double* u,
+                         const double* v, double beta, double* f);
+void element_forces_split_simd(const BeamArrays& a, std::size_t first, std::size_t last,
+                               const std::uint8_t* direct, const double* u, const double* v,
+                               double beta, double* f, double* fe);
 #endif
 
 }  // namespace detail
@@ -175,34 +224,32 @@ void element_forces_split_simd(const BeamBlock* blocks, const BeamRotations* rot
 const char* element_pass_target();
 
 // f += the elements' forces at u (+ beta v), by the chosen path.
-inline void element_forces(ElementPass path, const BeamBlock* blocks,
-                           const BeamRotations* rotations, std::size_t elements, const double* u,
-                           const double* v, double beta, double* f) {
+inline void element_forces(ElementPass path, const BeamArrays& a, std::size_t elements,
+                           const double* u, const double* v, double beta, double* f) {
 #if defined(NTN_SIMD)
   if (path == ElementPass::kSimd) {
-    detail::element_forces_simd(blocks, rotations, elements, u, v, beta, f);
+    detail::element_forces_simd(a, elements, u, v, beta, f);
     return;
   }
 #else
   (void)path;
 #endif
-  detail::element_forces_scalar(blocks, rotations, elements, u, v, beta, f);
+  detail::element_forces_scalar(a, elements, u, v, beta, f);
 }
 
 // The multi-core pass over blocks [first, last) (element_forces_split_scalar), by the chosen path.
-inline void element_forces_split(ElementPass path, const BeamBlock* blocks,
-                                 const BeamRotations* rotations, std::size_t first,
+inline void element_forces_split(ElementPass path, const BeamArrays& a, std::size_t first,
                                  std::size_t last, const std::uint8_t* direct, const double* u,
                                  const double* v, double beta, double* f, double* fe) {
 #if defined(NTN_SIMD)
   if (path == ElementPass::kSimd) {
-    detail::element_forces_split_simd(blocks, rotations, first, last, direct, u, v, beta, f, fe);
+    detail::element_forces_split_simd(a, first, last, direct, u, v, beta, f, fe);
     return;
   }
 #else
   (void)path;
 #endif
-  detail::element_forces_split_scalar(blocks, rotations, first, last, direct, u, v, beta, f, fe);
+  detail::element_forces_split_scalar(a, first, last, direct, u, v, beta, f, fe);
 }
 
 }  // namespace ntn

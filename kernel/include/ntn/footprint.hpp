@@ -33,6 +33,8 @@ constexpr void model_members(const Sizes& s, V&& v) {
   const std::size_t blocks = beam_blocks(s.elements);
   v(&M::beams, blocks);
   v(&M::rotations, blocks);
+  v(&M::stiffness, blocks);
+  v(&M::num_stiffness);
   v(&M::element_slot, s.elements);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);

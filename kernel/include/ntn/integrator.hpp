@@ -109,8 +109,8 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   w.f.fill(0.0);
-  ntn::element_forces(m.element_pass, m.beams.data(), m.rotations.data(), m.sizes.elements,
-                      s.u.data(), s.v.data(), m.beta, w.f.data());
+  ntn::element_forces(m.element_pass, m.beam_arrays(), m.sizes.elements, s.u.data(), s.v.data(),
+                      m.beta, w.f.data());
 }
 
 // A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
@@ -357,8 +357,8 @@ void team_element_forces(void* arg, int k) {
   }
   const auto first = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k)]);
   const auto last = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k) + 1]);
-  element_forces_split(c.m->element_pass, c.m->beams.data(), c.m->rotations.data(), first, last,
-                       c.t->direct.data(), c.s->u.data(), c.s->v.data(), c.m->beta, c.w->f.data(),
+  element_forces_split(c.m->element_pass, c.m->beam_arrays(), first, last, c.t->direct.data(),
+                       c.s->u.data(), c.s->v.data(), c.m->beta, c.w->f.data(),
                        c.t->end_forces.data());
 }
 

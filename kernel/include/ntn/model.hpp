@@ -26,10 +26,13 @@ struct Model : SizesOf<S> {
   static constexpr Sizes kSizes = S;
   static constexpr std::size_t kDofs = kDofsPerNode * S.nodes;
 
-  // The elements, kBeamLanes to a block in the model's order (element_order.hpp), and their
-  // rotations block by block (element_pass.hpp): beam(e) is element e of the model file.
+  // The elements, kBeamLanes to a block in the model's order (element_order.hpp), their
+  // rotations block by block and the stiffness table, num_stiffness distinct entries that the
+  // blocks share (element_pass.hpp): beam(e) is element e of the model file.
   Array<BeamBlock, S, beam_blocks(S.elements)> beams{};
   Array<BeamRotations, S, beam_blocks(S.elements)> rotations{};
+  Array<BeamStiffnessBlock, S, beam_blocks(S.elements)> stiffness{};
+  std::size_t num_stiffness = 0;
   // Element e of the file -> its place k in the model's order (block k / kBeamLanes, lane
   // k % kBeamLanes).
   Array<std::int32_t, S, S.elements> element_slot{};
@@ -117,9 +120,11 @@ struct Model : SizesOf<S> {
 
   std::size_t dofs() const { return kDofsPerNode * this->sizes.nodes; }  // kDofs, in any storage
 
+  BeamArrays beam_arrays() const { return {beams.data(), rotations.data(), stiffness.data()}; }
+
   BeamData beam(std::size_t e) const {
     const auto k = static_cast<std::size_t>(element_slot[e]);
-    return lane(beams[k / kBeamLanes], rotations[k / kBeamLanes], k % kBeamLanes);
+    return lane(beam_arrays(), k / kBeamLanes, k % kBeamLanes);
   }
 };
 
@@ -298,6 +303,29 @@ template <Sizes S>
   return {};
 }
 
+// The elements of `v` in the model's order (`order`, element_order.hpp) into their blocks (zeroed
+// by the caller), each block's stiffness into the table, then the blocks of equal stiffness made to
+// share one entry (dedupe_stiffness); element_slot[e] is element e's place in the order. Returns
+// the number of distinct stiffness entries. init() builds the model with it, and the model
+// compiler reports what it gives (ntn-model info).
+inline std::size_t fill_beam_blocks(const SpecView& v, std::span<const std::int32_t> order,
+                                    BeamBlock* blocks, BeamRotations* rotations,
+                                    BeamStiffnessBlock* stiffness, std::int32_t* element_slot) {
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto i = static_cast<std::size_t>(order[k]);
+    const ElementSpec& e = v.elements[i];
+    const BeamGeometry g = beam_geometry(v.nodes[static_cast<std::size_t>(e.node_i)],
+                                         v.nodes[static_cast<std::size_t>(e.node_j)], e);
+    BeamData b;
+    b.node_i = e.node_i, b.node_j = e.node_j;
+    b.rotation = g.rotation;
+    b.k = beam_stiffness(e, g.length);
+    set_lane(blocks, rotations, stiffness, k / kBeamLanes, k % kBeamLanes, b);
+    element_slot[i] = static_cast<std::int32_t>(k);
+  }
+  return dedupe_stiffness(blocks, stiffness, beam_blocks(order.size()));
+}
+
 // Builds the constant model from its spec. No heap: `model` and `work` are caller-owned (usually
 // static); `work` is scratch for the call only.
 template <Sizes S>
@@ -319,23 +347,17 @@ template <Sizes S>
     if (g.check == ElementCheck::kZeroLength) return {InitError::kZeroLength, where};
     if (g.check == ElementCheck::kOrientationParallel) return {InitError::kOrientation, where};
   }
-  // The model's order (element_order.hpp), then each element into its lane.
+  // The model's order (element_order.hpp), then each element into its lane, then the blocks of
+  // equal stiffness made to share one entry of the table.
   const SpecView v = view(spec);
   const std::span<const std::int32_t> order(work.order.data(), sz.elements);
   spec_element_order(v, std::span<OrderElement>(work.order_elements.data(), sz.elements),
                      std::span<std::int32_t>(work.order.data(), sz.elements));
-  for (std::size_t k = 0; k < sz.elements; ++k) {
-    const auto i = static_cast<std::size_t>(work.order[k]);
-    const ElementSpec& e = spec.elements[i];
-    const BeamGeometry g = beam_geometry(spec.nodes[static_cast<std::size_t>(e.node_i)],
-                                         spec.nodes[static_cast<std::size_t>(e.node_j)], e);
-    BeamData b;
-    b.node_i = e.node_i, b.node_j = e.node_j;
-    b.rotation = g.rotation;
-    b.k = beam_stiffness(e, g.length);
-    set_lane(model.beams[k / kBeamLanes], model.rotations[k / kBeamLanes], k % kBeamLanes, b);
-    model.element_slot[i] = static_cast<std::int32_t>(k);
-  }
+  model.beams.fill(BeamBlock{});
+  model.rotations.fill(BeamRotations{});
+  model.stiffness.fill(BeamStiffnessBlock{});
+  model.num_stiffness = fill_beam_blocks(v, order, model.beams.data(), model.rotations.data(),
+                                         model.stiffness.data(), model.element_slot.data());
 
   model.num_supported = 0;
   assemble_lumped_mass(v, order, model.mass);

@@ -18,8 +18,12 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   f.state = state_footprint(s);
   f.scratch = scratch_footprint(s);
   f.total = f.model + f.state + f.scratch;
-  // A block of kBeamLanes elements and its rotations, per element.
-  f.per_element = (sizeof(BeamBlock) + sizeof(BeamRotations)) / kBeamLanes;
+  // A block of kBeamLanes elements, its rotations and its entry of the stiffness table (the
+  // capacity: every block may have a stiffness of its own), per element, and the element's slot
+  // (Model::element_slot).
+  f.per_element =
+      (sizeof(BeamBlock) + sizeof(BeamRotations) + sizeof(BeamStiffnessBlock)) / kBeamLanes +
+      sizeof(std::int32_t);
   // Per node: 6 DOFs x 9 per-DOF double arrays (Model: mass, inv_mass, damping, u0, v0; State:
   // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
   f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);

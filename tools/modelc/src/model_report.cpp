@@ -65,10 +65,17 @@ std::string order_line(const ModelDescription& m) {
                          el[static_cast<std::size_t>(order[b * kBeamLanes])].axes;
     uniform += same ? 1 : 0;
   }
+  // The blocks as init() fills them: how many distinct stiffness entries they share.
+  std::vector<BeamBlock> blk(blocks);
+  std::vector<BeamRotations> rot(blocks);
+  std::vector<BeamStiffnessBlock> stiff(blocks);
+  std::vector<std::int32_t> slot(n);
+  const std::size_t entries =
+      fill_beam_blocks(m.view(), order, blk.data(), rot.data(), stiff.data(), slot.data());
   return std::to_string(blocks) + " blocks of " + std::to_string(kBeamLanes) + ", " +
-         std::to_string(uniform) + " of one orientation; " + std::to_string(moved) + " of " +
-         std::to_string(n) + " elements away from their place in the file (kernel/README, the " +
-         "model's element order)";
+         std::to_string(uniform) + " of one orientation, " + std::to_string(entries) +
+         " distinct stiffness blocks; " + std::to_string(moved) + " of " + std::to_string(n) +
+         " elements away from their place in the file (kernel/README, the model's element order)";
 }
 
 }  // namespace
