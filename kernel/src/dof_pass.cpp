@@ -2,8 +2,9 @@
 // Highway's portable vectors compiled for each instruction set and the widest the CPU has picked at
 // run time. Each line is one line of dof_update in the same order (IEEE products and sums, never
 // fused: the build has -ffp-contract=off), so each lane's values are the scalar path's bits. P_n =
-// m g_d repeats every 6 DOFs: two nodes (12 DOFs) are a whole number of vectors of 1, 2 or 4 lanes,
-// with the pattern of g loaded at the same offset for each.
+// m g_d repeats every 6 DOFs: four nodes (24 DOFs) are a whole number of vectors of 1, 2, 4 or 8
+// lanes, with the pattern of g loaded at the same offset for each (8 lanes on AVX-512: one vector
+// of DOFs where the element pass takes a block of four elements in 256 bits).
 
 #include "ntn/dof_pass.hpp"
 
@@ -20,10 +21,10 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
-  using D = hn::CappedTag<double, 4>;  // 12 DOFs: 3 vectors of 4, 6 of 2 or 12 of 1
+  using D = hn::CappedTag<double, 8>;  // 24 DOFs: 3 vectors of 8, 6 of 4, 12 of 2 or 24 of 1
   using V = hn::Vec<D>;
   const D d;
-  constexpr std::size_t kPair = 2 * kDofsPerNode;
+  constexpr std::size_t kPair = 4 * kDofsPerNode;
   const std::size_t lanes = hn::Lanes(d);
   double pattern[kPair];  // g, g: lanes [k, k + lanes) of it go with DOFs 6 n + k
   for (std::size_t k = 0; k < kPair; ++k)
@@ -39,7 +40,7 @@ double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
   double* HWY_RESTRICT dis = x.u;
   V bad = zero;
   std::size_t n = first;
-  for (; n + 2 <= last; n += 2) {
+  for (; n + 4 <= last; n += 4) {
     for (std::size_t k = 0; k < kPair; k += lanes) {
       const std::size_t j = kDofsPerNode * n + k;
       const V m = hn::LoadU(d, mass + j);

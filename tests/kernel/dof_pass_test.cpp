@@ -115,7 +115,7 @@ using ntn_test::EveryTarget;
 
 TEST_F(EveryTarget, DofPassGivesTheScalarBits) {
   each_target([&](std::int64_t t) {
-    for (const std::size_t nodes : {1, 2, 3, 7, 64, 65}) {
+    for (const std::size_t nodes : {1, 2, 3, 4, 5, 7, 64, 65}) {  // groups of 4 and the rest
       const Dofs d = random_dofs(nodes, 10 + nodes);
       for (const std::size_t first : {std::size_t{0}, std::size_t{1}}) {
         if (first >= nodes) continue;
