@@ -8,6 +8,8 @@
 
 #include "ntn/dof_pass.hpp"
 
+#include <algorithm>
+
 #if defined(NTN_SIMD)
 
 #undef HWY_TARGET_INCLUDE
@@ -24,30 +26,34 @@ double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
   using D = hn::CappedTag<double, 8>;  // 24 DOFs: 3 vectors of 8, 6 of 4, 12 of 2 or 24 of 1
   using V = hn::Vec<D>;
   const D d;
-  constexpr std::size_t kPair = 4 * kDofsPerNode;
+  constexpr std::size_t kGroupDofs = kMassGroup * kDofsPerNode;
   const std::size_t lanes = hn::Lanes(d);
-  double pattern[kPair];  // g, g: lanes [k, k + lanes) of it go with DOFs 6 n + k
-  for (std::size_t k = 0; k < kPair; ++k)
+  double pattern[kGroupDofs];  // g, g: lanes [k, k + lanes) of it go with DOFs 6 n + k
+  for (std::size_t k = 0; k < kGroupDofs; ++k)
     pattern[k] = x.g[k % kDofsPerNode];
   const V alpha = hn::Set(d, x.alpha), dt = hn::Set(d, x.dt), zero = hn::Zero(d);
   // Locals: the vector stores may alias anything (Highway's stores are may_alias), so pointers
   // read through x would be reloaded after every store.
-  const double* HWY_RESTRICT mass = x.mass;
-  const double* HWY_RESTRICT inv_mass = x.inv_mass;
+  const MassBlock* HWY_RESTRICT table = x.mass_table;
+  const std::int32_t* HWY_RESTRICT entry = x.mass_entry;
   const double* HWY_RESTRICT f = x.f;
   double* HWY_RESTRICT acc = x.a;
   double* HWY_RESTRICT vel = x.v;
   double* HWY_RESTRICT dis = x.u;
   V bad = zero;
-  std::size_t n = first;
-  for (; n + 4 <= last; n += 4) {
-    for (std::size_t k = 0; k < kPair; k += lanes) {
+  // Nodes up to the first whole group by the scalar path, then the groups with their masses from
+  // the table, then the rest by the scalar path.
+  std::size_t n = std::min(last, (first + kMassGroup - 1) / kMassGroup * kMassGroup);
+  const double head = dof_pass_nodes_scalar(x, first, n);
+  for (; n + kMassGroup <= last; n += kMassGroup) {
+    const MassBlock& mb = table[entry[n / kMassGroup]];
+    for (std::size_t k = 0; k < kGroupDofs; k += lanes) {
       const std::size_t j = kDofsPerNode * n + k;
-      const V m = hn::LoadU(d, mass + j);
+      const V m = hn::Load(d, mb.mass.data() + k);
       const V v0 = hn::LoadU(d, vel + j);
       const V p = hn::Mul(m, hn::LoadU(d, pattern + k));
       const V a = hn::Mul(hn::Sub(hn::Sub(p, hn::LoadU(d, f + j)), hn::Mul(hn::Mul(alpha, m), v0)),
-                          hn::LoadU(d, inv_mass + j));
+                          hn::Load(d, mb.inv_mass.data() + k));
       hn::StoreU(a, d, acc + j);
       const V v = hn::Add(v0, hn::Mul(dt, a));
       hn::StoreU(v, d, vel + j);
@@ -55,8 +61,8 @@ double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
       bad = hn::IfThenElse(hn::Eq(hn::Sub(v, v), zero), bad, hn::Set(d, 1.0));
     }
   }
-  const double tail = dof_pass_nodes_scalar(x, n, last);  // an odd node at the end
-  return hn::AllTrue(d, hn::Eq(bad, zero)) ? tail : 1.0;
+  const double tail = dof_pass_nodes_scalar(x, n, last);
+  return hn::AllTrue(d, hn::Eq(bad, zero)) && head == 0.0 ? tail : 1.0;
 }
 
 }  // namespace HWY_NAMESPACE

@@ -27,9 +27,16 @@ struct Dofs {
   std::array<double, ntn::kDofsPerNode> g{};
   double alpha = 0.3, dt = 1e-4;
 
+  std::vector<ntn::MassBlock> table;
+  std::vector<std::int32_t> entry;
+
   ntn::DofPassData data() {
-    return {mass.data(), inv_mass.data(), f.data(), g.data(), alpha,
-            dt,          a.data(),        v.data(), u.data()};
+    const std::size_t nodes = mass.size() / ntn::kDofsPerNode;
+    table.assign(ntn::mass_groups(nodes), {});
+    entry.assign(ntn::mass_groups(nodes), -1);
+    ntn::fill_mass_table(mass.data(), inv_mass.data(), nodes, table.data(), entry.data());
+    return {mass.data(), inv_mass.data(), f.data(), g.data(),     alpha,       dt,
+            a.data(),    v.data(),        u.data(), table.data(), entry.data()};
   }
 };
 
@@ -122,6 +129,35 @@ TEST_F(EveryTarget, DofPassGivesTheScalarBits) {
         expect_same(run(d, ntn::ElementPass::kSimd, first, nodes),
                     run(d, ntn::ElementPass::kScalar, first, nodes), hwy::TargetName(t));
       }
+    }
+  });
+}
+
+// A structure whose floors repeat: groups 1-15 copy group 0's masses, group 16 too but for the
+// sign of one zero inverse mass (a supported DOF). The shared groups point at one entry, the
+// signed zero makes its own, and the SIMD pass, which reads the masses there, gives the scalar
+// bits on every target.
+TEST_F(EveryTarget, SharedMassesGiveTheScalarBits) {
+  constexpr std::size_t kGroupDofs = ntn::kMassGroup * ntn::kDofsPerNode;
+  Dofs d = random_dofs(17 * ntn::kMassGroup + 3, 11);
+  d.inv_mass[0] = 0.0;
+  for (std::size_t j = kGroupDofs; j < 17 * kGroupDofs; ++j)
+    d.mass[j] = d.mass[j % kGroupDofs], d.inv_mass[j] = d.inv_mass[j % kGroupDofs];
+  d.inv_mass[16 * kGroupDofs] = -0.0;
+  (void)d.data();  // builds d.table and d.entry by fill_mass_table
+  for (std::size_t k = 0; k < 17; ++k)
+    EXPECT_EQ(d.entry[k], k < 16 ? 0 : 1) << "group " << k;
+  for (std::size_t k = 0; k < 17; ++k) {
+    const ntn::MassBlock& e = d.table[static_cast<std::size_t>(d.entry[k])];
+    EXPECT_EQ(std::memcmp(e.mass.data(), &d.mass[kGroupDofs * k], sizeof e.mass), 0) << k;
+    EXPECT_EQ(std::memcmp(e.inv_mass.data(), &d.inv_mass[kGroupDofs * k], sizeof e.inv_mass), 0)
+        << k;
+  }
+  each_target([&](std::int64_t t) {
+    for (const std::size_t first : {std::size_t{0}, std::size_t{3}, std::size_t{5}}) {
+      expect_same(run(d, ntn::ElementPass::kSimd, first, d.mass.size() / ntn::kDofsPerNode),
+                  run(d, ntn::ElementPass::kScalar, first, d.mass.size() / ntn::kDofsPerNode),
+                  hwy::TargetName(t));
     }
   });
 }

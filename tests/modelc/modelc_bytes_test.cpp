@@ -40,13 +40,13 @@ TEST(ModelBytes, EqualsSizeofExactlyWithHinges) {
 }
 
 // The marginal cost of more elements, nodes or hinges, as ntn-model prints it. The Model is
-// aligned to 32 bytes (the stiffness and rotation blocks' vectors), so the steps below are ones
-// that keep its end padding: 8 element blocks (32 elements: 8 blocks of 44 bytes, 8 rotations and
-// 8 stiffness entries), 64 nodes, 16 hinges.
+// aligned to 64 bytes (the mass table's entries), so the steps below are ones that keep its end
+// padding: 16 element blocks (64 elements: 16 blocks of 44 bytes, 16 rotations and 16 stiffness
+// entries), 64 nodes (16 mass-table entries), 16 hinges.
 TEST(ModelBytes, PerElementNodeAndHinge) {
-  constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 40, 0, 0, 0, 0, 0};
+  constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 72, 0, 0, 0, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(e) - ntn::modelc::model_bytes(a),
-            32 * ntn::modelc::memory_footprint(a).per_element);
+            64 * ntn::modelc::memory_footprint(a).per_element);
   EXPECT_EQ(
       ntn::modelc::memory_footprint(a).per_element,
       (sizeof(ntn::BeamBlock) + sizeof(ntn::BeamRotations) + sizeof(ntn::BeamStiffnessBlock)) /

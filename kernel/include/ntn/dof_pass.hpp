@@ -10,24 +10,77 @@
 // the same operations in every lane; Model::element_pass picks both.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 #include "ntn/element_pass.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
 
+// The mass table: the masses and inverse masses of kMassGroup consecutive nodes (group k: nodes
+// kMassGroup k to kMassGroup k + kMassGroup - 1, 24 DOFs: a whole number of vectors of 1 to 8
+// lanes), copies of Model::mass and Model::inv_mass. Groups with the same bytes share one entry
+// (dedupe over the last kMassWindow distinct entries, as the stiffness table's), so that a frame
+// whose floors repeat streams 4 bytes per group for its masses instead of 384 and finds them in
+// L1. The SIMD DOF pass reads whole groups from here; the scalar path and everything else read
+// Model::mass and inv_mass (the same bits).
+inline constexpr std::size_t kMassGroup = 4;
+inline constexpr std::size_t kMassWindow = 64;
+
+struct alignas(64) MassBlock {
+  std::array<double, kMassGroup * kDofsPerNode> mass{};
+  std::array<double, kMassGroup * kDofsPerNode> inv_mass{};
+};
+
+constexpr std::size_t mass_groups(std::size_t nodes) {
+  return nodes / kMassGroup;  // whole groups; the last nodes % kMassGroup nodes have none
+}
+
+// Fills the table from the DOF arrays of `nodes` nodes: entry[k] is group k's entry, the first
+// earlier one with the same bytes among the last kMassWindow distinct ones, else a new one.
+// Returns the number of entries; those past it are zeroed.
+inline std::size_t fill_mass_table(const double* mass, const double* inv_mass, std::size_t nodes,
+                                   MassBlock* table, std::int32_t* entry) {
+  std::size_t distinct = 0;
+  const std::size_t groups = mass_groups(nodes);
+  for (std::size_t k = 0; k < groups; ++k) {
+    MassBlock blk;
+    constexpr std::size_t kDofs = kMassGroup * kDofsPerNode;
+    for (std::size_t c = 0; c < kDofs; ++c) {
+      blk.mass[c] = mass[kDofs * k + c];
+      blk.inv_mass[c] = inv_mass[kDofs * k + c];
+    }
+    std::size_t found = distinct;
+    for (std::size_t i = distinct; i-- > 0 && distinct - i <= kMassWindow;) {
+      if (std::memcmp(&table[i], &blk, sizeof blk) == 0) {
+        found = i;
+        break;
+      }
+    }
+    if (found == distinct) table[distinct++] = blk;
+    entry[k] = static_cast<std::int32_t>(found);
+  }
+  for (std::size_t i = distinct; i < groups; ++i)
+    table[i] = MassBlock{};
+  return distinct;
+}
+
 // The pass's operands: arrays by DOF unless noted.
 struct DofPassData {
-  const double* mass;      // kg or kg m^2
-  const double* inv_mass;  // 1 / mass
-  const double* f;         // F_n
-  const double* g;         // [kDofsPerNode]: P_n / m per direction (Scratch::load_g)
-  double alpha;            // 1/s: C = alpha M
-  double dt;               // s
-  double* a;               // out: a_n
-  double* v;               // in v_{n-1/2}, out v_{n+1/2}
-  double* u;               // in u_n, out u_{n+1}
+  const double* mass;              // kg or kg m^2
+  const double* inv_mass;          // 1 / mass
+  const double* f;                 // F_n
+  const double* g;                 // [kDofsPerNode]: P_n / m per direction (Scratch::load_g)
+  double alpha;                    // 1/s: C = alpha M
+  double dt;                       // s
+  double* a;                       // out: a_n
+  double* v;                       // in v_{n-1/2}, out v_{n+1/2}
+  double* u;                       // in u_n, out u_{n+1}
+  const MassBlock* mass_table;     // the same masses by group (fill_mass_table), for the SIMD path
+  const std::int32_t* mass_entry;  // [group]: its entry of mass_table
 };
 
 namespace detail {

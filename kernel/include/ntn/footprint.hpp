@@ -38,6 +38,9 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::element_slot, s.elements);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);
+  v(&M::mass_table, mass_groups(s.nodes));
+  v(&M::mass_entry, mass_groups(s.nodes));
+  v(&M::num_mass_entries);
   v(&M::damping, dofs);
   v(&M::alpha);
   v(&M::beta);

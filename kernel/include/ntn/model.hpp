@@ -10,6 +10,7 @@
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
+#include "ntn/dof_pass.hpp"
 #include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
 #include "ntn/hinge.hpp"
@@ -41,6 +42,11 @@ struct Model : SizesOf<S> {
   // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
   // (ntn_exact: the forest gives them) and mechanism DOFs (held at zero).
   Array<double, S, kDofs> inv_mass{};
+  // mass and inv_mass again by groups of kMassGroup nodes, equal groups sharing an entry
+  // (dof_pass.hpp): what the SIMD DOF pass reads.
+  Array<MassBlock, S, mass_groups(S.nodes)> mass_table{};
+  Array<std::int32_t, S, mass_groups(S.nodes)> mass_entry{};
+  std::size_t num_mass_entries = 0;
   Array<double, S, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
   double beta = 0;   // s: stiffness-proportional damping beta K_el, in the element pass
@@ -511,6 +517,8 @@ template <Sizes S>
   model.gravity = spec.settings.gravity;
   model.gravity_function = spec.settings.gravity_function;
 
+  model.num_mass_entries = fill_mass_table(model.mass.data(), model.inv_mass.data(), sz.nodes,
+                                           model.mass_table.data(), model.mass_entry.data());
   model.stable = stable_time_step(v, model.mass);
   model.dt = spec.settings.dt;
   if (!(model.dt > 0)) return {InitError::kBadTimeStep, -1};

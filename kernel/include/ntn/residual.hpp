@@ -82,8 +82,17 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
 template <Sizes S>
 bool residual_update(const Model<S>& m, State<S>& s, Scratch<S>& w, std::size_t first,
                      std::size_t last) {
-  const DofPassData x{m.mass.data(), m.inv_mass.data(), w.f.data(), w.load_g.data(), m.alpha,
-                      m.dt,          w.a.data(),        s.v.data(), s.u.data()};
+  const DofPassData x{m.mass.data(),
+                      m.inv_mass.data(),
+                      w.f.data(),
+                      w.load_g.data(),
+                      m.alpha,
+                      m.dt,
+                      w.a.data(),
+                      s.v.data(),
+                      s.u.data(),
+                      m.mass_table.data(),
+                      m.mass_entry.data()};
   double bad = 0;
   int k = 0;  // the first slot at or after node `first`
   while (k < m.num_slots &&

@@ -7,6 +7,7 @@
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
+#include "ntn/dof_pass.hpp"
 #include "ntn/footprint.hpp"
 #include "ntn/hinge.hpp"
 
@@ -25,8 +26,11 @@ MemoryFootprint memory_footprint(const Sizes& s) {
       (sizeof(BeamBlock) + sizeof(BeamRotations) + sizeof(BeamStiffnessBlock)) / kBeamLanes +
       sizeof(std::int32_t);
   // Per node: 6 DOFs x 9 per-DOF double arrays (Model: mass, inv_mass, damping, u0, v0; State:
-  // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes).
-  f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t);
+  // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes), and
+  // its share of the mass table's capacity (Model::mass_table, mass_entry: one entry per group of
+  // kMassGroup nodes).
+  f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t) +
+               (sizeof(MassBlock) + sizeof(std::int32_t)) / kMassGroup;
   // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
   // of hinges with springs, with branches, of projected edges, of the trees' stops and with slip
   // directions, a tree slot (a forest has at most one tree per hinge) and its clamp check mark
