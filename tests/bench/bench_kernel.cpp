@@ -600,16 +600,22 @@ inline constexpr Grid kFrame30008{.nx = 10, .ny = 10, .storeys = 22, .col_div = 
 // Beyond the last-level cache for both formulations (32 MiB L3 on the reference machine).
 inline constexpr Grid kFrame99960{.nx = 16, .ny = 16, .storeys = 30, .col_div = 4, .beam_div = 4};
 // The OpenSees frame_scaling grids (issue 17): one element per member, 6 x 6 bays x 8 storeys
-// and 12 x 12 bays x 21 storeys.
+// and 12 x 12 bays x 21 storeys; and the same geometry at ~100 000 elements (28 x 28 bays x 41
+// storeys), for the cost per element-step from 1k to 100k on one kind of frame.
 inline constexpr Grid kScaling1064{.nx = 6, .ny = 6, .storeys = 8, .col_div = 1, .beam_div = 1};
 inline constexpr Grid kScaling10101{.nx = 12, .ny = 12, .storeys = 21, .col_div = 1, .beam_div = 1};
+inline constexpr Grid kScaling101065{
+    .nx = 28, .ny = 28, .storeys = 41, .col_div = 1, .beam_div = 1};
 
-// The peer of grid G, pruned and not (its K of 144 entries per element: up to ~30 000 elements).
+// The peer of grid G, pruned and not (its K of 144 entries per element: up to ~30 000 elements;
+// `unpruned` false registers the pruned one alone).
 template <Grid G>
-void register_peer() {
+void register_peer(bool unpruned = true) {
   const std::string n = std::to_string(element_count(G));
-  benchmark::RegisterBenchmark(("step/sparse_peer/elements:" + n).c_str(), bm_peer<G, false>)
-      ->Unit(benchmark::kMicrosecond);
+  if (unpruned) {
+    benchmark::RegisterBenchmark(("step/sparse_peer/elements:" + n).c_str(), bm_peer<G, false>)
+        ->Unit(benchmark::kMicrosecond);
+  }
   benchmark::RegisterBenchmark(("step/sparse_peer_pruned/elements:" + n).c_str(), bm_peer<G, true>)
       ->Unit(benchmark::kMicrosecond);
 }
@@ -658,10 +664,12 @@ int main(int argc, char** argv) {
   register_frame<kFrame99960>();
   register_frame<kScaling1064>();
   register_frame<kScaling10101>();
+  register_frame<kScaling101065>();
   register_peer<kFrame975>();
   register_peer<kFrame9900>();
   register_peer<kScaling1064>();
   register_peer<kScaling10101>();
+  register_peer<kScaling101065>(false);
   benchmark::AddCustomContext("element_pass", ntn::element_pass_target());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
