@@ -186,8 +186,8 @@ void print_row(const Row& r) {
 
 // Column and beam members in 3 elements (dt ~ 160 us, 7 substeps): two small frames (1 x 1 bay,
 // 2 storeys; 2 x 2 bays, 4 storeys) that separate the platform's stalls from compute, a growing
-// 4 x 4 grid, then 5 x 5; the 9 900-element frame of bench_kernel (4 elements per member, 12
-// substeps).
+// 4 x 4 grid, then 5 x 5 to 7 x 7 (up to 8 976 elements, where a fast core still holds 1 kHz);
+// the 9 900-element frame of bench_kernel (4 elements per member, 12 substeps).
 constexpr Grid kG48{1, 1, 2, 3, 3};
 constexpr Grid kG252{2, 2, 4, 3, 3};
 constexpr Grid kG975{4, 4, 5, 3, 3};
@@ -197,6 +197,9 @@ constexpr Grid kG2925{4, 4, 15, 3, 3};
 constexpr Grid kG3315{4, 4, 17, 3, 3};
 constexpr Grid kG3900{4, 4, 20, 3, 3};
 constexpr Grid kG4896{5, 5, 17, 3, 3};
+constexpr Grid kG5586{6, 6, 14, 3, 3};
+constexpr Grid kG6783{6, 6, 17, 3, 3};
+constexpr Grid kG8976{7, 7, 17, 3, 3};
 constexpr Grid kG9900{8, 8, 11, 4, 4};
 
 }  // namespace
@@ -251,6 +254,9 @@ int main(int argc, char** argv) {
   go(run_size<kG3315>(o, workers));
   go(run_size<kG3900>(o, workers));
   go(run_size<kG4896>(o, workers));
+  go(run_size<kG5586>(o, workers));
+  go(run_size<kG6783>(o, workers));
+  go(run_size<kG8976>(o, workers));
   go(run_size<kG9900>(o, workers));
   std::printf("# load average after: %s\n", loadavg().c_str());
   int best = -1;
