@@ -259,16 +259,20 @@ HWY_INLINE void block_gather(const BeamArrays& a, std::size_t blk_index, const d
   }
 }
 
-// The first `lanes` lanes' end forces fi, fj [DOF][lane] added to the nodes, element by element.
+// The first `lanes` lanes' end forces fi, fj [DOF][lane] added to the nodes, element by element
+// (kFirst: a node's first end written as 0.0 + its force, BeamBlock::first).
+template <bool kFirst = false>
 HWY_INLINE void add_lanes(const BeamBlock& blk, std::size_t lanes, const double (*fi)[kBeamLanes],
                           const double (*fj)[kBeamLanes], double* f) {
   for (std::size_t l = 0; l < lanes; ++l) {  // element order, as the scalar pass
     const auto i = static_cast<std::size_t>(blk.dof_i[l]);
     const auto j = static_cast<std::size_t>(blk.dof_j[l]);
-    for (std::size_t c = 0; c < 6; ++c) {
-      f[i + c] += fi[c][l];
-      f[j + c] += fj[c][l];
-    }
+    const bool first_i = kFirst && direct_end(blk.first, l, 0);
+    const bool first_j = kFirst && direct_end(blk.first, l, 1);
+    for (std::size_t c = 0; c < 6; ++c)
+      f[i + c] = (first_i ? 0.0 : f[i + c]) + fi[c][l];
+    for (std::size_t c = 0; c < 6; ++c)
+      f[j + c] = (first_j ? 0.0 : f[j + c]) + fj[c][l];
   }
 }
 
@@ -366,17 +370,29 @@ HWY_INLINE void each_lane(const V* g, Out out) {
 }
 
 // A whole block's end forces added to the nodes 4 and 2 DOFs at a time. Lane l's two ends are
-// added before lane l + 1's, so every DOF sums its elements in the model's order.
+// added before lane l + 1's, so every DOF sums its elements in the model's order. kFirst: a
+// node's first end (BeamBlock::first) is written as 0.0 + its force, without reading F.
+template <bool kFirst = false>
 HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
   const D d;
   const hn::Half<D> dh;
   each_lane(g, [&](std::size_t l, V ri, auto hi, V rj, auto hj) {
     double* p = f + blk.dof_i[l];
-    hn::StoreU(hn::Add(hn::LoadU(d, p), ri), d, p);
-    hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi), dh, p + 4);
+    if (kFirst && direct_end(blk.first, l, 0)) {
+      hn::StoreU(hn::Add(hn::Zero(d), ri), d, p);
+      hn::StoreU(hn::Add(hn::Zero(dh), hi), dh, p + 4);
+    } else {
+      hn::StoreU(hn::Add(hn::LoadU(d, p), ri), d, p);
+      hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi), dh, p + 4);
+    }
     double* q = f + blk.dof_j[l];
-    hn::StoreU(hn::Add(hn::LoadU(d, q), rj), d, q);
-    hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj), dh, q + 4);
+    if (kFirst && direct_end(blk.first, l, 1)) {
+      hn::StoreU(hn::Add(hn::Zero(d), rj), d, q);
+      hn::StoreU(hn::Add(hn::Zero(dh), hj), dh, q + 4);
+    } else {
+      hn::StoreU(hn::Add(hn::LoadU(d, q), rj), d, q);
+      hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj), dh, q + 4);
+    }
   });
 }
 
@@ -403,7 +419,7 @@ HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g
   });
 }
 
-template <bool kBeta>
+template <bool kBeta, bool kFirst>
 HWY_INLINE void forces_transpose(const BeamArrays& a, std::size_t elements, const double* u,
                                  const double* v, double beta, double* f) {
   const D d;
@@ -411,7 +427,7 @@ HWY_INLINE void forces_transpose(const BeamArrays& a, std::size_t elements, cons
   for (std::size_t b = 0; b < full; ++b) {
     V g[12];
     block_transpose<kBeta>(a, b, u, v, beta, g);
-    add_rows(a.blocks[b], g, f);
+    add_rows<kFirst>(a.blocks[b], g, f);
   }
   if (const std::size_t lanes = elements - full * kBeamLanes; lanes > 0) {
     V g[12];
@@ -422,7 +438,7 @@ HWY_INLINE void forces_transpose(const BeamArrays& a, std::size_t elements, cons
       hn::Store(g[c], d, fi[c]);
       hn::Store(g[6 + c], d, fj[c]);
     }
-    add_lanes(a.blocks[full], lanes, fi, fj, f);
+    add_lanes<kFirst>(a.blocks[full], lanes, fi, fj, f);
   }
 }
 
@@ -445,14 +461,15 @@ HWY_INLINE void split_transpose(const BeamArrays& a, std::size_t first, std::siz
 
 #endif  // HWY_TARGET != HWY_SCALAR
 
-void ElementForces(const BeamArrays& a, std::size_t elements, const double* u, const double* v,
-                   double beta, double* f) {
+template <bool kFirst>
+HWY_INLINE void element_forces_on(const BeamArrays& a, std::size_t elements, const double* u,
+                                  const double* v, double beta, double* f) {
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == kBeamLanes) {
     if (beta != 0.0) {
-      forces_transpose<true>(a, elements, u, v, beta, f);
+      forces_transpose<true, kFirst>(a, elements, u, v, beta, f);
     } else {
-      forces_transpose<false>(a, elements, u, v, beta, f);
+      forces_transpose<false, kFirst>(a, elements, u, v, beta, f);
     }
     return;
   }
@@ -462,8 +479,19 @@ void ElementForces(const BeamArrays& a, std::size_t elements, const double* u, c
     alignas(64) double fi[6][kBeamLanes];
     alignas(64) double fj[6][kBeamLanes];
     block_gather(a, b, u, v, beta, fi, fj);
-    add_lanes(a.blocks[b], b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes, fi, fj, f);
+    add_lanes<kFirst>(a.blocks[b], b + 1 < num_blocks ? kBeamLanes : elements - b * kBeamLanes, fi,
+                      fj, f);
   }
+}
+
+void ElementForces(const BeamArrays& a, std::size_t elements, const double* u, const double* v,
+                   double beta, double* f) {
+  element_forces_on<false>(a, elements, u, v, beta, f);
+}
+
+void ElementForcesFirst(const BeamArrays& a, std::size_t elements, const double* u, const double* v,
+                        double beta, double* f) {
+  element_forces_on<true>(a, elements, u, v, beta, f);
 }
 
 void ElementForcesSplit(const BeamArrays& a, std::size_t first, std::size_t last,
@@ -500,12 +528,18 @@ namespace ntn {
 namespace detail {
 
 HWY_EXPORT(ElementForces);
+HWY_EXPORT(ElementForcesFirst);
 HWY_EXPORT(ElementForcesSplit);
 HWY_EXPORT(Target);
 
 void element_forces_simd(const BeamArrays& a, std::size_t elements, const double* u,
                          const double* v, double beta, double* f) {
   HWY_DYNAMIC_DISPATCH(ElementForces)(a, elements, u, v, beta, f);
+}
+
+void element_forces_first_simd(const BeamArrays& a, std::size_t elements, const double* u,
+                               const double* v, double beta, double* f) {
+  HWY_DYNAMIC_DISPATCH(ElementForcesFirst)(a, elements, u, v, beta, f);
 }
 
 void element_forces_split_simd(const BeamArrays& a, std::size_t first, std::size_t last,

@@ -312,6 +312,8 @@ Model<sizes_of(G)>& file_order_model() {
       m.element_slot[e] = static_cast<std::int32_t>(e);
     }
     m.num_stiffness = dedupe_stiffness(m.beams.data(), m.stiffness.data(), beam_blocks(S.elements));
+    std::vector<std::uint8_t> touched(S.nodes);
+    m.every_node_in_element = mark_first_ends(m.beams.data(), S.elements, S.nodes, touched.data());
     return true;
   }();
   (void)ready;

@@ -5,11 +5,13 @@
 // element. Then whole runs: the same states step after step.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -164,13 +166,11 @@ TEST(ElementPass, ScalarPathIsBeamForceInOrder) {
   }
 }
 
-TEST(ElementPass, ZerosKeepTheirSign) {
-  // Displacements +-0 and forces summed onto -0.0: every product is +-0, and each sum's sign
-  // depends on the operations and their order.
-  // Five elements on their own nodes, displacements -0.0, rotations with -0.0 off the diagonal
-  // (a product with +-0 keeps a sign): elements 0, 2, 4 the identity (aligned: picks, one
-  // negated axis), 1 and 3 a rotation about y (general: products), so one block of each kind.
-  Elements e = random_elements(5, 10, 7);
+// `count` elements on their own nodes (2k, 2k + 1), displacements -0.0, rotations with -0.0 off
+// the diagonal (a product with +-0 keeps a sign): even elements the identity (aligned: picks, one
+// negated axis), odd ones a rotation about y (general: products).
+Elements own_node_zeros(std::size_t count) {
+  Elements e = random_elements(count, static_cast<int>(2 * count), 7);
   for (std::size_t k = 0; k < e.beams.size(); ++k) {
     e.beams[k].node_i = static_cast<std::int32_t>(2 * k);
     e.beams[k].node_j = static_cast<std::int32_t>(2 * k + 1);
@@ -178,11 +178,23 @@ TEST(ElementPass, ZerosKeepTheirSign) {
         k % 2 == 0 ? std::array<double, 9>{1.0, -0.0, -0.0, -0.0, -1.0, -0.0, -0.0, -0.0, -1.0}
                    : std::array<double, 9>{0.6, -0.0, -0.8, -0.0, 1.0, -0.0, 0.8, -0.0, 0.6};
     e.set(k);
-    ASSERT_EQ(e.blocks[k / ntn::kBeamLanes].axes[k % ntn::kBeamLanes] != ntn::kGeneralAxes,
-              k % 2 == 0);
   }
   for (double& x : e.u)
     x = -0.0;
+  return e;
+}
+
+TEST(ElementPass, ZerosKeepTheirSign) {
+  // Displacements +-0 and forces summed onto -0.0: every product is +-0, and each sum's sign
+  // depends on the operations and their order.
+  // Five elements on their own nodes, displacements -0.0, rotations with -0.0 off the diagonal
+  // (a product with +-0 keeps a sign): elements 0, 2, 4 the identity (aligned: picks, one
+  // negated axis), 1 and 3 a rotation about y (general: products), so one block of each kind.
+  Elements e = own_node_zeros(5);
+  for (std::size_t k = 0; k < e.beams.size(); ++k) {
+    ASSERT_EQ(e.blocks[k / ntn::kBeamLanes].axes[k % ntn::kBeamLanes] != ntn::kGeneralAxes,
+              k % 2 == 0);
+  }
   const std::vector<double> f = forces(e, ntn::ElementPass::kScalar, 0.0, -0.0);
   int negative = 0, positive = 0;
   for (double x : f)
@@ -272,6 +284,35 @@ TEST(ElementPass, SharedStiffnessSearchIsBounded) {
                         forces(before, ntn::ElementPass::kSimd, 0.0)));
 }
 
+// mark_first_ends: every node with an element end has exactly one first bit, on its earliest end
+// in the model's order; a node with none leaves `every` false.
+TEST(ElementPass, FirstEndsAreEachNodesEarliest) {
+  for (const std::size_t n : kCounts) {
+    Elements e = random_elements(n, 12, 300 + n);
+    std::vector<std::uint8_t> touched(12);
+    const bool every = ntn::mark_first_ends(e.blocks.data(), n, 12, touched.data());
+    std::vector<int> firsts(12, 0);
+    std::vector<bool> seen(12, false);
+    for (std::size_t k = 0; k < n; ++k) {
+      const int nodes[2] = {e.beams[k].node_i, e.beams[k].node_j};
+      for (std::size_t end = 0; end < 2; ++end) {
+        const auto node = static_cast<std::size_t>(nodes[end]);
+        const bool first =
+            ntn::direct_end(e.blocks[k / ntn::kBeamLanes].first, k % ntn::kBeamLanes, end);
+        EXPECT_EQ(first, !seen[node]) << n << " elements: element " << k << ", end " << end;
+        firsts[node] += first ? 1 : 0;
+        seen[node] = true;
+      }
+    }
+    bool all = true;
+    for (std::size_t node = 0; node < 12; ++node) {
+      EXPECT_EQ(firsts[node], seen[node] ? 1 : 0) << node;
+      all = all && seen[node];
+    }
+    EXPECT_EQ(every, all) << n << " elements";
+  }
+}
+
 #if defined(NTN_SIMD)
 
 using ntn_test::EveryTarget;
@@ -321,6 +362,59 @@ TEST_F(EveryTarget, SplitPassGivesTheScalarBits) {
         EXPECT_TRUE(same_bits(f, forces(e, ntn::ElementPass::kScalar, beta, 0.5)))
             << hwy::TargetName(t) << ", " << n << " elements, beta " << beta;
       }
+    }
+  });
+}
+
+// F = the forces (element_forces_into): the SIMD path's first writes, from an F of NaNs that no
+// DOF may keep, give the bits of the scalar path's zeroed F plus adds, with displacements of
+// -0.0 too (forces of -0.0: a first write stores 0.0 + f, +0.0, as the zeroed F does); where a
+// node has no element (every_node false) F is zeroed first.
+TEST_F(EveryTarget, ForcesIntoGiveTheScalarBits) {
+  int with_every = 0, without = 0;
+  each_target([&](std::int64_t t) {
+    for (const std::size_t n : kCounts) {
+      Elements e = random_elements(n, n < 8 ? 3 : 12, 500 + n);
+      std::vector<std::uint8_t> touched(e.u.size() / 6);
+      const bool every = ntn::mark_first_ends(e.blocks.data(), n, touched.size(), touched.data());
+      (every ? with_every : without) += 1;
+      if (n % 2 == 1) {
+        for (std::size_t j = 0; j < e.u.size(); ++j)
+          e.u[j] = -0.0, e.v[j] = -0.0;
+      }
+      for (const double beta : {0.0, 2e-3}) {
+        std::vector<double> simd(e.u.size(), std::numeric_limits<double>::quiet_NaN());
+        std::vector<double> scalar(e.u.size(), 1.0);
+        ntn::element_forces_into(ntn::ElementPass::kSimd, e.arrays(), n, every, e.u.size(),
+                                 e.u.data(), e.v.data(), beta, simd.data());
+        ntn::element_forces_into(ntn::ElementPass::kScalar, e.arrays(), n, every, e.u.size(),
+                                 e.u.data(), e.v.data(), beta, scalar.data());
+        EXPECT_TRUE(same_bits(simd, scalar))
+            << hwy::TargetName(t) << ", " << n << " elements, beta " << beta
+            << (every ? "" : ", a node without elements");
+        EXPECT_TRUE(same_bits(scalar, forces(e, ntn::ElementPass::kScalar, beta)));
+      }
+    }
+  });
+  EXPECT_GT(with_every, 0);
+  EXPECT_GT(without, 0);
+  // Every node met once, its forces +-0: each DOF is one first write, 0.0 + f = +0.0.
+  each_target([&](std::int64_t t) {
+    for (const std::size_t n : {std::size_t{5}, std::size_t{8}}) {
+      Elements e = own_node_zeros(n);
+      std::vector<std::uint8_t> touched(2 * n);
+      ASSERT_TRUE(ntn::mark_first_ends(e.blocks.data(), n, 2 * n, touched.data()));
+      ASSERT_GT(std::count_if(e.u.begin(), e.u.end(), [](double x) { return std::signbit(x); }), 0);
+      std::vector<double> simd(e.u.size(), std::numeric_limits<double>::quiet_NaN());
+      std::vector<double> scalar(e.u.size(), 1.0);
+      ntn::element_forces_into(ntn::ElementPass::kSimd, e.arrays(), n, true, e.u.size(), e.u.data(),
+                               e.v.data(), 0.0, simd.data());
+      ntn::element_forces_into(ntn::ElementPass::kScalar, e.arrays(), n, true, e.u.size(),
+                               e.u.data(), e.v.data(), 0.0, scalar.data());
+      EXPECT_TRUE(same_bits(simd, scalar)) << hwy::TargetName(t) << ", " << n << " elements";
+      // The forces themselves have -0.0 (so the case means something).
+      const std::vector<double> raw = forces(e, ntn::ElementPass::kScalar, 0.0, -0.0);
+      EXPECT_GT(std::count_if(raw.begin(), raw.end(), [](double x) { return std::signbit(x); }), 0);
     }
   });
 }

@@ -41,7 +41,7 @@ TEST(ModelBytes, EqualsSizeofExactlyWithHinges) {
 
 // The marginal cost of more elements, nodes or hinges, as ntn-model prints it. The Model is
 // aligned to 64 bytes (the mass table's entries), so the steps below are ones that keep its end
-// padding: 16 element blocks (64 elements: 16 blocks of 44 bytes, 16 rotations and 16 stiffness
+// padding: 16 element blocks (64 elements: 16 blocks of 48 bytes, 16 rotations and 16 stiffness
 // entries), 64 nodes (16 mass-table entries), 16 hinges.
 TEST(ModelBytes, PerElementNodeAndHinge) {
   constexpr ntn::Sizes a{8, 8, 0, 0, 0, 0, 0}, e{8, 72, 0, 0, 0, 0, 0};

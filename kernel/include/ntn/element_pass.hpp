@@ -40,7 +40,7 @@ struct alignas(32) BeamStiffnessBlock {
 
 // kBeamLanes elements: their nodes, how they rotate, and which entry of the model's stiffness
 // table (BeamArrays::stiffness) holds their stiffness. Blocks of equal stiffness (the same bits in
-// every lane) share one entry, so that a frame of a few member types streams 40 bytes per block
+// every lane) share one entry, so that a frame of a few member types streams 48 bytes per block
 // and finds its stiffness in L1 (dedupe_stiffness). Lanes past the model's last element have DOF
 // offset 0; the pass computes them and adds them nowhere.
 struct BeamBlock {
@@ -48,6 +48,9 @@ struct BeamBlock {
   std::array<std::int32_t, kBeamLanes> dof_j{};  // kDofsPerNode * node_j
   std::array<AxisMap, kBeamLanes> axes{};        // axis_map(rotation), lane by lane
   std::int32_t stiffness = 0;                    // its entry of the stiffness table
+  // direct_bit(l, end) where lane l's end is the first of its node's element ends in the model's
+  // order (mark_first_ends): the SIMD pass writes 0.0 + f there instead of adding to F.
+  std::uint8_t first = 0;
 };
 
 // The rotations of a block's elements (BeamData::rotation[k], lane by lane), in an array of their
@@ -146,6 +149,30 @@ constexpr bool direct_end(std::uint8_t direct, std::size_t l, std::size_t end) {
   return (direct & direct_bit(l, end)) != 0;
 }
 
+// Sets each block's `first` bits: lane l's end e is its node's first end in the model's order
+// (`elements` of them, in blocks). `touched` is scratch of `nodes` bytes. Returns true when every
+// node has an element end, so that the SIMD pass's first writes cover all of F.
+inline bool mark_first_ends(BeamBlock* blocks, std::size_t elements, std::size_t nodes,
+                            std::uint8_t* touched) {
+  for (std::size_t n = 0; n < nodes; ++n)
+    touched[n] = 0;
+  for (std::size_t e = 0; e < elements; ++e) {
+    BeamBlock& blk = blocks[e / kBeamLanes];
+    const std::size_t l = e % kBeamLanes;
+    if (l == 0) blk.first = 0;
+    const std::int32_t dof[2] = {blk.dof_i[l], blk.dof_j[l]};
+    for (std::size_t end = 0; end < 2; ++end) {
+      const auto n = static_cast<std::size_t>(dof[end] / kDofsPerNode);
+      if (touched[n] == 0) blk.first = static_cast<std::uint8_t>(blk.first | direct_bit(l, end));
+      touched[n] = 1;
+    }
+  }
+  bool every = true;
+  for (std::size_t n = 0; n < nodes; ++n)
+    every = every && touched[n] != 0;
+  return every;
+}
+
 namespace detail {
 
 // Element l of a block: its global end forces fi (on node i), fj at u (+ beta v when beta != 0).
@@ -212,6 +239,10 @@ inline void element_forces_split_scalar(const BeamArrays& a, std::size_t first, 
 // kernel/src/element_pass.cpp: the same, kBeamLanes elements at a time.
 void element_forces_simd(const BeamArrays& a, std::size_t elements, const double* u,
                          const double* v, double beta, double* f);
+// f = the forces: each node's first end (BeamBlock::first) written as 0.0 + its force, the others
+// added; every node must have an end (mark_first_ends).
+void element_forces_first_simd(const BeamArrays& a, std::size_t elements, const double* u,
+                               const double* v, double beta, double* f);
 void element_forces_split_simd(const BeamArrays& a, std::size_t first, std::size_t last,
                                const std::uint8_t* direct, const double* u, const double* v,
                                double beta, double* f, double* fe);
@@ -235,6 +266,26 @@ inline void element_forces(ElementPass path, const BeamArrays& a, std::size_t el
   (void)path;
 #endif
   detail::element_forces_scalar(a, elements, u, v, beta, f);
+}
+
+// F = the elements' forces at u (+ beta v) over `dofs` DOFs: zeroed, then added to, by the chosen
+// path; the SIMD path writes each node's first end instead of zeroing F first (the same bits: it
+// writes 0.0 + f, which is what the zeroed F plus f gives) where every node has an element end
+// (`every_node`: mark_first_ends), and zeroes F otherwise.
+inline void element_forces_into(ElementPass path, const BeamArrays& a, std::size_t elements,
+                                bool every_node, std::size_t dofs, const double* u, const double* v,
+                                double beta, double* f) {
+#if defined(NTN_SIMD)
+  if (path == ElementPass::kSimd && every_node) {
+    detail::element_forces_first_simd(a, elements, u, v, beta, f);
+    return;
+  }
+#else
+  (void)every_node;
+#endif
+  for (std::size_t j = 0; j < dofs; ++j)
+    f[j] = 0.0;
+  element_forces(path, a, elements, u, v, beta, f);
 }
 
 // The multi-core pass over blocks [first, last) (element_forces_split_scalar), by the chosen path.

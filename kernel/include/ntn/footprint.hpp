@@ -35,6 +35,7 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::rotations, blocks);
   v(&M::stiffness, blocks);
   v(&M::num_stiffness);
+  v(&M::every_node_in_element);
   v(&M::element_slot, s.elements);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);
@@ -155,6 +156,7 @@ constexpr void init_workspace_members(const Sizes& s, V&& v) {
   v(&M::slot_used, s.hystereses);
   v(&M::order_elements, s.elements);
   v(&M::order, s.elements);
+  v(&M::touched, s.nodes);
 }
 
 template <class V>

@@ -108,9 +108,9 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
 // the model's (Model::element_pass): the same bits either way (element_pass.hpp).
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
-  w.f.fill(0.0);
-  ntn::element_forces(m.element_pass, m.beam_arrays(), m.sizes.elements, s.u.data(), s.v.data(),
-                      m.beta, w.f.data());
+  ntn::element_forces_into(m.element_pass, m.beam_arrays(), m.sizes.elements,
+                           m.every_node_in_element, m.dofs(), s.u.data(), s.v.data(), m.beta,
+                           w.f.data());
 }
 
 // A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).

@@ -34,6 +34,9 @@ struct Model : SizesOf<S> {
   Array<BeamRotations, S, beam_blocks(S.elements)> rotations{};
   Array<BeamStiffnessBlock, S, beam_blocks(S.elements)> stiffness{};
   std::size_t num_stiffness = 0;
+  // Every node has an element end, so the SIMD element pass writes each node's first end instead
+  // of zeroing F first (BeamBlock::first, mark_first_ends).
+  bool every_node_in_element = false;
   // Element e of the file -> its place k in the model's order (block k / kBeamLanes, lane
   // k % kBeamLanes).
   Array<std::int32_t, S, S.elements> element_slot{};
@@ -149,6 +152,7 @@ struct InitWorkspace : SizesOf<S> {
   // The element order's (element_order.hpp): each element's nodes and AxisMap, and the order.
   Array<OrderElement, S, S.elements> order_elements{};
   Array<std::int32_t, S, S.elements> order{};
+  Array<std::uint8_t, S, S.nodes> touched{};  // mark_first_ends: nodes met so far
 };
 
 // The model's element order of a spec (element_order.hpp): order[k] = the file index of the k-th
@@ -364,6 +368,8 @@ template <Sizes S>
   model.stiffness.fill(BeamStiffnessBlock{});
   model.num_stiffness = fill_beam_blocks(v, order, model.beams.data(), model.rotations.data(),
                                          model.stiffness.data(), model.element_slot.data());
+  model.every_node_in_element =
+      mark_first_ends(model.beams.data(), sz.elements, sz.nodes, work.touched.data());
 
   model.num_supported = 0;
   assemble_lumped_mass(v, order, model.mass);
