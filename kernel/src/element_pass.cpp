@@ -376,23 +376,18 @@ template <bool kFirst = false>
 HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
   const D d;
   const hn::Half<D> dh;
+  auto add = [&](bool first, double* p, V r, auto h) {
+    if (kFirst && first) {
+      hn::StoreU(hn::Add(hn::Zero(d), r), d, p);
+      hn::StoreU(hn::Add(hn::Zero(dh), h), dh, p + 4);
+    } else {
+      hn::StoreU(hn::Add(hn::LoadU(d, p), r), d, p);
+      hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), h), dh, p + 4);
+    }
+  };
   each_lane(g, [&](std::size_t l, V ri, auto hi, V rj, auto hj) {
-    double* p = f + blk.dof_i[l];
-    if (kFirst && direct_end(blk.first, l, 0)) {
-      hn::StoreU(hn::Add(hn::Zero(d), ri), d, p);
-      hn::StoreU(hn::Add(hn::Zero(dh), hi), dh, p + 4);
-    } else {
-      hn::StoreU(hn::Add(hn::LoadU(d, p), ri), d, p);
-      hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), hi), dh, p + 4);
-    }
-    double* q = f + blk.dof_j[l];
-    if (kFirst && direct_end(blk.first, l, 1)) {
-      hn::StoreU(hn::Add(hn::Zero(d), rj), d, q);
-      hn::StoreU(hn::Add(hn::Zero(dh), hj), dh, q + 4);
-    } else {
-      hn::StoreU(hn::Add(hn::LoadU(d, q), rj), d, q);
-      hn::StoreU(hn::Add(hn::LoadU(dh, q + 4), hj), dh, q + 4);
-    }
+    add(direct_end(blk.first, l, 0), f + blk.dof_i[l], ri, hi);
+    add(direct_end(blk.first, l, 1), f + blk.dof_j[l], rj, hj);
   });
 }
 

@@ -256,7 +256,7 @@ TEST(ElementPass, SharedStiffnessKeepsTheBits) {
       }
       unique += repeat ? 0 : 1;
     }
-    ASSERT_LE(unique, ntn::kStiffnessWindow);
+    ASSERT_LE(unique, ntn::kShareWindow);
     EXPECT_EQ(distinct, unique) << types << " kinds";
     // One kind: the whole blocks and the last one (one element, three empty lanes); three: at
     // most one entry per kind and the last block; 200 in runs: more than that.
@@ -266,10 +266,10 @@ TEST(ElementPass, SharedStiffnessKeepsTheBits) {
   }
 }
 
-// An entry repeated after more than kStiffnessWindow distinct ones is kept, not shared (the
+// An entry repeated after more than kShareWindow distinct ones is kept, not shared (the
 // bounded search), and its block still reads its own bits.
 TEST(ElementPass, SharedStiffnessSearchIsBounded) {
-  const std::size_t w = ntn::kStiffnessWindow;
+  const std::size_t w = ntn::kShareWindow;
   Elements e = random_elements(4 * (w + 3), 40, 9);  // w + 3 blocks, all different
   for (std::size_t l = 0; l < ntn::kBeamLanes; ++l) {
     e.beams[4 * (w + 1) + l].k = e.beams[l].k;          // block w + 1 repeats block 0: too far back

@@ -13,22 +13,21 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include "ntn/element_pass.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/shared_table.hpp"
 
 namespace ntn {
 
 // The mass table: the masses and inverse masses of kMassGroup consecutive nodes (group k: nodes
 // kMassGroup k to kMassGroup k + kMassGroup - 1, 24 DOFs: a whole number of vectors of 1 to 8
 // lanes), copies of Model::mass and Model::inv_mass. Groups with the same bytes share one entry
-// (dedupe over the last kMassWindow distinct entries, as the stiffness table's), so that a frame
+// (share_entry, shared_table.hpp, as the stiffness table's), so that a frame
 // whose floors repeat streams 4 bytes per group for its masses instead of 384 and finds them in
 // L1. The SIMD DOF pass reads whole groups from here; the scalar path and everything else read
 // Model::mass and inv_mass (the same bits).
 inline constexpr std::size_t kMassGroup = 4;
-inline constexpr std::size_t kMassWindow = 64;
 
 struct alignas(64) MassBlock {
   std::array<double, kMassGroup * kDofsPerNode> mass{};
@@ -39,29 +38,21 @@ constexpr std::size_t mass_groups(std::size_t nodes) {
   return nodes / kMassGroup;  // whole groups; the last nodes % kMassGroup nodes have none
 }
 
-// Fills the table from the DOF arrays of `nodes` nodes: entry[k] is group k's entry, the first
-// earlier one with the same bytes among the last kMassWindow distinct ones, else a new one.
-// Returns the number of entries; those past it are zeroed.
+// Fills the table from the DOF arrays of `nodes` nodes: entry[k] is group k's entry, shared with
+// an equal one by share_entry() (shared_table.hpp). Returns the number of entries; those past it
+// are zeroed.
 inline std::size_t fill_mass_table(const double* mass, const double* inv_mass, std::size_t nodes,
                                    MassBlock* table, std::int32_t* entry) {
   std::size_t distinct = 0;
   const std::size_t groups = mass_groups(nodes);
+  constexpr std::size_t kDofs = kMassGroup * kDofsPerNode;
   for (std::size_t k = 0; k < groups; ++k) {
     MassBlock blk;
-    constexpr std::size_t kDofs = kMassGroup * kDofsPerNode;
     for (std::size_t c = 0; c < kDofs; ++c) {
       blk.mass[c] = mass[kDofs * k + c];
       blk.inv_mass[c] = inv_mass[kDofs * k + c];
     }
-    std::size_t found = distinct;
-    for (std::size_t i = distinct; i-- > 0 && distinct - i <= kMassWindow;) {
-      if (std::memcmp(&table[i], &blk, sizeof blk) == 0) {
-        found = i;
-        break;
-      }
-    }
-    if (found == distinct) table[distinct++] = blk;
-    entry[k] = static_cast<std::int32_t>(found);
+    entry[k] = static_cast<std::int32_t>(share_entry(table, distinct, blk));
   }
   for (std::size_t i = distinct; i < groups; ++i)
     table[i] = MassBlock{};

@@ -14,10 +14,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include "ntn/beam.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/shared_table.hpp"
 
 namespace ntn {
 
@@ -108,28 +108,15 @@ inline BeamData lane(const BeamArrays& a, std::size_t b, std::size_t l) {
 }
 
 // Shares the stiffness table's equal entries after set_lane has given every block its own: block
-// b's entry is replaced by the first earlier entry with the same bytes (so the same bits: -0.0 and
-// +0.0 differ) among the last kStiffnessWindow distinct ones, and the table compacted to the
-// distinct entries, in block order. Returns their number. The window bounds the work (blocks x
-// kStiffnessWindow comparisons) whatever the model; a frame of a few member types, meshed member by
-// member, has far fewer distinct blocks than that, and a model with more keeps the entries it
-// cannot share (the bits are the same either way: only where a block reads its stiffness moves).
-inline constexpr std::size_t kStiffnessWindow = 64;
-
+// b's entry becomes the one share_entry() finds for its bytes (shared_table.hpp), the table
+// compacted to the distinct entries in block order. Returns their number; the entries past it are
+// zeroed.
 inline std::size_t dedupe_stiffness(BeamBlock* blocks, BeamStiffnessBlock* stiffness,
                                     std::size_t num_blocks) {
   std::size_t distinct = 0;
   for (std::size_t b = 0; b < num_blocks; ++b) {
     const BeamStiffnessBlock st = stiffness[b];
-    std::size_t found = distinct;
-    for (std::size_t k = distinct; k-- > 0 && distinct - k <= kStiffnessWindow;) {
-      if (std::memcmp(&stiffness[k], &st, sizeof st) == 0) {
-        found = k;
-        break;
-      }
-    }
-    if (found == distinct) stiffness[distinct++] = st;
-    blocks[b].stiffness = static_cast<std::int32_t>(found);
+    blocks[b].stiffness = static_cast<std::int32_t>(share_entry(stiffness, distinct, st));
   }
   for (std::size_t k = distinct; k < num_blocks; ++k)
     stiffness[k] = BeamStiffnessBlock{};
