@@ -28,7 +28,7 @@ double DofPassNodes(const DofPassData& x, std::size_t first, std::size_t last) {
   const D d;
   constexpr std::size_t kGroupDofs = kMassGroup * kDofsPerNode;
   const std::size_t lanes = hn::Lanes(d);
-  double pattern[kGroupDofs];  // g, g: lanes [k, k + lanes) of it go with DOFs 6 n + k
+  double pattern[kGroupDofs];  // g four times: lanes [k, k + lanes) go with DOFs 6 n + k
   for (std::size_t k = 0; k < kGroupDofs; ++k)
     pattern[k] = x.g[k % kDofsPerNode];
   const V alpha = hn::Set(d, x.alpha), dt = hn::Set(d, x.dt), zero = hn::Zero(d);
