@@ -12,6 +12,8 @@
 
 #if defined(NTN_SIMD)
 
+#include "hwy_baseline.hpp"  // before Highway's headers
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "dof_pass.cpp"  // NOLINT: Highway re-includes this file per target
 #include <hwy/foreach_target.h>            // IWYU pragma: keep

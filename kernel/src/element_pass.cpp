@@ -18,6 +18,8 @@ const char* element_pass_target() {
 
 #else
 
+#include "hwy_baseline.hpp"  // before Highway's headers
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "element_pass.cpp"  // NOLINT: Highway re-includes this file per target
 #include <hwy/foreach_target.h>                // IWYU pragma: keep
