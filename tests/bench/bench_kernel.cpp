@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <numeric>
 #include <random>
 #include <string>
 
@@ -300,18 +301,14 @@ Model<sizes_of(G)>& file_order_model() {
       std::fprintf(stderr, "init failed: %s at %d\n", to_string(st.error), st.where);
       std::abort();
     }
-    std::vector<BeamData> beams(S.elements);
-    for (std::size_t e = 0; e < S.elements; ++e)
-      beams[e] = m.beam(e);
+    // The blocks again as init() fills them (fill_beam_blocks), in the file's order.
+    std::vector<std::int32_t> order(S.elements);
+    std::iota(order.begin(), order.end(), 0);
     m.beams.fill(BeamBlock{});
     m.rotations.fill(BeamRotations{});
     m.stiffness.fill(BeamStiffnessBlock{});
-    for (std::size_t e = 0; e < S.elements; ++e) {
-      set_lane(m.beams.data(), m.rotations.data(), m.stiffness.data(), e / kBeamLanes,
-               e % kBeamLanes, beams[e]);
-      m.element_slot[e] = static_cast<std::int32_t>(e);
-    }
-    m.num_stiffness = dedupe_stiffness(m.beams.data(), m.stiffness.data(), beam_blocks(S.elements));
+    m.num_stiffness = fill_beam_blocks(view(spec), order, m.beams.data(), m.rotations.data(),
+                                       m.stiffness.data(), m.element_slot.data());
     std::vector<std::uint8_t> touched(S.nodes);
     m.every_node_in_element = mark_first_ends(m.beams.data(), S.elements, S.nodes, touched.data());
     return true;

@@ -27,11 +27,14 @@ constexpr std::size_t beam_blocks(std::size_t elements) {
   return (elements + kBeamLanes - 1) / kBeamLanes;
 }
 
+// One double per lane of a block.
+using BeamLanes = std::array<double, kBeamLanes>;
+
 // The stiffness of kBeamLanes elements, lane l of each field (BeamStiffness, beam.hpp). Lanes past
 // the model's last element have zero stiffness. Every lane array is 32-byte aligned (one AVX2
 // vector, never across a cache line).
 struct alignas(32) BeamStiffnessBlock {
-  using Lanes = std::array<double, kBeamLanes>;
+  using Lanes = BeamLanes;
   Lanes axial{};
   Lanes torsion{};
   std::array<Lanes, 4> xy{};
@@ -57,7 +60,7 @@ struct BeamBlock {
 // own beside the blocks: a block of aligned elements (beam.hpp, AxisMap) never reads its
 // rotations, so a pass over an aligned frame streams the blocks alone.
 struct alignas(32) BeamRotations {
-  std::array<BeamStiffnessBlock::Lanes, 9> rotation{};
+  std::array<BeamLanes, 9> rotation{};
 };
 
 // What the element pass reads: the blocks, their rotations (block by block) and the stiffness
@@ -75,8 +78,8 @@ inline void set_lane(BeamBlock* blocks, BeamRotations* rotations, BeamStiffnessB
   BeamBlock& blk = blocks[b];
   blk.dof_i[l] = kDofsPerNode * data.node_i;
   blk.dof_j[l] = kDofsPerNode * data.node_j;
-  blk.axes[l] =
-      axis_map(data.rotation);  // from the rotation: the one rule, whatever data.axes says
+  // From the rotation: the one rule, whatever data.axes says.
+  blk.axes[l] = axis_map(data.rotation);
   blk.stiffness = static_cast<std::int32_t>(b);
   for (std::size_t k = 0; k < 9; ++k)
     rotations[b].rotation[k][l] = data.rotation[k];
