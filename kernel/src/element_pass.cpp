@@ -50,7 +50,9 @@ HWY_INLINE void to_global(const V* R, const V* l, V* g) {
 }
 
 // How a block's lanes rotate (beam.hpp, AxisMap): all by the full products, all by one and the
-// same pick (the common case: members meshed in place, numbered member by member), or lane by lane.
+// same right-handed pick (the common case: members meshed in place, numbered member by member), or
+// lane by lane (lanes that rotate differently, and the left-handed picks that beam_geometry never
+// makes: a hand-made BeamData's).
 enum class Axes : std::uint8_t { kGeneral, kUniform, kMixed };
 
 HWY_INLINE Axes block_axes(const BeamBlock& blk) {
@@ -58,33 +60,38 @@ HWY_INLINE Axes block_axes(const BeamBlock& blk) {
   for (std::size_t l = 1; l < kBeamLanes; ++l) {
     if (blk.axes[l] != m) return Axes::kMixed;
   }
-  return m == kGeneralAxes ? Axes::kGeneral : Axes::kUniform;
+  if (m == kGeneralAxes) return Axes::kGeneral;
+  return right_handed(m) ? Axes::kUniform : Axes::kMixed;
 }
 
-// A uniform block's picks: local axis k is global axis kA<k> (one of the six orders of x, y, z, a
-// template argument so that the picks are register names), its sign bit xor-ed with sign[k]
-// (-0.0 where negated, else +0.0): flip() of beam.hpp, exact. (Vectors are passed as arrays, not
-// in structs: a struct's implicit constructor lacks Highway's target attributes.)
-HWY_INLINE void block_signs(AxisMap m, V* sign) {
-  const D d;
-  for (std::size_t k = 0; k < 3; ++k)
-    sign[k] = hn::Set(d, axis_negated(m, k) ? -0.0 : 0.0);
+// A uniform block's picks: local axis k is global axis kA<k> (one of the six orders of x, y, z),
+// negated where bit k of kNeg is set (flip() of beam.hpp: the sign bit alone, exact). Both are
+// template arguments, so that the picks are register names and an axis that is not negated costs
+// no instruction (a building frame's members have one negated axis or none). (Vectors are passed
+// as arrays, not in structs: a struct's implicit constructor lacks Highway's target attributes.)
+template <bool kNegated>
+HWY_INLINE V flip(V x) {
+  if constexpr (kNegated) {
+    return hn::Neg(x);
+  } else {
+    return x;
+  }
 }
 
-template <std::size_t kA0, std::size_t kA1>
-HWY_INLINE void pick_local(const V* sign, const V* g, V* l) {
+template <std::size_t kA0, std::size_t kA1, unsigned kNeg>
+HWY_INLINE void pick_local(const V* g, V* l) {
   constexpr std::size_t kA2 = 3 - kA0 - kA1;
-  l[0] = hn::Xor(g[kA0], sign[0]);
-  l[1] = hn::Xor(g[kA1], sign[1]);
-  l[2] = hn::Xor(g[kA2], sign[2]);
+  l[0] = flip<(kNeg & 1U) != 0>(g[kA0]);
+  l[1] = flip<(kNeg & 2U) != 0>(g[kA1]);
+  l[2] = flip<(kNeg & 4U) != 0>(g[kA2]);
 }
 
-template <std::size_t kA0, std::size_t kA1>
-HWY_INLINE void pick_global(const V* sign, const V* l, V* g) {
+template <std::size_t kA0, std::size_t kA1, unsigned kNeg>
+HWY_INLINE void pick_global(const V* l, V* g) {
   constexpr std::size_t kA2 = 3 - kA0 - kA1;
-  g[kA0] = hn::Xor(l[0], sign[0]);
-  g[kA1] = hn::Xor(l[1], sign[1]);
-  g[kA2] = hn::Xor(l[2], sign[2]);
+  g[kA0] = flip<(kNeg & 1U) != 0>(l[0]);
+  g[kA1] = flip<(kNeg & 2U) != 0>(l[1]);
+  g[kA2] = flip<(kNeg & 4U) != 0>(l[2]);
 }
 
 // A block whose lanes rotate differently: each lane's AxisMap as vectors over lanes
@@ -133,19 +140,18 @@ HWY_INLINE void repick_global(V aligned, const V* axis, const V* sign, const V* 
 
 // beam_force from the global displacements ug [u_i, theta_i, u_j, theta_j] (one vector per DOF,
 // lanes [first, first + Lanes) of the block) to the global end forces g, in the same order.
-template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1>
+template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1, unsigned kNeg = 0>
 HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
                             const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
   const D d;
   [[maybe_unused]] V R[9];     // the rotation, for the full products
   [[maybe_unused]] V aligned;  // a mixed block's lanes (lane_axes)
   [[maybe_unused]] V axis[3];  // ...
-  [[maybe_unused]] V sign[3];  // the sign bits of the picks
+  [[maybe_unused]] V sign[3];  // ... and the sign bits of its picks
   V dl[12];                    // beam_local_displacements
   if constexpr (kAxes == Axes::kUniform) {
-    block_signs(blk.axes[0], sign);
     for (std::size_t e = 0; e < 12; e += 3)
-      pick_local<kA0, kA1>(sign, ug + e, dl + e);
+      pick_local<kA0, kA1, kNeg>(ug + e, dl + e);
   } else {
     for (std::size_t k = 0; k < 9; ++k)
       R[k] = hn::LoadU(d, rot.rotation[k].data() + first);
@@ -183,7 +189,7 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
   // beam_to_global, end by end
   if constexpr (kAxes == Axes::kUniform) {
     for (std::size_t e = 0; e < 12; e += 3)
-      pick_global<kA0, kA1>(sign, f + e, g + e);
+      pick_global<kA0, kA1, kNeg>(f + e, g + e);
   } else {
     for (std::size_t e = 0; e < 12; e += 3)
       to_global(R, f + e, g + e);
@@ -194,6 +200,40 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
   }
 }
 
+// The negated axes of the right-handed pick with local x, y along global kA0, kA1 and the signs
+// kLow of x and y: z's sign follows (beam.hpp, right_handed).
+template <std::size_t kA0, std::size_t kA1, unsigned kLow>
+constexpr unsigned right_handed_signs() {
+  return right_handed(aligned_axes(kA0, kA1, kLow)) ? kLow : kLow | 4U;
+}
+
+// A uniform block's lane_forces for its permutation kA0, kA1 and its negated axes: the four
+// right-handed choices (block_axes), each a case of its own. (A switch on the x and y signs
+// alone, with z's implied, measured as slow as the runtime signs on Zen 5.)
+template <std::size_t kA0, std::size_t kA1>
+HWY_INLINE void uniform_forces(const BeamBlock& blk, const BeamRotations& rot,
+                               const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
+  constexpr unsigned kNeg[4] = {
+      right_handed_signs<kA0, kA1, 0>(), right_handed_signs<kA0, kA1, 1>(),
+      right_handed_signs<kA0, kA1, 2>(), right_handed_signs<kA0, kA1, 3>()};
+  switch (negated_axes(blk.axes[0])) {
+    case kNeg[0]:
+      lane_forces<Axes::kUniform, kA0, kA1, kNeg[0]>(blk, rot, st, first, ug, g);
+      return;
+    case kNeg[1]:
+      lane_forces<Axes::kUniform, kA0, kA1, kNeg[1]>(blk, rot, st, first, ug, g);
+      return;
+    case kNeg[2]:
+      lane_forces<Axes::kUniform, kA0, kA1, kNeg[2]>(blk, rot, st, first, ug, g);
+      return;
+    case kNeg[3]:
+      lane_forces<Axes::kUniform, kA0, kA1, kNeg[3]>(blk, rot, st, first, ug, g);
+      return;
+    default:  // left-handed: block_axes sends these to the mixed path
+      return;
+  }
+}
+
 // lane_forces for the block's kind of axes.
 HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
                             const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
@@ -201,22 +241,22 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
     case Axes::kUniform:
       switch (3 * axis_of(blk.axes[0], 0) + axis_of(blk.axes[0], 1)) {
         case 1:
-          lane_forces<Axes::kUniform, 0, 1>(blk, rot, st, first, ug, g);
+          uniform_forces<0, 1>(blk, rot, st, first, ug, g);
           return;
         case 2:
-          lane_forces<Axes::kUniform, 0, 2>(blk, rot, st, first, ug, g);
+          uniform_forces<0, 2>(blk, rot, st, first, ug, g);
           return;
         case 3:
-          lane_forces<Axes::kUniform, 1, 0>(blk, rot, st, first, ug, g);
+          uniform_forces<1, 0>(blk, rot, st, first, ug, g);
           return;
         case 5:
-          lane_forces<Axes::kUniform, 1, 2>(blk, rot, st, first, ug, g);
+          uniform_forces<1, 2>(blk, rot, st, first, ug, g);
           return;
         case 6:
-          lane_forces<Axes::kUniform, 2, 0>(blk, rot, st, first, ug, g);
+          uniform_forces<2, 0>(blk, rot, st, first, ug, g);
           return;
         default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
-          lane_forces<Axes::kUniform, 2, 1>(blk, rot, st, first, ug, g);
+          uniform_forces<2, 1>(blk, rot, st, first, ug, g);
           return;
       }
     case Axes::kGeneral:

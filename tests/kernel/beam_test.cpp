@@ -246,6 +246,41 @@ TEST(AxisMap, SignedOrdersArePicksOfTheFullProducts) {
       ntn::kGeneralAxes);
 }
 
+// right_handed() is the sign of the determinant: +1 for 24 of the 48 signed orders (the rotations),
+// -1 for their mirror images; beam_geometry's frames (y = z x x) are all right-handed; and
+// aligned_axes() codes each map axis_map() reads.
+TEST(AxisMap, RightHandedIsAPositiveDeterminant) {
+  int right = 0;
+  for (int which = 0; which < 48; ++which) {
+    const auto R = signed_order(which, which % 2 == 0);
+    const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+                       R[2] * (R[3] * R[7] - R[4] * R[6]);
+    ASSERT_EQ(std::abs(det), 1.0) << which;
+    const ntn::AxisMap m = ntn::axis_map(R);
+    EXPECT_EQ(ntn::right_handed(m), det > 0) << which;
+    EXPECT_EQ(ntn::aligned_axes(ntn::axis_of(m, 0), ntn::axis_of(m, 1), ntn::negated_axes(m)), m);
+    right += det > 0 ? 1 : 0;
+  }
+  EXPECT_EQ(right, 24);
+  const ntn::ElementSpec beam = ntn_test::element(0, 1, ntn_test::kSteel, kRect, {0, 0, 1});
+  const ntn::ElementSpec column = ntn_test::element(0, 1, ntn_test::kSteel, kRect, {1, 0, 0});
+  const ntn::NodeSpec ends[][2] = {{node_at(0, 0, 3), node_at(6, 0, 3)},
+                                   {node_at(6, 0, 3), node_at(0, 0, 3)},
+                                   {node_at(0, 0, 3), node_at(0, 6, 3)},
+                                   {node_at(0, 6, 3), node_at(0, 0, 3)}};
+  for (const auto& end : ends) {
+    const ntn::AxisMap m = ntn::axis_map(ntn::beam_geometry(end[0], end[1], beam).rotation);
+    ASSERT_NE(m, ntn::kGeneralAxes);
+    EXPECT_TRUE(ntn::right_handed(m));
+  }
+  for (const double top : {3.5, -3.5}) {
+    const ntn::AxisMap m =
+        ntn::axis_map(ntn::beam_geometry(node_at(2, 1, 0), node_at(2, 1, top), column).rotation);
+    ASSERT_NE(m, ntn::kGeneralAxes);
+    EXPECT_TRUE(ntn::right_handed(m));
+  }
+}
+
 // The element force of an aligned element by picks equals the full products' as values, for
 // every signed order, Euler-Bernoulli and Timoshenko (the same operations on the same values).
 TEST(AxisMap, AlignedForceEqualsTheFullProductsAsValues) {

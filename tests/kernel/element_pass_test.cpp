@@ -366,6 +366,56 @@ TEST_F(EveryTarget, SplitPassGivesTheScalarBits) {
   });
 }
 
+// Each of the 48 signed orders of the axes as whole blocks of one AxisMap, zeros of both signs in
+// the rotations and the displacements: the uniform picks (the 24 right-handed orders each by code
+// of its own, element_pass.cpp; the 24 left-handed by the lane-by-lane picks) give the scalar bits
+// on every target, in the single-core pass (adds, and first writes) and the multi-core one.
+TEST_F(EveryTarget, EachSignedOrderGivesTheScalarBits) {
+  int right_handed = 0;
+  each_target([&](std::int64_t t) {
+    for (std::size_t which = 0; which < 48; ++which) {
+      Elements e = random_elements(8, 5, 900 + which);
+      for (std::size_t k = 0; k < e.beams.size(); ++k) {
+        e.beams[k].rotation = ntn_test::signed_order(
+            which, [&](std::size_t c) { return (c + k) % 3 == 0 ? -0.0 : 0.0; });
+        e.beams[k].axes = ntn::axis_map(e.beams[k].rotation);
+        e.set(k);
+      }
+      for (const BeamBlock& blk : e.blocks)
+        ASSERT_EQ(std::count(blk.axes.begin(), blk.axes.end(), blk.axes[0]), 4) << which;
+      right_handed += ntn::right_handed(e.blocks[0].axes[0]) ? 1 : 0;
+      for (std::size_t j = 0; j < e.u.size(); j += 4)
+        e.u[j] = j % 8 == 0 ? -0.0 : 0.0, e.v[j] = -0.0;
+      std::vector<std::uint8_t> touched(5);
+      const bool every = ntn::mark_first_ends(e.blocks.data(), 8, 5, touched.data());
+      const std::vector<std::uint8_t> direct = {0x5A, 0xFF};
+      const auto where = [&](double beta) {
+        return ::testing::Message()
+               << hwy::TargetName(t) << ", signed order " << which << ", beta " << beta;
+      };
+      for (const double beta : {0.0, 2e-3}) {
+        for (const double f0 : {0.0, -0.0}) {
+          EXPECT_TRUE(same_bits(forces(e, ntn::ElementPass::kSimd, beta, f0),
+                                forces(e, ntn::ElementPass::kScalar, beta, f0)))
+              << where(beta) << ", F from " << f0;
+        }
+        std::vector<double> simd(e.u.size(), std::numeric_limits<double>::quiet_NaN());
+        std::vector<double> scalar(e.u.size(), 1.0);
+        ntn::element_forces_into(ntn::ElementPass::kSimd, e.arrays(), 8, every, e.u.size(),
+                                 e.u.data(), e.v.data(), beta, simd.data());
+        ntn::element_forces_into(ntn::ElementPass::kScalar, e.arrays(), 8, every, e.u.size(),
+                                 e.u.data(), e.v.data(), beta, scalar.data());
+        EXPECT_TRUE(same_bits(simd, scalar)) << where(beta) << ", first writes";
+        EXPECT_TRUE(same_bits(split_forces(e, ntn::ElementPass::kSimd, beta, direct),
+                              split_forces(e, ntn::ElementPass::kScalar, beta, direct)))
+            << where(beta) << ", split";
+      }
+    }
+  });
+  EXPECT_EQ(right_handed % 24, 0);  // 24 per target
+  EXPECT_GT(right_handed, 0);
+}
+
 // F = the forces (element_forces_into): the SIMD path's first writes, from an F of NaNs that no
 // DOF may keep, give the bits of the scalar path's zeroed F plus adds, with displacements of
 // -0.0 too (forces of -0.0: a first write stores 0.0 + f, +0.0, as the zeroed F does); where a

@@ -40,6 +40,26 @@ constexpr std::size_t axis_of(AxisMap m, std::size_t k) {
 constexpr bool axis_negated(AxisMap m, std::size_t k) {
   return ((static_cast<unsigned>(m) >> (6 + k)) & 1U) != 0;
 }
+// Bit k set where local axis k is negated (axis_negated), for all three axes at once.
+constexpr unsigned negated_axes(AxisMap m) {
+  return (static_cast<unsigned>(m) >> 6) & 7U;
+}
+// The AxisMap of local x, y along global a0, a1 (z along the third), negated where bit k of
+// `negated` is set (negated_axes).
+constexpr AxisMap aligned_axes(std::size_t a0, std::size_t a1, unsigned negated) {
+  return static_cast<AxisMap>(kAlignedAxes | a0 | (a1 << 2) | ((3 - a0 - a1) << 4) |
+                              ((negated & 7U) << 6));
+}
+// An aligned map whose determinant is +1 (a rotation, not a mirror image): an odd permutation of
+// the axes (one axis in place) with an odd number of them negated, or an even one with an even
+// number. beam_geometry's frames (y = z x x) are all right-handed.
+constexpr bool right_handed(AxisMap m) {
+  const std::size_t a0 = axis_of(m, 0), a1 = axis_of(m, 1), a2 = axis_of(m, 2);
+  const bool odd_order = (a0 == 0) + (a1 == 1) + (a2 == 2) == 1;
+  const unsigned n = negated_axes(m);
+  const bool odd_signs = ((n ^ (n >> 1) ^ (n >> 2)) & 1U) != 0;
+  return odd_order == odd_signs;
+}
 
 // The AxisMap of a rotation: aligned when each row has one entry +1 or -1 and zeros (of either
 // sign) elsewhere, exactly.
