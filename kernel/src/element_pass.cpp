@@ -318,8 +318,9 @@ HWY_INLINE void add_lanes(const BeamBlock& blk, std::size_t lanes, const double 
   }
 }
 
-// ... or, for the multi-core pass, each end added to f where `direct` has its bit, else stored
-// into fe[12 l + 6 end + c] (element by element).
+// ... or, for the multi-core pass, each end added to f where `direct` has its bit (written as
+// 0.0 + its force where it is its node's first, BeamBlock::first), else stored into
+// fe[12 l + 6 end + c] (element by element).
 HWY_INLINE void split_lanes(const BeamBlock& blk, std::uint8_t direct,
                             const double (*fi)[kBeamLanes], const double (*fj)[kBeamLanes],
                             double* f, double* fe) {
@@ -327,9 +328,11 @@ HWY_INLINE void split_lanes(const BeamBlock& blk, std::uint8_t direct,
     const double(*ends[2])[kBeamLanes] = {fi, fj};
     const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
     for (std::size_t end = 0; end < 2; ++end) {
+      const bool first = direct_end(blk.first, l, end);
       for (std::size_t c = 0; c < 6; ++c) {
         if (direct_end(direct, l, end)) {
-          f[static_cast<std::size_t>(node_dof[end]) + c] += ends[end][c][l];
+          double& x = f[static_cast<std::size_t>(node_dof[end]) + c];
+          x = (first ? 0.0 : x) + ends[end][c][l];
         } else {
           fe[12 * l + 6 * end + c] = ends[end][c][l];
         }
@@ -433,8 +436,8 @@ HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
   });
 }
 
-// ... or, for the multi-core pass, each end added to f where `direct` has its bit, else stored
-// into fe[12 l + 6 end + c].
+// ... or, for the multi-core pass, each end added to f where `direct` has its bit (a node's first
+// end written as 0.0 + its force), else stored into fe[12 l + 6 end + c].
 HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g, double* f,
                            double* fe) {
   const D d;
@@ -446,8 +449,9 @@ HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g
     for (std::size_t end = 0; end < 2; ++end) {
       if (direct_end(direct, l, end)) {
         double* p = f + node_dof[end];
-        hn::StoreU(hn::Add(hn::LoadU(d, p), r[end]), d, p);
-        hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), h[end]), dh, p + 4);
+        const bool first = direct_end(blk.first, l, end);
+        hn::StoreU(hn::Add(first ? hn::Zero(d) : hn::LoadU(d, p), r[end]), d, p);
+        hn::StoreU(hn::Add(first ? hn::Zero(dh) : hn::LoadU(dh, p + 4), h[end]), dh, p + 4);
       } else {
         hn::StoreU(r[end], d, fe + 12 * l + 6 * end);
         hn::StoreU(h[end], dh, fe + 12 * l + 6 * end + 4);
@@ -479,7 +483,8 @@ HWY_INLINE void forces_transpose(const BeamArrays& a, std::size_t elements, cons
   }
 }
 
-// Whole blocks whose ends all go to f (the common case) take add_rows, as the single-core pass.
+// Whole blocks whose ends all go to f (the common case) take add_rows with the first writes, as
+// the single-core pass.
 template <bool kBeta>
 HWY_INLINE void split_transpose(const BeamArrays& a, std::size_t first, std::size_t last,
                                 const std::uint8_t* direct, const double* u, const double* v,
@@ -489,7 +494,7 @@ HWY_INLINE void split_transpose(const BeamArrays& a, std::size_t first, std::siz
     V g[12];
     block_transpose<kBeta>(a, b, u, v, beta, g);
     if (direct[b] == kAll) {
-      add_rows(a.blocks[b], g, f);
+      add_rows<true>(a.blocks[b], g, f);
     } else {
       split_rows(a.blocks[b], direct[b], g, f, fe + 12 * kBeamLanes * b);
     }

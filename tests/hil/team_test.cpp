@@ -115,19 +115,22 @@ TEST(Team, PartitionCoversEveryBlockAndNodeOnce) {
         EXPECT_EQ(owner[n], k) << "node " << n << " is interior to two workers";
       }
     }
-    // Phase A zeroes F_n at a worker's interior nodes: every node that is not shared is in the
-    // list of the worker that adds to it, once; a shared one in none (phase B writes it).
-    std::vector<int> listed(S.nodes, -1);
-    for (int k = 0; k < size; ++k) {
-      const auto kk = static_cast<std::size_t>(k);
-      for (auto i = work.interior_split[kk]; i < work.interior_split[kk + 1]; ++i) {
-        const auto n = static_cast<std::size_t>(work.interior[static_cast<std::size_t>(i)]);
-        EXPECT_EQ(listed[n], -1) << "node " << n << " listed twice";
-        listed[n] = k;
+    // Phase A does not zero F_n: each node that is not shared has exactly one first end
+    // (BeamBlock::first), added directly by its owner, which writes F_n there; a shared node's
+    // ends are all stored (phase B writes it).
+    std::vector<int> firsts(S.nodes, 0);
+    for (std::size_t e = 0; e < S.elements; ++e) {
+      const std::size_t b = e / ntn::kBeamLanes, l = e % ntn::kBeamLanes;
+      const int nodes[2] = {sim.model.beams[b].dof_i[l] / 6, sim.model.beams[b].dof_j[l] / 6};
+      for (std::size_t end = 0; end < 2; ++end) {
+        if (!ntn::direct_end(sim.model.beams[b].first, l, end)) continue;
+        const auto n = static_cast<std::size_t>(nodes[end]);
+        ++firsts[n];
+        EXPECT_EQ(ntn::direct_end(work.direct[b], l, end), !shared[n]) << "node " << n;
       }
     }
     for (std::size_t n = 0; n < S.nodes; ++n)
-      EXPECT_EQ(listed[n], shared[n] ? -1 : owner[n]) << "node " << n;
+      EXPECT_EQ(firsts[n], work.node_start[n + 1] > work.node_start[n] ? 1 : 0) << "node " << n;
     if (size == 1) {
       EXPECT_EQ(shared_end, 0U) << "every node has elements: all interior";
     } else {

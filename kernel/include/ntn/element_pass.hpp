@@ -52,7 +52,8 @@ struct BeamBlock {
   std::array<AxisMap, kBeamLanes> axes{};        // axis_map(rotation), lane by lane
   std::int32_t stiffness = 0;                    // its entry of the stiffness table
   // direct_bit(l, end) where lane l's end is the first of its node's element ends in the model's
-  // order (mark_first_ends): the SIMD pass writes 0.0 + f there instead of adding to F.
+  // order (mark_first_ends): the SIMD pass, and the multi-core pass on both paths, write 0.0 + f
+  // there instead of adding to F.
   std::uint8_t first = 0;
 };
 
@@ -202,8 +203,9 @@ inline void element_forces_scalar(const BeamArrays& a, std::size_t elements, con
 
 // The scalar reference of the multi-core pass (team.hpp), over the elements of blocks
 // [first, last), whole blocks, in element order: each end's force added to f at its node where
-// direct[block] has the end's bit (direct_end), else stored into fe[12 e + 6 end + c] (the lanes
-// past the model's last element have no bit: stored, never read).
+// direct[block] has the end's bit (direct_end; written as 0.0 + the force where the end is its
+// node's first, BeamBlock::first: F is not zeroed first), else stored into fe[12 e + 6 end + c]
+// (the lanes past the model's last element have no bit: stored, never read).
 inline void element_forces_split_scalar(const BeamArrays& a, std::size_t first, std::size_t last,
                                         const std::uint8_t* direct, const double* u,
                                         const double* v, double beta, double* f, double* fe) {
@@ -215,8 +217,11 @@ inline void element_forces_split_scalar(const BeamArrays& a, std::size_t first, 
     const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
     for (std::size_t end = 0; end < 2; ++end) {
       if (direct_end(direct[e / kBeamLanes], l, end)) {
-        for (std::size_t d = 0; d < kDofsPerNode; ++d)
-          f[static_cast<std::size_t>(node_dof[end]) + d] += fij[6 * end + d];
+        const bool first_end = direct_end(blk.first, l, end);
+        for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+          double& x = f[static_cast<std::size_t>(node_dof[end]) + d];
+          x = (first_end ? 0.0 : x) + fij[6 * end + d];
+        }
       } else {
         for (std::size_t d = 0; d < kDofsPerNode; ++d)
           fe[12 * e + 6 * end + d] = fij[6 * end + d];

@@ -169,8 +169,6 @@ constexpr void team_work_members(const Sizes& s, V&& v) {
   v(&M::block_split);
   v(&M::node_split);
   v(&M::direct, blocks);
-  v(&M::interior, s.nodes);
-  v(&M::interior_split);
   v(&M::shared, s.nodes);
   v(&M::shared_split);
   v(&M::bad);

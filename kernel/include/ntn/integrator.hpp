@@ -343,18 +343,11 @@ struct TeamStep {
   TeamWork<S>* t;
 };
 
-// A: F_n zeroed at worker k's interior nodes, then worker k's element blocks, their ends added to
-// F_n at its interior nodes, stored for the shared ones.
+// A: worker k's element blocks, their ends added to F_n at its interior nodes (a node's first end
+// written, not added: F_n is not zeroed first), stored for the shared ones.
 template <Sizes S>
 void team_element_forces(void* arg, int k) {
   const TeamStep<S>& c = *static_cast<const TeamStep<S>*>(arg);
-  const auto from = static_cast<std::size_t>(c.t->interior_split[static_cast<std::size_t>(k)]);
-  const auto to = static_cast<std::size_t>(c.t->interior_split[static_cast<std::size_t>(k) + 1]);
-  for (std::size_t i = from; i < to; ++i) {
-    double* f = &c.w->f[kDofsPerNode * static_cast<std::size_t>(c.t->interior[i])];
-    for (std::size_t d = 0; d < kDofsPerNode; ++d)
-      f[d] = 0.0;
-  }
   const auto first = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k)]);
   const auto last = static_cast<std::size_t>(c.t->block_split[static_cast<std::size_t>(k) + 1]);
   element_forces_split(c.m->element_pass, c.m->beam_arrays(), first, last, c.t->direct.data(),

@@ -9,11 +9,12 @@
 // range of element blocks; a node all of whose elements are in one worker's range is that
 // worker's ("interior"), the others are shared (a storey's nodes where two ranges meet, in a
 // frame). The team's pass:
-//   A. each worker zeroes F_n at its interior nodes (on its own core: no cache line of F crosses
-//      to another core to be cleared), then computes the end forces of its blocks in element
-//      order: an end at an interior node is added to F_n there and then (from +0.0: the
-//      single-core sums, operation for operation); an end at a shared node is stored
-//      (TeamWork::end_forces);
+//   A. each worker computes the end forces of its blocks in element order: an end at an interior
+//      node is added to F_n there and then, the node's first end (BeamBlock::first, which falls
+//      in the blocks of the worker that holds all of the node's elements) written as 0.0 + its
+//      force (the single-core sums from +0.0, operation for operation, with no pass to zero F:
+//      no cache line of F crosses to another core to be cleared); an end at a shared node is
+//      stored (TeamWork::end_forces);
 //   B. each worker sums, for its part of the shared nodes, the stored end forces of every
 //      element at that node in element order (TeamWork::incidence) from +0.0: again the
 //      single-core sums (F_n written, not added to: every node is interior to one worker or
@@ -61,10 +62,6 @@ struct TeamWork : SizesOf<S> {
   std::array<std::int32_t, kMaxTeam + 1> node_split{};
   // Per block, bit 2 l + end (direct_end): that end's node is interior to the block's worker.
   Array<std::uint8_t, S, kBlocks> direct{};
-  // The interior nodes, worker by worker and in node order within a worker's part: worker k's
-  // are interior[interior_split[k] .. interior_split[k + 1]).
-  Array<std::int32_t, S, S.nodes> interior{};
-  std::array<std::int32_t, kMaxTeam + 1> interior_split{};
   // The shared nodes, in node order (the nodes with no element too: their F_n is +0.0), and
   // worker k's part of them: shared[shared_split[k] .. shared_split[k + 1]).
   Array<std::int32_t, S, S.nodes> shared{};
@@ -74,8 +71,8 @@ struct TeamWork : SizesOf<S> {
 };
 
 // Builds the incidence lists, the partition (element blocks, nodes and shared nodes in equal
-// contiguous ranges) and the interior nodes for a team of `size` workers (1..kMaxTeam). False
-// for a size out of range.
+// contiguous ranges) and which ends are added directly for a team of `size` workers
+// (1..kMaxTeam). False for a size out of range.
 template <Sizes S>
 [[nodiscard]] bool prepare_team(const Model<S>& m, int size, TeamWork<S>& t) {
   if (size < 1 || size > kMaxTeam) return false;
@@ -139,24 +136,9 @@ template <Sizes S>
     }
   }
   std::int64_t num_shared = 0;
-  t.interior_split.fill(0);
   for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
-    if (!interior(n)) {
+    if (!interior(n))
       t.shared[static_cast<std::size_t>(num_shared++)] = static_cast<std::int32_t>(n);
-    } else {  // counted: interior_split[k + 1] ends up as worker k's count
-      const int k = worker_of(t.incidence[static_cast<std::size_t>(t.node_start[n])] / 12);
-      ++t.interior_split[static_cast<std::size_t>(k) + 1];
-    }
-  }
-  for (int k = 0; k < size; ++k)
-    t.interior_split[static_cast<std::size_t>(k) + 1] +=
-        t.interior_split[static_cast<std::size_t>(k)];
-  std::array<std::int32_t, kMaxTeam + 1> next = t.interior_split;  // worker k's next slot
-  for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
-    if (!interior(n)) continue;
-    const int k = worker_of(t.incidence[static_cast<std::size_t>(t.node_start[n])] / 12);
-    t.interior[static_cast<std::size_t>(next[static_cast<std::size_t>(k)]++)] =
-        static_cast<std::int32_t>(n);
   }
   for (int k = 0; k <= size; ++k)
     t.shared_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(num_shared * k / size);
