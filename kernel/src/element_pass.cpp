@@ -312,9 +312,9 @@ HWY_INLINE void add_lanes(const BeamBlock& blk, std::size_t lanes, const double 
     const bool first_i = kFirst && direct_end(blk.first, l, 0);
     const bool first_j = kFirst && direct_end(blk.first, l, 1);
     for (std::size_t c = 0; c < 6; ++c)
-      f[i + c] = (first_i ? 0.0 : f[i + c]) + fi[c][l];
+      f[i + c] = onto(first_i, f[i + c], fi[c][l]);
     for (std::size_t c = 0; c < 6; ++c)
-      f[j + c] = (first_j ? 0.0 : f[j + c]) + fj[c][l];
+      f[j + c] = onto(first_j, f[j + c], fj[c][l]);
   }
 }
 
@@ -332,7 +332,7 @@ HWY_INLINE void split_lanes(const BeamBlock& blk, std::uint8_t direct,
       for (std::size_t c = 0; c < 6; ++c) {
         if (direct_end(direct, l, end)) {
           double& x = f[static_cast<std::size_t>(node_dof[end]) + c];
-          x = (first ? 0.0 : x) + ends[end][c][l];
+          x = onto(first, x, ends[end][c][l]);
         } else {
           fe[12 * l + 6 * end + c] = ends[end][c][l];
         }
@@ -414,25 +414,30 @@ HWY_INLINE void each_lane(const V* g, Out out) {
     out(l, ri[l], hi[l], rj[l], hj[l]);
 }
 
+// One node end's forces onto F at p, DOFs 0..3 from r and 4, 5 from h: added, or written as
+// 0.0 + the forces where the end is its node's first (`first`: BeamBlock::first), without reading
+// F (onto(), element_pass.hpp).
+template <class H>
+HWY_INLINE void add_end(bool first, double* p, V r, H h) {
+  const D d;
+  const hn::Half<D> dh;
+  if (first) {
+    hn::StoreU(hn::Add(hn::Zero(d), r), d, p);
+    hn::StoreU(hn::Add(hn::Zero(dh), h), dh, p + 4);
+  } else {
+    hn::StoreU(hn::Add(hn::LoadU(d, p), r), d, p);
+    hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), h), dh, p + 4);
+  }
+}
+
 // A whole block's end forces added to the nodes 4 and 2 DOFs at a time. Lane l's two ends are
 // added before lane l + 1's, so every DOF sums its elements in the model's order. kFirst: a
 // node's first end (BeamBlock::first) is written as 0.0 + its force, without reading F.
 template <bool kFirst = false>
 HWY_INLINE void add_rows(const BeamBlock& blk, const V* g, double* f) {
-  const D d;
-  const hn::Half<D> dh;
-  auto add = [&](bool first, double* p, V r, auto h) {
-    if (kFirst && first) {
-      hn::StoreU(hn::Add(hn::Zero(d), r), d, p);
-      hn::StoreU(hn::Add(hn::Zero(dh), h), dh, p + 4);
-    } else {
-      hn::StoreU(hn::Add(hn::LoadU(d, p), r), d, p);
-      hn::StoreU(hn::Add(hn::LoadU(dh, p + 4), h), dh, p + 4);
-    }
-  };
   each_lane(g, [&](std::size_t l, V ri, auto hi, V rj, auto hj) {
-    add(direct_end(blk.first, l, 0), f + blk.dof_i[l], ri, hi);
-    add(direct_end(blk.first, l, 1), f + blk.dof_j[l], rj, hj);
+    add_end(kFirst && direct_end(blk.first, l, 0), f + blk.dof_i[l], ri, hi);
+    add_end(kFirst && direct_end(blk.first, l, 1), f + blk.dof_j[l], rj, hj);
   });
 }
 
@@ -448,10 +453,7 @@ HWY_INLINE void split_rows(const BeamBlock& blk, std::uint8_t direct, const V* g
     const std::int32_t node_dof[2] = {blk.dof_i[l], blk.dof_j[l]};
     for (std::size_t end = 0; end < 2; ++end) {
       if (direct_end(direct, l, end)) {
-        double* p = f + node_dof[end];
-        const bool first = direct_end(blk.first, l, end);
-        hn::StoreU(hn::Add(first ? hn::Zero(d) : hn::LoadU(d, p), r[end]), d, p);
-        hn::StoreU(hn::Add(first ? hn::Zero(dh) : hn::LoadU(dh, p + 4), h[end]), dh, p + 4);
+        add_end(direct_end(blk.first, l, end), f + node_dof[end], r[end], h[end]);
       } else {
         hn::StoreU(r[end], d, fe + 12 * l + 6 * end);
         hn::StoreU(h[end], dh, fe + 12 * l + 6 * end + 4);

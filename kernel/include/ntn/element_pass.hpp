@@ -166,6 +166,12 @@ inline bool mark_first_ends(BeamBlock* blocks, std::size_t elements, std::size_t
 
 namespace detail {
 
+// An end's force y onto F's value x: x + y, or 0.0 + y where the end is its node's first
+// (BeamBlock::first): F is then not read, and 0.0 + y is what a zeroed F plus y gives, bit for bit.
+constexpr double onto(bool first, double x, double y) {
+  return (first ? 0.0 : x) + y;
+}
+
 // Element l of a block: its global end forces fi (on node i), fj at u (+ beta v when beta != 0).
 inline void lane_force(const BeamArrays& a, std::size_t blk, std::size_t l, const double* u,
                        const double* v, double beta, double* fi, double* fj) {
@@ -220,7 +226,7 @@ inline void element_forces_split_scalar(const BeamArrays& a, std::size_t first, 
         const bool first_end = direct_end(blk.first, l, end);
         for (std::size_t d = 0; d < kDofsPerNode; ++d) {
           double& x = f[static_cast<std::size_t>(node_dof[end]) + d];
-          x = (first_end ? 0.0 : x) + fij[6 * end + d];
+          x = onto(first_end, x, fij[6 * end + d]);
         }
       } else {
         for (std::size_t d = 0; d < kDofsPerNode; ++d)
