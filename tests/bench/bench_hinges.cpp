@@ -639,6 +639,7 @@ StepStatus timed_step(const Model<S>& m, State<S>& s, Scratch<S>& w,
   if constexpr (S.hinges > 0) {
     const bool paper = m.hinge_method == HingeMethod::kNtnPaper;
     if (!paper && m.clamp == ClampRule::kMomentum) {
+      ntn::detail::step_weights(m, w);
       ntn::detail::momentum_clamp(m, s, w);
     } else {
       paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, paper);

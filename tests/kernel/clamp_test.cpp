@@ -56,6 +56,7 @@ double hinge_d(int h, int k) {
 // The scratch as a step leaves it before the stops: F_n and R set to recognizable values.
 void fill_scratch() {
   auto& w = sim.scratch;
+  ntn::detail::step_weights(sim.model, w);  // the moves of a step
   for (std::size_t j = 0; j < w.f.size(); ++j) {
     w.f[j] = 1.0 + static_cast<double>(j);
     w.r[j] = -2.0 - static_cast<double>(j);

@@ -138,7 +138,7 @@ const Expected kExpected[] = {
   {"OrientationParallel", "orientation_parallel.toml", 31, 15, "members[0].orientation", "orientation (2, 0, 0) is parallel to the axis of member M1"},
   {"DriftZeroHeight", "drift_zero_height.toml", 39, 9, "outputs[0].nodes", "drift height is zero: nodes 1 and 2 are both at z = 0 m"},
   {"DriftUpsideDown", "drift_upside_down.toml", 39, 9, "outputs[0].nodes", "the upper node 1 (z = 0 m) is below the lower node 2 (z = 3.5 m)"},
-  {"ReactionUnsupported", "reaction_unsupported.toml", 43, 13, "outputs[0].direction", "no support holds DOF rz, so this reaction is always zero"},
+  {"ReactionUnsupported", "reaction_unsupported.toml", 43, 13, "outputs[0].direction", "no support holds DOF rz and no hinge joins the ground, so this reaction is always zero"},
   // Mass and time step.
   {"NoMembers", "no_members.toml", 1, 1, "members", "the model has no members, so it has no mass"},
   {"MasslessFreeDof", "massless_dof.toml", 27, 6, "nodes[2].id", "node 3 has no mass in its free DOFs rx, ry, rz"},

@@ -198,7 +198,7 @@ double clamp_projection(const Scratch<S>& w, const HingeData& h, std::size_t k) 
 }
 
 // The parts move by scale y (y in w.clamp.response): u, and v and a after it (S 35-37 as
-// increments).
+// increments, with the weights of ClampWork: the step's, or start()'s trial).
 template <Sizes S>
 void clamp_move(const Model<S>& m, State<S>& s, Scratch<S>& w, const ClampPart (&parts)[2],
                 double scale, std::int64_t event) {
@@ -209,8 +209,8 @@ void clamp_move(const Model<S>& m, State<S>& s, Scratch<S>& w, const ClampPart (
         const auto j = static_cast<std::size_t>(kDofsPerNode * n) + c;
         const double du = scale * w.clamp.response[j];
         s.u[j] += du;
-        s.v[j] += du * m.inv_dt;
-        w.a[j] += du * m.inv_dt * m.inv_dt;
+        s.v[j] += du * w.clamp.v_rate;
+        w.a[j] += du * m.inv_dt * m.inv_dt * w.clamp.a_scale;
       }
     });
   }
@@ -247,6 +247,8 @@ double clamp_hinge(const Model<S>& m, State<S>& s, Scratch<S>& w, const HingeDat
     const double mobility = clamp_projection(w, h, k);  // b^T M_c^-1 b
     if (!(mobility > 0)) continue;                      // both sides held: nothing can move
     clamp_move(m, s, w, parts, -excess / mobility, ++w.clamp.events);
+    w.stop_force[static_cast<std::size_t>(&h - m.hinges.data())][k] +=
+        excess / (mobility * w.clamp.h2);  // the move's force: du = -f h2 M_c^-1 b
   }
   return largest;
 }
@@ -413,6 +415,7 @@ double clamp_tree(const Model<S>& m, State<S>& s, Scratch<S>& w, const ForestTre
     if (!active[j] || !(p[j] > 0)) continue;
     clamp_response(m, w, m.hinges[static_cast<std::size_t>(c[j].hinge)], c[j].k, parts);
     clamp_move(m, s, w, parts, -c[j].side * p[j], event);
+    w.stop_force[static_cast<std::size_t>(c[j].hinge)][c[j].k] += c[j].side * p[j] / w.clamp.h2;
   }
   return largest;
 }
@@ -470,12 +473,31 @@ void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
 
 // The stops stage of ntn_exact and penalty (ntn_paper's S 33 runs inside its S 27-37 pass): the
 // momentum-conserving clamp, or with clamp = "paper" the seed's S 33 alone (DESIGN §7.1).
+// The stops' forces (Scratch::stop_force) start at zero: the clamp adds its moves' forces; S 33
+// scales displacements and reports none.
 template <Sizes S>
 void clamp_stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  for (int i = 0; i < m.num_branch_hinges; ++i)
+    w.stop_force[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])].fill(0.0);
   if (m.clamp == ClampRule::kMomentum) {
     detail::momentum_clamp(m, s, w);
   } else {
-    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, false);
+    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, false,
+                       {w.clamp.moved.data(), ++w.clamp.events});
+  }
+}
+
+// start(): the stops' forces at t_0, on start()'s trial (the momentum clamp or S 33, with its
+// ClampWork weights).
+template <Sizes S>
+void clamp_start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  for (int i = 0; i < m.num_branch_hinges; ++i)
+    w.stop_force[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])].fill(0.0);
+  if (m.clamp == ClampRule::kMomentum) {
+    detail::momentum_clamp(m, s, w);
+  } else {
+    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, false,
+                       {nullptr, 0, true, w.clamp.a_scale});
   }
 }
 

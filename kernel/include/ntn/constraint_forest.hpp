@@ -482,7 +482,8 @@ inline void edge_delta(const ForestEdge& e, const ForestEdgeMatrices& mx, const 
 // Projection of one edge, after its parent's: the child's rigid components of q are set from its
 // parent's (generalizes S 30-31), and v, a of the changed DOFs follow (S 35-37): a change du of
 // u_{n+1} changes v_{n+1/2} by du / dt and a_n by du / dt^2.
-inline void project_edge(const ForestEdge& e, const ForestEdgeMatrices& mx, double* u, double* v,
+// Returns whether it moved the child (a delta not zero).
+inline bool project_edge(const ForestEdge& e, const ForestEdgeMatrices& mx, double* u, double* v,
                          double* a, double inv_dt) {
   double delta[6];
   edge_delta(e, mx, u, delta);
@@ -501,17 +502,24 @@ inline void project_edge(const ForestEdge& e, const ForestEdgeMatrices& mx, doub
     vc[d] = nv[d];
   for (int d = 0; d < 6; ++d)
     ac[d] = na[d];
+  bool changed = false;
+  for (int d = 0; d < 6; ++d)
+    changed = changed || delta[d] != 0.0;
+  return changed;
 }
 
 // Projection after the update, root to leaves, of the edges in `list` (ascending, so parents
-// first): see select_projected_edges for which edges need it.
+// first): see select_projected_edges for which edges need it. A child it moves gets `event` in
+// `moved` (ClampWork::moved), where given.
 inline void forest_project(std::span<const ForestEdge> edges,
                            std::span<const ForestEdgeMatrices> mats,
                            std::span<const std::int32_t> list, int count, double* u, double* v,
-                           double* a, double inv_dt) {
+                           double* a, double inv_dt, std::int64_t* moved = nullptr,
+                           std::int64_t event = 0) {
   for (int k = 0; k < count; ++k) {
     const auto e = static_cast<std::size_t>(list[static_cast<std::size_t>(k)]);
-    project_edge(edges[e], mats[e], u, v, a, inv_dt);
+    if (project_edge(edges[e], mats[e], u, v, a, inv_dt) && moved != nullptr)
+      moved[edges[e].child] = event;
   }
 }
 

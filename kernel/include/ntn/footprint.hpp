@@ -126,6 +126,11 @@ constexpr void clamp_work_members(const Sizes& s, V&& v) {
   v(&M::moved, s.hinges > 0 ? s.nodes : 0);
   v(&M::checked, s.hinges);
   v(&M::events);
+  v(&M::step_events);
+  v(&M::h2);
+  v(&M::v_rate);
+  v(&M::a_scale);
+  v(&M::start_u, dofs);
 }
 
 template <class V>
@@ -140,6 +145,7 @@ constexpr void scratch_members(const Sizes& s, V&& v) {
   v(&M::outputs, s.outputs);
   v(&M::slip_force, s.hystereses);
   v(&M::slip_normal, s.hystereses);
+  v(&M::stop_force, s.hinges);
   v(&M::clamp);  // a ClampWork: clamp_work_members
   v(&M::ground);
   v(&M::time);

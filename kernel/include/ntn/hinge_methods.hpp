@@ -7,6 +7,7 @@
 //   residual(m, s, w)                 step: the residual pass R_n - C v (S 2-3), a_n where
 //   uncoupled couple(m, s, w)                   step: the NTN coupling, R -> a at coupled DOFs
 //   stops(m, s, w)                    step: rigid branches after the update (clamp.hpp)
+//   start_forces(m, s, w)             start: the slip and stop forces at t_0 (on a trial u_1)
 //   project(m, s, w)                  step: the constraint projection after the update
 //   project_initial(m, s)             start: u_0, v_0 onto the constraints
 //   constraint_force(m, s, w, hinge, k, coupled_tree)   output: the force of a coupled direction
@@ -92,12 +93,32 @@ void ntn_coupling(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   }
 }
 
-// Rigid branches, after the update: the momentum clamp or S 33 (DESIGN §7.1).
+// The move weights of a step (ClampWork: dt^2, 1/dt, 1).
+// Rigid branches, after the update: the momentum clamp or S 33 (DESIGN §7.1), with the step's
+// weights; from here on the constraint stages mark the nodes they move (ClampWork::step_events).
+template <Sizes S>
+void step_weights(const Model<S>& m, Scratch<S>& w) {
+  w.clamp.h2 = m.dt * m.dt, w.clamp.v_rate = m.inv_dt, w.clamp.a_scale = 1.0;
+}
+
 template <Sizes S>
 void hinge_stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   if constexpr (kMayHaveHinges<S>) {
-    if (m.sizes.hinges > 0)
+    if (m.sizes.hinges > 0) {
+      step_weights(m, w);
+      w.clamp.step_events = w.clamp.events;
       with_hinge_method(m.hinge_method, [&](auto method) { method.stops(m, s, w); });
+    }
+  }
+}
+
+// start(): the slip and stop forces at t_0, found on the trial u_1 that s.u holds (ClampWork's
+// weights set by start()).
+template <Sizes S>
+void hinge_start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges > 0)
+      with_hinge_method(m.hinge_method, [&](auto method) { method.start_forces(m, s, w); });
   }
 }
 

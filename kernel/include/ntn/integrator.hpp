@@ -227,6 +227,29 @@ double hinge_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w,
   return d_dot[k];
 }
 
+// The force that hinges to the ground apply to the structure along global DOF `dof` (x ... rz),
+// from their springs and coupled directions at t_n: what the ground takes, as a fixed support's
+// F - P (node 2's share of B^T f_L). The slip and stop forces join after their stages
+// (constraint_outputs).
+template <Sizes S>
+double ground_hinge_reaction(const Model<S>& m, const State<S>& s, Scratch<S>& w, int dof,
+                             int& coupled_tree) {
+  double sum = 0;
+  for (std::size_t i = 0; i < m.sizes.hinges; ++i) {
+    const HingeData& h = m.hinges[i];
+    if (h.node2 != kGround || (h.rigid | h.springs) == 0) continue;
+    double f[6] = {}, node1[6] = {}, ground[6] = {};
+    if (h.springs != 0) hinge_spring_local(m, s, h, f);
+    for (int k = 0; k < 6; ++k) {
+      if ((h.rigid >> k) & 1U)
+        f[k] = constraint_force(m, s, w, static_cast<int>(i), k, coupled_tree);
+    }
+    hinge_scatter(h, f, node1, ground);
+    sum += ground[dof];
+  }
+  return sum;
+}
+
 // A model without hinges: a_n at the DOFs whose channels read it (velocity, acceleration), before
 // residual_update() computes it everywhere with u and v: the outputs come first.
 template <Sizes S>
@@ -312,9 +335,101 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
             value += w.f[q] - external_load(m, w, q);
           }
         }
+        if constexpr (kMayHaveHinges<S>)
+          value += ground_hinge_reaction(m, s, w, o.dof, coupled_tree);
         break;
     }
     w.outputs[c] = value * o.scale;
+  }
+}
+
+// True when a constraint stage of this step (stops, slips, projection) moved node n: its a_n
+// and v_n are then what those stages made of them.
+template <Sizes S>
+bool moved_this_step(const Scratch<S>& w, int n) {
+  return n != kGround && w.clamp.moved[static_cast<std::size_t>(n)] > w.clamp.step_events;
+}
+
+// The velocity of DOF j at t_n after the constraint stages: (v_{n-1/2} + v_{n+1/2}) / 2 =
+// v_{n+1/2} - dt/2 a_n, the a_n they corrected (S 35-37).
+template <Sizes S>
+double corrected_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w,
+                          std::size_t j) {
+  return s.v[j] - 0.5 * m.dt * w.a[j];
+}
+
+// Outputs after the constraint stages (stops, slips, projection): the channels at t_n that they
+// change. The acceleration and velocity channels of a node they moved are the step's own,
+// a_n = (v_{n+1/2} - v_{n-1/2}) / dt with every force of the step in it (S 35-37); a stop
+// direction's hinge-force channel adds the clamp's force (Scratch::stop_force), and a reaction
+// the slip and stop forces of the hinges to the ground. Channels of nodes nothing moved keep
+// their bits.
+template <Sizes S>
+void constraint_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  if constexpr (kMayHaveHinges<S> && (S.runtime || S.outputs > 0)) {
+    if (m.sizes.hinges == 0) return;
+    for (std::size_t c = 0; c < m.sizes.outputs; ++c) {
+      const OutputSpec& o = m.outputs[c];
+      const auto j = static_cast<std::size_t>(kDofsPerNode * o.node + o.dof);
+      switch (o.kind) {
+        case OutputKind::kVelocity:
+          if (moved_this_step(w, o.node)) w.outputs[c] = corrected_velocity(m, s, w, j) * o.scale;
+          break;
+        case OutputKind::kAcceleration:
+          if (moved_this_step(w, o.node)) w.outputs[c] = w.a[j] * o.scale;
+          break;
+        case OutputKind::kAbsoluteAcceleration:
+          if (moved_this_step(w, o.node))
+            w.outputs[c] =
+                (o.dof < 3 ? w.a[j] + w.ground[static_cast<std::size_t>(o.dof)] : w.a[j]) * o.scale;
+          break;
+        case OutputKind::kHingeVelocity: {
+          const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
+          if (!moved_this_step(w, h.node1) && !moved_this_step(w, h.node2)) break;
+          const bool ground = h.node2 == kGround;
+          double v1[6], v2[6], d_dot[6];
+          for (std::size_t q = 0; q < kDofsPerNode; ++q) {
+            v1[q] =
+                corrected_velocity(m, s, w, static_cast<std::size_t>(kDofsPerNode * h.node1) + q);
+            v2[q] = ground ? 0.0
+                           : corrected_velocity(
+                                 m, s, w, static_cast<std::size_t>(kDofsPerNode * h.node2) + q);
+          }
+          hinge_relative(h, v1, ground ? nullptr : v2, d_dot);
+          w.outputs[c] = d_dot[o.dof] * o.scale;
+          break;
+        }
+        case OutputKind::kHingeForce: {
+          const HingeData& h = m.hinges[static_cast<std::size_t>(o.hinge)];
+          if ((h.branches >> o.dof) & 1U)
+            w.outputs[c] +=
+                w.stop_force[static_cast<std::size_t>(o.hinge)][static_cast<std::size_t>(o.dof)] *
+                o.scale;
+          break;
+        }
+        case OutputKind::kReaction: {
+          double sum = 0;
+          for (std::size_t i = 0; i < m.sizes.hinges; ++i) {
+            const HingeData& h = m.hinges[i];
+            if (h.node2 != kGround || (h.branches | h.slip) == 0) continue;
+            double f[6] = {}, node1[6] = {}, ground[6] = {};
+            for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+              if ((h.branches >> k) & 1U) f[k] += w.stop_force[i][k];
+              if constexpr (kMayHaveHystereses<S>) {
+                if ((h.slip >> k) & 1U)
+                  f[k] += w.slip_force[static_cast<std::size_t>(h.history[k])];
+              }
+            }
+            hinge_scatter(h, f, node1, ground);
+            sum += ground[o.dof];
+          }
+          w.outputs[c] += sum * o.scale;
+          break;
+        }
+        default:
+          break;
+      }
+    }
   }
 }
 
@@ -420,6 +535,7 @@ template <Sizes S>
   hinge_stops(m, s, w);   // stops: slip directions held or slid, rigid branches clamped
   slip_outputs(m, s, w);  // the slip directions' forces at t_n and states into their channels
   constraint_projection(m, s, w);  // constraint projection: S 27-37, §7.1
+  constraint_outputs(m, s, w);     // outputs the constraint stages change: a_n, contact forces
   ++s.tick;
   if (!finite) {
     s.faults |= kFaultDiverged;
@@ -450,9 +566,41 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.slip_state.fill(0);
 }
 
+namespace detail {
+
+// start(): the slip and stop forces at t_0 into a_0. The step applies them after its update, as
+// moves of u_{n+1}; at the start the same forces must act over the first half step alone, so
+// they are found on the trial u_1 = u_0 + dt v_0 + dt^2/2 a_0 (what the first step gives without
+// them) with the move weight dt^2/2 (ClampWork): a sticking direction's force holds it there, a
+// sliding one's is its limit, and a_0 takes -f M_c^-1 b. A u_0 past a stop is not a force: the
+// stops first move u_0 onto their limits with a_0 untouched (a_scale 0), and the trial starts
+// from there (the first step then clamps u_0's excess, as it would without this). u_0 and v_0
+// are kept as they were.
+template <Sizes S>
+void start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if constexpr (kMayHaveHinges<S>) {
+    if (m.sizes.hinges == 0 || (m.num_branch_hinges == 0 && m.num_slip_hinges == 0)) return;
+    const double dt = m.dt;
+    for (std::size_t j = 0; j < m.dofs(); ++j)
+      w.clamp.start_u[j] = s.u[j];
+    w.clamp.h2 = 0.5 * dt * dt, w.clamp.v_rate = 0.0, w.clamp.a_scale = 0.0;
+    slip_normals(m, s, w);        // friction: N at t_0
+    hinge_start_forces(m, s, w);  // u_0 onto the stops, a_0 as it is
+    for (std::size_t j = 0; j < m.dofs(); ++j)
+      s.u[j] += dt * s.v[j] + 0.5 * dt * dt * w.a[j];
+    w.clamp.a_scale = 2.0;
+    hinge_start_forces(m, s, w);  // the trial: the forces into a_0
+    for (std::size_t j = 0; j < m.dofs(); ++j)
+      s.u[j] = w.clamp.start_u[j];
+  }
+}
+
+}  // namespace detail
+
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with
 // ntn_exact, u_0 and v_0 first take the rigid components of their tree parents (the constraints
-// hold from t_0); v_{-1/2} = v_0 - dt/2 a_0 (DESIGN §5), tick = 0.
+// hold from t_0); a_0 with the slip and stop forces at t_0 (start_forces); v_{-1/2} = v_0 - dt/2
+// a_0 (DESIGN §5), tick = 0.
 template <Sizes S>
 [[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w, StepInputs<S> in) {
   s.tick = 0;
@@ -466,6 +614,7 @@ template <Sizes S>
   detail::hinge_springs(m, s, w);
   detail::residual_stage(m, s, w);
   detail::ntn_coupling(m, s, w);
+  detail::start_forces(m, s, w);
   for (std::size_t j = 0; j < m.dofs(); ++j) {
     s.v[j] -= 0.5 * m.dt * w.a[j];
   }

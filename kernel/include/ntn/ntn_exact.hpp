@@ -107,12 +107,18 @@ struct NtnExactMethod {
     slip_stage(m, s, w);
     clamp_stops(m, s, w);
   }
+  // start(): the slip directions' forces, then the stops' (the momentum clamp's).
+  template <Sizes S>
+  static void start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+    slip_forces(m, s, w);
+    clamp_start_forces(m, s, w);
+  }
   // Each child's rigid components from its parent's, in the trees that round (rotated or
   // eccentric hinges; every tree under the S 33 clamp); v, a follow (S 35-37).
   template <Sizes S>
   static void project(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     forest_project(m.edges, m.edge_matrices, m.project_edges, m.num_project_edges, s.u.data(),
-                   s.v.data(), w.a.data(), m.inv_dt);
+                   s.v.data(), w.a.data(), m.inv_dt, w.clamp.moved.data(), ++w.clamp.events);
   }
   // u_0, v_0 onto the constraints, every edge (so the step need only re-project what rounds).
   template <Sizes S>

@@ -128,22 +128,39 @@ inline void paper_forces(std::span<const HingeData> hinges, double* r) {
   }
 }
 
-// Applies a change of u_{n+1} to v_{n+1/2} and a_n (S 35-37 written as increments).
-inline void apply_correction(double* u, double* v, double* a, const double* du, double inv_dt) {
+// Applies a change of u_{n+1} to v_{n+1/2} and a_n (S 35-37 written as increments). `trial`:
+// start()'s trial u_1 (integrator.hpp), where v_0 stays and a_0 takes du / dt^2 times
+// `a_scale` (2: a force over the first half step alone).
+inline void apply_correction(double* u, double* v, double* a, const double* du, double inv_dt,
+                             bool trial = false, double a_scale = 1.0) {
   for (int d = 0; d < 6; ++d) {
     u[d] += du[d];
-    v[d] += du[d] * inv_dt;
-    a[d] += du[d] * inv_dt * inv_dt;
+    if (trial) {
+      a[d] += du[d] * inv_dt * inv_dt * a_scale;
+    } else {
+      v[d] += du[d] * inv_dt;
+      a[d] += du[d] * inv_dt * inv_dt;
+    }
   }
 }
+
+// Where paper_after_update marks the nodes it moves (ClampWork::moved: `event`; none without),
+// and whether it corrects start()'s trial (apply_correction, with ClampWork::a_scale).
+struct PaperMarks {
+  std::int64_t* moved = nullptr;
+  std::int64_t event = 0;
+  bool trial = false;
+  double a_scale = 1.0;
+};
 
 // S 27-37, after the update: displacements in the hinge frame (S 28); supported hinges copy the
 // supported node's rigid components (S 30-31); rigid branches of curves scale both nodes by
 // d_lim / d (S 32-33); back to global (S 34); v and a of the changed DOFs follow (S 35-37).
-// With `couple` false only the clamps run (clamp = "paper" with ntn_exact or penalty).
+// With `couple` false only the clamps run (clamp = "paper" with ntn_exact or penalty, and
+// start()'s trial).
 inline void paper_after_update(std::span<const HingeData> hinges,
                                std::span<const std::uint8_t> fixed, double* u, double* v, double* a,
-                               double inv_dt, bool couple = true) {
+                               double inv_dt, bool couple = true, PaperMarks marks = {}) {
   for (const HingeData& h : hinges) {
     if ((h.rigid == 0 || !couple) && h.branches == 0) continue;
     double* g1 = u + 6 * h.node1;
@@ -191,7 +208,9 @@ inline void paper_after_update(std::span<const HingeData> hinges,
       for (int c = 0; c < 6; ++c)
         du[c] = n[c] - g[c];
       const int node = j == 0 ? h.node1 : h.node2;
-      apply_correction(g, v + 6 * node, a + 6 * node, du, inv_dt);  // S 35-37
+      apply_correction(g, v + 6 * node, a + 6 * node, du, inv_dt, marks.trial,
+                       marks.a_scale);  // S 35-37
+      if (marks.moved != nullptr) marks.moved[node] = marks.event;
     }
   }
 }
@@ -232,10 +251,17 @@ struct NtnPaperMethod {
   // The stops are S 33, inside the S 27-37 pass (project), in the seed's order.
   template <Sizes S>
   static void stops(const Model<S>&, State<S>&, Scratch<S>&) {}
+  // start(): the stops' S 33 on start()'s trial, with its ClampWork weights.
+  template <Sizes S>
+  static void start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, false,
+                       {nullptr, 0, true, w.clamp.a_scale});
+  }
   // S 27-37 (S 33 included), hinge by hinge.
   template <Sizes S>
   static void project(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, true);
+    paper_after_update(m.hinges, m.fixed, s.u.data(), s.v.data(), w.a.data(), m.inv_dt, true,
+                       {w.clamp.moved.data(), ++w.clamp.events});
   }
   template <Sizes S>
   static void project_initial(const Model<S>&, State<S>&) {}

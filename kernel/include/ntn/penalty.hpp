@@ -59,6 +59,11 @@ struct PenaltyMethod {
   static void stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
     clamp_stops(m, s, w);
   }
+  // start(): the stops' forces (the momentum clamp's).
+  template <Sizes S>
+  static void start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+    clamp_start_forces(m, s, w);
+  }
   template <Sizes S>
   static void project(const Model<S>&, State<S>&, Scratch<S>&) {}
   template <Sizes S>

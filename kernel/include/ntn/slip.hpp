@@ -146,7 +146,7 @@ double circle_step(const Model<S>& m, State<S>& s, Scratch<S>& w, const HingeDat
       static_cast<std::size_t>(m.hystereses[static_cast<std::size_t>(h.history[k])].circle);
   const auto sk = static_cast<std::size_t>(h.history[k]),
              sp = static_cast<std::size_t>(h.history[p]);
-  const double dt2 = m.dt * m.dt;
+  const double dt2 = w.clamp.h2;  // dt^2 in a step (ClampWork)
   clamp_response(m, w, h, k, parts);
   const double wkk = clamp_projection(w, h, k), wkp = clamp_projection(w, h, p);
   clamp_response(m, w, h, p, parts);
@@ -194,7 +194,7 @@ double circle_step(const Model<S>& m, State<S>& s, Scratch<S>& w, const HingeDat
 template <Sizes S>
 double slip_sweep(const Model<S>& m, State<S>& s, Scratch<S>& w, bool first, int begin, int end) {
   double largest = 0;
-  const double dt2 = m.dt * m.dt;
+  const double dt2 = w.clamp.h2;  // dt^2 in a step (ClampWork)
   for (int i = begin; i < end; ++i) {
     const HingeData& h =
         m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
@@ -299,7 +299,7 @@ bool slip_tree_solve(const Model<S>& m, State<S>& s, Scratch<S>& w, int tree, in
   };
   Dir c[kSlipBlock];
   int n = 0;
-  const double dt2 = m.dt * m.dt;
+  const double dt2 = w.clamp.h2;  // dt^2 in a step (ClampWork)
   for (int q = begin; q < end; ++q) {
     const int hi = m.slip_hinges[static_cast<std::size_t>(q)];
     const HingeData& h = m.hinges[static_cast<std::size_t>(hi)];
@@ -490,10 +490,10 @@ void init_slip_mobility(Model<S>& m, InitWorkspace<S>& work) {
   }
 }
 
-// The slip stage (ntn_exact's stops stage, before the stops' clamp): the forces of the slip
-// directions, then each direction that is at a yield takes its new slip and the work done.
+// The forces of the slip directions (Scratch::slip_force) and the moves they make, with the
+// weights of ClampWork: the slip stage's first half, and what start() runs on its trial.
 template <Sizes S>
-void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+void slip_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   if constexpr (kMayHaveHystereses<S>) {
     if (m.num_slip_hinges == 0) return;
     // Tree by tree (sort_slip_hinges made each tree's one range): together, or by Gauss-Seidel
@@ -502,6 +502,16 @@ void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
       if (tree < 0 || !detail::slip_tree_solve(m, s, w, tree, begin, end, g))
         detail::slip_gauss_seidel(m, s, w, begin, end);
     });
+  }
+}
+
+// The slip stage (ntn_exact's stops stage, before the stops' clamp): the forces of the slip
+// directions, then each direction that is at a yield takes its new slip and the work done.
+template <Sizes S>
+void slip_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if constexpr (kMayHaveHystereses<S>) {
+    if (m.num_slip_hinges == 0) return;
+    slip_forces(m, s, w);
     for (int i = 0; i < m.num_slip_hinges; ++i) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];

@@ -75,6 +75,20 @@ struct ClampWork {
   Array<std::int64_t, S, (S.hinges > 0 ? S.nodes : 0)> moved{};
   Array<std::int64_t, S, S.hinges> checked{};
   std::int64_t events = 0;
+  // `events` when the step's constraint stages began (the stops, the slip stage, the
+  // projection, which all mark the nodes they move in `moved`): a node with moved > step_events
+  // was moved this step, and its velocity and acceleration channels are taken after them.
+  std::int64_t step_events = 0;
+  // The time weights of a move (clamp_move, the slip solves): a force f on a direction at t_n
+  // moves u_{n+1} by du = -f h2 M_c^-1 b, which changes v by du v_rate and a_n by du / dt^2
+  // times a_scale. A step: dt^2, 1/dt, 1 (set by the stops stage). start(): the forces at t_0
+  // from a trial u_1 = u_0 + dt v_0 + dt^2/2 a_0, so dt^2/2, 0 and 2 (a_0 takes the forces,
+  // v_0 stays).
+  double h2 = 0;
+  double v_rate = 0;
+  double a_scale = 1;
+  // u_0 while start() runs the trial (written and read by start() alone).
+  Array<double, S, kDofs> start_u{};
 };
 
 // Each field: what it holds, the stage that writes it and the stages that read it (the stages
@@ -112,6 +126,11 @@ struct Scratch : SizesOf<S> {
   // N or N m, by history slot: a friction direction's normal force N at t_n (slip.hpp): written
   // by the slip-normal stage (after the coupling), read by the slip stage.
   Array<double, S, S.hystereses> slip_normal{};
+  // N or N m, by hinge and direction: the force of each stop (a rigid branch under the momentum
+  // clamp) at t_n, on node 1 in the hinge frame like a spring's: the clamp's impulse over dt
+  // (a move du = -f dt^2 M_c^-1 b). Written by the stops stage (0 where no stop acts), read by
+  // the hinge-force and reaction outputs after it.
+  Array<std::array<double, kDofsPerNode>, S, S.hinges> stop_force{};
   ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
   std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
   double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller

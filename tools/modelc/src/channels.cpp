@@ -127,13 +127,17 @@ void add_channels(Compilation& comp) {
       }
       case OutKind::kReaction: {
         os.kind = OutputKind::kReaction;
-        const bool held = std::any_of(d.nodes.begin(), d.nodes.end(), [&](const NodeSpec& n) {
-          return ((n.fixed >> o.dof) & 1U) != 0;
-        });
+        // A reaction is what the ground applies: through a support that holds the DOF, or
+        // through a hinge to the ground (its forces in global axes, integrator.hpp).
+        const bool held =
+            std::any_of(d.nodes.begin(), d.nodes.end(),
+                        [&](const NodeSpec& n) { return ((n.fixed >> o.dof) & 1U) != 0; }) ||
+            std::any_of(d.hinges.begin(), d.hinges.end(),
+                        [](const HingeSpec& h) { return h.node2 == kGround; });
         if (!held) {
           L.error(o.dof_at, "no support holds DOF " +
                                 std::string(kDofNames[static_cast<std::size_t>(o.dof)]) +
-                                ", so this reaction is always zero");
+                                " and no hinge joins the ground, so this reaction is always zero");
           continue;
         }
         units = o.dof < 3 ? "N" : "N m";

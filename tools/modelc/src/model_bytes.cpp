@@ -33,16 +33,17 @@ MemoryFootprint memory_footprint(const Sizes& s) {
                (sizeof(MassBlock) + sizeof(std::int32_t)) / kMassGroup;
   // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
   // of hinges with springs, with branches, of projected edges, of the trees' stops and with slip
-  // directions, a tree slot (a forest has at most one tree per hinge) and its clamp check mark
-  // (Scratch).
+  // directions, a tree slot (a forest has at most one tree per hinge), its clamp check mark and
+  // its six stop forces (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
                 sizeof(ForestRoot) + 6 * sizeof(std::int32_t) + sizeof(ForestTree) +
-                sizeof(std::int64_t);
+                sizeof(std::int64_t) + kDofsPerNode * sizeof(double);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force
-  // (Scratch::r), the clamp's impulse and response (Scratch::clamp) and its clamp move mark.
+  // (Scratch::r), the clamp's impulse, response and the start's u_0 (Scratch::clamp) and its
+  // clamp move mark.
   f.per_node_with_hinges = sizeof(std::int32_t) + sizeof(std::uint8_t) +
-                           4 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
+                           5 * kDofsPerNode * sizeof(double) + sizeof(std::int64_t);
   f.per_curve_point = sizeof(CurvePoint);
   return f;
 }
