@@ -51,6 +51,14 @@ std::string known_units();
 // value times `scale` is N or N m. The unit's `si` is the input's scale.
 Unit input_unit(bool ground_acceleration, int dof, double scale);
 
+// A factor on a ground motion: a ground acceleration's `scale` in a model file, and any factor a
+// tool puts on a record. Any finite number but 0: a negative factor reverses the motion (a record
+// is run in both senses), while 0 would turn the record into no motion and the run into a
+// success that computed nothing. The caller names the key or option: "must be " +
+// kScaleFactorRule + ", got ...".
+inline constexpr const char* kScaleFactorRule = "a finite number other than 0";
+bool scale_factor_valid(double factor);
+
 // One uniformly sampled channel.
 struct Record {
   std::string source;          // file path
