@@ -140,9 +140,9 @@ int feeder_main(int argc, char** argv) {
                  "own port for sending and for the loop's outputs (0: any free port)")
       ->check(ntn::cli::Integer(0, 65535));
   app.add_option("-i,--input", input_args,
-                 "NAME=FILE[:COLUMN]: one input channel from a record (AT2 or CSV); channels "
-                 "are numbered in the order given");
-  app.add_option("-r,--record", record_arg, "FILE[:COLUMN]: a single input channel");
+                 "NAME=FILE[:COLUMN][*FACTOR]: one input channel from a record (AT2 or CSV), "
+                 "its values times FACTOR; channels are numbered in the order given");
+  app.add_option("-r,--record", record_arg, "FILE[:COLUMN][*FACTOR]: a single input channel");
   app.add_option("--scale", scale, "multiply every record value by this")
       ->check(ntn::cli::Finite());
   app.add_option("--rate", rate, "frame rate in Hz, in [0.01, 1e6]")
@@ -215,6 +215,7 @@ int feeder_main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", r.error->format().c_str());
       return 2;
     }
+    r.record->scale(arg.factor);  // as the loop scales a record it reads (load_input_record)
     channels.push_back({arg.name, std::move(*r.record)});
   }
   const double period = 1.0 / rate;
@@ -446,10 +447,12 @@ int feeder_main(int argc, char** argv) {
                 nch, nch == 1 ? "" : "s", port, sock.port(), rate, static_cast<long long>(frames),
                 lockstep ? "lock-step (virtual)" : "real time");
     for (std::size_t c = 0; c < nch; ++c) {
-      std::printf("  channel %zu  %-10s %s: %zu samples at %g s, peak %.4g %s x %g\n", c,
-                  channels[c].name.c_str(), channels[c].record.source.c_str(),
-                  channels[c].record.values.size(), channels[c].record.dt,
-                  channels[c].record.peak_abs(), channels[c].record.units.c_str(), scale);
+      const ntn::io::Record& r = channels[c].record;
+      const std::string factor =
+          r.scaled_by != 1 ? " (scaled by " + ntn::cli::num(r.scaled_by) + ")" : "";
+      std::printf("  channel %zu  %-10s %s: %zu samples at %g s, peak %.4g %s%s x %g\n", c,
+                  channels[c].name.c_str(), r.source.c_str(), r.values.size(), r.dt, r.peak_abs(),
+                  r.units.c_str(), factor.c_str(), scale);
     }
     const std::string first_error =
         send_errors ? std::string(" (first: ") + std::strerror(first_send_errno) + ")" : "";

@@ -427,7 +427,8 @@ inline std::optional<int> parse_args(int argc, char** argv, const std::string& t
   auto& fifo = o.fifo;
   auto& mlock = o.mlock;
   auto& quiet = o.quiet;
-  run->add_option("-i,--input", input_args, "NAME=FILE: feed an input from a record (AT2, CSV)");
+  run->add_option("-i,--input", input_args,
+                  "NAME=FILE: feed an input from a record (AT2, CSV; FILE*FACTOR scales it)");
   run->add_option("--listen", listen_port, "take inputs as UDP packets on 127.0.0.1:PORT")
       ->check(ntn::cli::Integer(0, 65535));
   run->add_option("--reply", reply_port, "send output packets to 127.0.0.1:PORT")

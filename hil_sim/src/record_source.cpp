@@ -13,20 +13,23 @@ std::optional<std::size_t> first_out_of_range(const InputSpec& spec,
 
 std::optional<std::string> load_input_record(const InputSpec& spec, const std::string& name,
                                              const std::string& file, const std::string& column,
-                                             bool check_range, io::Record& record) {
+                                             bool check_range, io::Record& record, double factor) {
   io::ReadResult r = io::read_record(file, column);
   if (r.error) return r.error->format();
   const io::Unit unit =
       io::input_unit(spec.kind == InputKind::kGroundAcceleration, spec.dof, spec.scale);
   if (const auto e = r.record->to_unit(unit)) return file + ": error: input '" + name + "': " + *e;
+  r.record->scale(factor);
   if (check_range) {
     if (const auto s = first_out_of_range(spec, r.record->values)) {
       char text[512];
+      const std::string scaled = factor != 1 ? " (the record x " + cli::num(factor) + ")" : "";
       std::snprintf(text, sizeof text,
-                    "%s: error: sample %zu (t = %g s) = %g %s is outside the accepted range "
+                    "%s: error: sample %zu (t = %g s) = %g %s%s is outside the accepted range "
                     "[%g, %g] of input '%s'",
                     file.c_str(), *s + 1, r.record->t0 + static_cast<double>(*s) * r.record->dt,
-                    r.record->values[*s], unit.name.c_str(), spec.min, spec.max, name.c_str());
+                    r.record->values[*s], unit.name.c_str(), scaled.c_str(), spec.min, spec.max,
+                    name.c_str());
       return std::string(text);
     }
   }
@@ -48,8 +51,8 @@ std::optional<std::string> load_input_records(std::span<const InputSpec> specs,
     if (c == names.size() || c >= specs.size())
       return "error: --input " + arg.name + "=...: the model has no input channel '" + arg.name +
              "'";
-    if (auto e =
-            load_input_record(specs[c], arg.name, arg.file, arg.column, check_range, records[c]))
+    if (auto e = load_input_record(specs[c], arg.name, arg.file, arg.column, check_range,
+                                   records[c], arg.factor))
       return e;
     given[c] = 1;
   }

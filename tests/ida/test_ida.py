@@ -57,6 +57,26 @@ def test_linear_model_gives_straight_lines_through_the_origin(tmp_path):
         assert all(r["collapse"] == "0" and r["status"] == "ok" for r in mine)
 
 
+def test_a_model_file_scale_is_part_of_the_intensity(tmp_path):
+    # ntn-ida scales each record to an intensity of the motion the model feels: the record times
+    # the model file's scale. With scale = 2 every record's intensity doubles and its scale
+    # halves, and each run is the same bit for bit (x (s / 2) 2 = x s exactly: powers of two).
+    text = open(os.path.join(MODELS, "linear_column.toml")).read()
+    assert 'units = "g"\n' in text
+    scaled = tmp_path / "linear_column_scale2.toml"
+    scaled.write_text(text.replace('units = "g"\n', 'units = "g"\nscale = 2.0\n', 1))
+    options = ["--im", "pga", "--scales", "0.1,0.9", "--collapse-drift", "10"]
+    (tmp_path / "plain").mkdir()
+    (tmp_path / "twice").mkdir()
+    _, plain = run_ida(tmp_path / "plain", "linear_column.toml", *options)
+    _, twice = run_ida(tmp_path / "twice", str(scaled), *options)
+    assert len(plain) == len(twice) == 2 * len(RECORDS)
+    for a, b in zip(plain, twice):
+        assert float(b["scale"]) == float(a["scale"]) / 2, (a, b)
+        for key in ["record", "im[g]", "peak_drift[-]", "output_hash", "status"]:
+            assert b[key] == a[key], (key, a, b)
+
+
 def test_a_run_equals_the_same_run_alone(tmp_path):
     _, rows = run_ida(tmp_path, "ep_column.toml", "--im", "pga", "--scales", "0.5,2.0",
                       "--collapse-drift", str(COLLAPSE_DRIFT))

@@ -49,7 +49,7 @@ const Expected kExpected[] = {
   {"UnknownKeyPointMass", "unknown_key.toml", 52, 1, "point_masses[0].weight", "unknown key 'weight'"},
   {"UnknownKeyTimeFunction", "unknown_key.toml", 57, 1, "time_functions[0].kind", "unknown key 'kind' (this table takes: id, points)"},
   {"UnknownKeyLoad", "unknown_key.toml", 63, 1, "loads[0].factor", "unknown key 'factor'"},
-  {"UnknownKeyGroundInput", "unknown_key.toml", 69, 1, "inputs[0].node", "unknown key 'node' (this table takes: name, kind, direction, units, min, max)"},
+  {"UnknownKeyGroundInput", "unknown_key.toml", 69, 1, "inputs[0].node", "unknown key 'node' (this table takes: name, kind, direction, units, scale, min, max)"},
   {"UnknownKeyForceInput", "unknown_key.toml", 76, 1, "inputs[1].units", "unknown key 'units' (this table takes: name, kind, node, dof, scale, min, max)"},
   {"UnknownKeyNodeOutput", "unknown_key.toml", 83, 1, "outputs[0].units", "unknown key 'units' (this table takes: name, kind, node, dof, alarm, alarm_hysteresis)"},
   {"UnknownKeyForceOutput", "unknown_key.toml", 91, 1, "outputs[1].node", "unknown key 'node' (this table takes: name, kind, member, end, component, alarm, alarm_hysteresis)"},
@@ -90,6 +90,11 @@ const Expected kExpected[] = {
   {"BadModelName", "bad_name.toml", 3, 8, "model.name", "must be a C++ identifier"},
   {"DtString", "dt_string.toml", 4, 6, "model.dt", "must be \"auto\" or a number of seconds (got \"fast\")"},
   {"InputRange", "input_range.toml", 41, 7, "inputs[0].min", "min = 2 must be less than max = -2"},
+  // A ground acceleration's scale, a factor on the motion: finite, not 0, a number.
+  {"InputScaleZero", "input_scale.toml", 40, 9, "inputs[0].scale", "must be a finite number other than 0 (got 0)"},
+  {"InputScaleString", "input_scale.toml", 46, 9, "inputs[1].scale", "expected a number, got a string"},
+  {"InputScaleNan", "input_scale.toml", 52, 9, "inputs[2].scale", "must be a finite number"},
+  {"InputScaleInf", "input_scale.toml", 59, 9, "inputs[3].scale", "must be a finite number"},
   // Output limit alarms: at the value.
   {"OutputAlarmZero", "output_alarm.toml", 42, 9, "outputs[0].alarm", "must be positive (got 0)"},
   {"OutputAlarmNegative", "output_alarm.toml", 50, 9, "outputs[1].alarm", "must be positive (got -5)"},

@@ -496,6 +496,38 @@ TEST(ModelLoad, AllowUnstableAcceptsLargeDt) {
   EXPECT_TRUE(d.settings.allow_unstable);
 }
 
+// A ground acceleration's `scale` multiplies the motion: it is InputSpec::factor, while the
+// input's unit (scale), range and kind stay the channel's; a negative factor is allowed (the
+// motion reversed). The header carries it.
+TEST(ModelLoad, GroundAccelerationScaleIsAFactorOnTheMotion) {
+  const auto d = load_ok(kHead + kMember + R"(
+[[inputs]]
+name = "ag"
+kind = "ground_acceleration"
+direction = "y"
+units = "g"
+scale = -1.5
+min = -2.0
+max = 2.0
+
+[[inputs]]
+name = "ag_z"
+kind = "ground_acceleration"
+direction = "z"
+)");
+  ASSERT_EQ(d.inputs.size(), 2U);
+  EXPECT_EQ(d.inputs[0].scale, 9.80665);  // the unit: g
+  EXPECT_EQ(d.inputs[0].factor, -1.5);
+  EXPECT_EQ(d.inputs[0].min, -2.0);  // of the raw value, as it arrives
+  EXPECT_EQ(d.inputs[0].max, 2.0);
+  EXPECT_EQ(d.inputs[1].scale, 1.0);
+  EXPECT_EQ(d.inputs[1].factor, 1.0);  // by default
+  const std::string h = ntn::modelc::emit_header(d);
+  EXPECT_NE(h.find(".scale = 9.8066499999999994, .min = -2.0, .max = 2.0, .factor = -1.5}"),
+            std::string::npos)
+      << h;
+}
+
 // Every double in the header reads back to the same bits: parse the literals of the element
 // lines with strtod and compare with the description.
 TEST(EmitHeader, DoublesRoundTripAndZeroSizeArrays) {

@@ -80,6 +80,7 @@ void expect_same_spec(const ModelSpec<S>& h, const modelc::ModelDescription& d) 
     expect_bits(h.inputs[i].scale, d.inputs[i].scale, "input scale", i);
     expect_bits(h.inputs[i].min, d.inputs[i].min, "input min", i);
     expect_bits(h.inputs[i].max, d.inputs[i].max, "input max", i);
+    expect_bits(h.inputs[i].factor, d.inputs[i].factor, "input factor", i);
   }
   for (std::size_t i = 0; i < h.outputs.size(); ++i) {
     const OutputSpec &a = h.outputs[i], &b = d.outputs[i];

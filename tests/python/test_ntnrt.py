@@ -167,6 +167,48 @@ def test_bad_inputs_raise_and_leave_the_model_usable(frame3d, el_centro):
     assert frame3d.run(inputs={"ag_x": el_centro})["hash"] == FRAME3D_EL_CENTRO
 
 
+def test_run_scale_multiplies_the_records(frame3d, el_centro, tmp_path):
+    # frame3d is linear (no gravity, no loads, at rest at t = 0): a factor 2 scales every
+    # intermediate result of its steps exactly (tests/tools/scale_test.cpp says why), so every
+    # output is exactly twice the unscaled one, and a factor 1/2 undoes a model file's 2 to the bit.
+    def run(model, **scale):
+        return model.run(inputs={"ag_x": el_centro}, duration=2.0, **scale)
+
+    base = run(frame3d)
+    two = run(frame3d, scale={"ag_x": 2})
+    for name in frame3d.outputs:
+        assert np.array_equal(two["outputs"][name], 2 * base["outputs"][name]), name
+    # The same run as the command line's FILE*2.
+    frame3d_toml = os.path.join(CONFIG, "frame3d.toml")
+    assert two["hash"] == cli_hash([NTN_RUN, frame3d_toml, "--input", "ag_x=" + EL_CENTRO + "*2",
+                                    "--duration", "2"])
+    # The model file's scale and this one multiply.
+    text = open(frame3d_toml).read()
+    assert 'units = "g"\n' in text
+    scaled = tmp_path / "frame3d_scale2.toml"
+    scaled.write_text(text.replace('units = "g"\n', 'units = "g"\nscale = 2.0\n', 1))
+    file2 = ntnrt.load(str(scaled))
+    assert run(file2, scale={"ag_x": 0.5})["hash"] == base["hash"]
+    four = run(file2, scale={"ag_x": 2.0})
+    for name in frame3d.outputs:
+        assert np.array_equal(four["outputs"][name], 4 * base["outputs"][name]), name
+
+
+def test_bad_scale_factors_raise(frame3d, el_centro):
+    for bad in [float("nan"), float("inf"), -float("inf"), 0.0]:
+        with pytest.raises(ValueError, match="scale.'ag_x'.* finite number other than 0"):
+            frame3d.run(inputs={"ag_x": el_centro}, scale={"ag_x": bad})
+    with pytest.raises(ValueError, match="scale.'ag_x'.*a number"):
+        frame3d.run(inputs={"ag_x": el_centro}, scale={"ag_x": "2"})
+    with pytest.raises(ValueError, match="no input channel 'ag_y'"):
+        frame3d.run(inputs={"ag_x": el_centro}, scale={"ag_y": 2.0})
+    # A factor that takes the record out of the input's range ([-3, 3] g; El Centro's peak is
+    # 0.319 g): the range is of the values the channel receives, the record scaled.
+    with pytest.raises(ValueError, match="outside the input's range"):
+        frame3d.run(inputs={"ag_x": el_centro}, scale={"ag_x": 10.0})
+    assert frame3d.run(inputs={"ag_x": el_centro})["hash"] == FRAME3D_EL_CENTRO
+
+
 def test_psd_keeps_the_variance():
     fs, f0 = 200.0, 5.0
     t = np.arange(40000) / fs

@@ -180,4 +180,61 @@ TEST(Cli, InputArgumentsAreReadOneWay) {
   EXPECT_NE(twice.error->find("'ag_x' is given twice"), std::string::npos) << *twice.error;
 }
 
+// NAME=FILE[:COLUMN][*FACTOR]: the factor is what follows the last '*' when it reads as a
+// number; otherwise the '*' is part of the file name. The factor must be finite and not 0.
+TEST(Cli, InputArgumentsTakeAScaleFactor) {
+  const ntn::cli::InputArgs ok =
+      ntn::cli::parse_input_args({"a=rec.AT2*1.5", "b=b.csv:acc*-2", "c=we*ird.AT2",
+                                  "d=odd.AT2*2*1", "e=C:/c.csv*0x1p-3", "f=rec.AT2", "g=x*2e-1"});
+  ASSERT_FALSE(ok.error) << *ok.error;
+  ASSERT_EQ(ok.args.size(), 7u);
+  EXPECT_EQ(ok.args[0].file, "rec.AT2");
+  EXPECT_EQ(ok.args[0].factor, 1.5);
+  EXPECT_EQ(ok.args[1].file, "b.csv");
+  EXPECT_EQ(ok.args[1].column, "acc");
+  EXPECT_EQ(ok.args[1].factor, -2.0);
+  EXPECT_EQ(ok.args[2].file, "we*ird.AT2") << "no number after the '*': part of the name";
+  EXPECT_EQ(ok.args[2].factor, 1.0);
+  EXPECT_EQ(ok.args[3].file, "odd.AT2*2") << "only the last '*' can start a factor";
+  EXPECT_EQ(ok.args[3].factor, 1.0);
+  EXPECT_EQ(ok.args[4].file, "C:/c.csv");
+  EXPECT_EQ(ok.args[4].factor, 0.125);
+  EXPECT_EQ(ok.args[5].factor, 1.0);
+  EXPECT_EQ(ok.args[6].file, "x");
+  EXPECT_EQ(ok.args[6].factor, 0.2);
+
+  for (const char* f : {"nan", "inf", "-inf", "0", "-0", "1e999", "1e-999"}) {
+    const std::string arg = std::string("ag_x=rec.AT2*") + f;
+    const auto r = ntn::cli::parse_input_args({arg});
+    ASSERT_TRUE(r.error) << f;
+    EXPECT_NE(r.error->find("--input " + arg +
+                            ": the scale factor after '*' must be a finite "
+                            "number other than 0, got '" +
+                            f + "'"),
+              std::string::npos)
+        << *r.error;
+  }
+  const auto empty = ntn::cli::parse_input_args({"ag_x=*2"});
+  ASSERT_TRUE(empty.error);
+  EXPECT_NE(empty.error->find("wants NAME=FILE[:COLUMN][*FACTOR]"), std::string::npos);
+
+  // A '*' followed by no number where the file before it exists and the whole name does not: a
+  // mistyped factor, said so. Where the whole name exists it is the file.
+  const ntn_test::TempDir dir("cli_scale");
+  ntn_test::write_file(dir / "rec.AT2", "x");
+  for (const char* tail : {"x2", "1,5", ""}) {
+    const std::string arg = "ag_x=" + dir / "rec.AT2" + "*" + tail;
+    const auto r = ntn::cli::parse_input_args({arg}, "--record/--input");
+    ASSERT_TRUE(r.error) << tail;
+    EXPECT_NE(r.error->find("--record/--input " + arg + ": '" + tail +
+                            "' after the last '*' is not a number, and there is no file"),
+              std::string::npos)
+        << *r.error;
+  }
+  ntn_test::write_file(dir / "rec.AT2*x2", "x");
+  const auto named = ntn::cli::parse_input_args({"ag_x=" + dir / "rec.AT2*x2"});
+  ASSERT_FALSE(named.error) << *named.error;
+  EXPECT_EQ(named.args[0].file, dir / "rec.AT2*x2");
+}
+
 }  // namespace

@@ -1,8 +1,8 @@
 // The command line of every ntn tool: the parser, and the checks the tools share (numbers must be
 // finite and in range, counts must be whole numbers within bounds, output paths must be writable
-// before a run starts, and NAME=FILE[:COLUMN] input arguments are read one way everywhere).
-// Messages print numbers with %g (never DBL_MAX in 300 digits) and name the option: CLI11 puts
-// the option's name in front of a validator's message.
+// before a run starts, and NAME=FILE[:COLUMN][*FACTOR] input arguments are read one way
+// everywhere). Messages print numbers with %g (never DBL_MAX in 300 digits) and name the option:
+// CLI11 puts the option's name in front of a validator's message.
 //
 // The parser is CLI11's (Debian libcli11-dev), behind the few classes below, which cli.cpp alone
 // implements: CLI11 2.1 is header-only (its precompiled mode came with 2.3), and a file that builds
@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -30,6 +31,8 @@
 #include <string_view>
 #include <system_error>
 #include <vector>
+
+#include "record.hpp"  // the rule of a scale factor
 
 namespace CLI {
 class App;
@@ -244,12 +247,17 @@ inline int guarded_main(int (*program)(int, char**), int argc, char** argv) {
   }
 }
 
-// One NAME=FILE[:COLUMN] argument of --input. COLUMN is what follows the last ':' of the file
-// part, when that ':' is not the second character (a drive letter).
+// One NAME=FILE[:COLUMN][*FACTOR] argument of --input. FACTOR is what follows the last '*' when
+// all of it reads as a number (strtod: 1.5, -1, 2e-1, and nan, inf, 1e999, which the rule of a
+// scale factor then refuses); otherwise the '*' belongs to the file name (a file named
+// "run*2.AT2" is read as it is; one named "a.AT2*2" is given as "a.AT2*2*1"). COLUMN is what
+// follows the last ':' of the file part, when that ':' is not the second character (a drive
+// letter).
 struct InputArg {
   std::string name;
   std::string file;
   std::string column;  // empty: the record's first data column
+  double factor = 1;   // the record's values are multiplied by it (io::Record::scale)
 };
 
 struct InputArgs {
@@ -257,22 +265,70 @@ struct InputArgs {
   std::optional<std::string> error;  // the message naming the option and the argument
 };
 
-// Reads every --input argument; an argument without NAME=, with an empty name or file, or a
-// NAME given twice is an error (the last one silently winning would hide a typo).
+namespace detail {
+// FILE[:COLUMN] into a.file and a.column.
+inline void split_column(std::string text, InputArg& a) {
+  a.column.clear();
+  if (const auto c = text.rfind(':'); c != std::string::npos && c > 1) {
+    a.column = text.substr(c + 1);
+    text.resize(c);
+  }
+  a.file = std::move(text);
+}
+// The whole text as a number in strtod's syntax, whatever its value (nan, inf, 1e999 included:
+// those are factors that the rule refuses, not parts of a file name).
+inline std::optional<double> number_syntax(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return std::nullopt;
+  return v;
+}
+}  // namespace detail
+
+// Reads every --input argument; an argument without NAME=, with an empty name or file, a bad
+// FACTOR, or a NAME given twice is an error (the last one silently winning would hide a typo).
+// What follows a last '*' that is not a number is refused too when the file with it does not
+// exist and the file before it does: FILE*1,5 or FILE*x2 is a mistyped factor, not a file.
 inline InputArgs parse_input_args(const std::vector<std::string>& raw,
                                   std::string_view option = "--input") {
+  namespace fs = std::filesystem;
   InputArgs out;
   for (const std::string& arg : raw) {
     const auto eq = arg.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size()) {
-      out.error = std::string(option) + " wants NAME=FILE[:COLUMN], got '" + arg + "'";
+      out.error = std::string(option) + " wants NAME=FILE[:COLUMN][*FACTOR], got '" + arg + "'";
       return out;
     }
-    InputArg a{arg.substr(0, eq), arg.substr(eq + 1), {}};
-    if (const auto c = a.file.rfind(':'); c != std::string::npos && c > 1) {
-      a.column = a.file.substr(c + 1);
-      a.file = a.file.substr(0, c);
+    InputArg a{arg.substr(0, eq), {}, {}, 1};
+    std::string rest = arg.substr(eq + 1);
+    const auto star = rest.rfind('*');
+    const std::string tail = star == std::string::npos ? "" : rest.substr(star + 1);
+    if (const auto f = star == std::string::npos ? std::nullopt : detail::number_syntax(tail)) {
+      if (!io::scale_factor_valid(*f)) {
+        out.error = std::string(option) + " " + arg + ": the scale factor after '*' must be " +
+                    io::kScaleFactorRule + ", got '" + tail + "'";
+        return out;
+      }
+      a.factor = *f;
+      rest.resize(star);
+      if (rest.empty()) {
+        out.error = std::string(option) + " wants NAME=FILE[:COLUMN][*FACTOR], got '" + arg + "'";
+        return out;
+      }
+    } else if (star != std::string::npos) {
+      InputArg before;
+      detail::split_column(rest.substr(0, star), before);
+      detail::split_column(rest, a);
+      std::error_code ec;
+      if (!before.file.empty() && !fs::exists(a.file, ec) && fs::exists(before.file, ec)) {
+        out.error = std::string(option) + " " + arg + ": '" + tail +
+                    "' after the last '*' is not a number, and there is no file '" + a.file +
+                    "' (FILE*FACTOR scales the record by FACTOR)";
+        return out;
+      }
     }
+    detail::split_column(std::move(rest), a);
     for (const InputArg& earlier : out.args) {
       if (earlier.name == a.name) {
         out.error = std::string(option) + ": channel '" + a.name + "' is given twice ('" + a.name +

@@ -275,6 +275,17 @@ double Record::at(double t) const {
   return v0 + (x - static_cast<double>(k)) * (v1 - v0);
 }
 
+bool scale_factor_valid(double factor) {
+  return std::isfinite(factor) && factor != 0;
+}
+
+void Record::scale(double f) {
+  if (f == 1) return;
+  for (double& v : values)
+    v *= f;
+  scaled_by *= f;
+}
+
 double Record::peak_abs() const {
   double p = 0;
   for (double v : values)

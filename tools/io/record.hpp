@@ -51,6 +51,14 @@ std::string known_units();
 // value times `scale` is N or N m. The unit's `si` is the input's scale.
 Unit input_unit(bool ground_acceleration, int dof, double scale);
 
+// A factor on a ground motion: a ground acceleration's `scale` in a model file, the FACTOR of
+// `--input NAME=FILE*FACTOR`, ntnrt's run(scale=). Any finite number but 0: a negative factor
+// reverses the motion (a record is run in both senses), while 0 would turn the record into no
+// motion and the run into a success that computed nothing. The caller names the key or option:
+// "must be " + kScaleFactorRule + ", got ...".
+inline constexpr const char* kScaleFactorRule = "a finite number other than 0";
+bool scale_factor_valid(double factor);
+
 // One uniformly sampled channel.
 struct Record {
   std::string source;          // file path
@@ -61,6 +69,7 @@ struct Record {
   std::string converted_from;  // after to_unit: the stated unit converted from; empty if the
                                // values were already in the target unit or stated none
   bool unit_assumed = false;   // after to_unit: the file stated no unit; taken as the target's
+  double scaled_by = 1;        // after scale: the factor the values were multiplied by
   double dt = 0;               // s, in [kMinSampleInterval, kMaxSampleInterval]
   double t0 = 0;  // s, the time of the first sample as the file gives it (a CSV's first row; 0 for
                   // AT2). The record's time origin is its first sample: at(t) and every run
@@ -78,6 +87,9 @@ struct Record {
   // stated unit that is unknown or of another quantity is refused. Returns the message (naming
   // the stated unit and the wanted one), or nothing when the values are now in `target`.
   std::optional<std::string> to_unit(const Unit& target);
+  // Multiplies every value by `f` (FILE*FACTOR, run(scale=)), after to_unit: the values stay in
+  // their unit, `scaled_by` says by how much they were scaled. f = 1 leaves them as they are.
+  void scale(double f);
 };
 
 struct ReadError {

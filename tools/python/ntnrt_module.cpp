@@ -142,9 +142,10 @@ class PyModel {
   std::int64_t substeps() const { return m_->model().substeps.count; }
   std::string info() const { return ntn::modelc::info_text(d()); }
 
-  // run(inputs={name: record}, duration=None, sampling="step", threads=1, element_pass="simd")
+  // run(inputs={name: record}, duration=None, sampling="step", threads=1, element_pass="simd",
+  // scale={name: factor})
   py::dict run(const py::dict& inputs, py::object duration, const std::string& sampling_name,
-               int threads, const std::string& element_pass) {
+               int threads, const std::string& element_pass, const py::dict& scale) {
     const ntn::Sizes z = m_->model().sizes;
     const auto sampling = ntn::hil::parse_sampling(sampling_name);
     if (!sampling) throw std::invalid_argument("sampling must be 'step', 'hold' or 'interpolate'");
@@ -152,28 +153,48 @@ class PyModel {
       throw std::invalid_argument("threads must be 1.." + std::to_string(ntn::kMaxTeam));
     if (element_pass != "simd" && element_pass != "scalar")
       throw std::invalid_argument("element_pass must be 'simd' or 'scalar'");
+    // The factors on the records (the command line's FILE*FACTOR): the rule of a scale factor.
+    std::vector<double> factors(z.inputs, 1.0);
+    for (const auto& [key, value] : scale) {
+      const std::string name = py::str(key);
+      const std::size_t k = input_index(name);
+      double f = 0;
+      try {
+        f = value.cast<double>();
+      } catch (const py::cast_error&) {
+        throw std::invalid_argument("scale['" + name + "'] must be a number, got " +
+                                    std::string(py::str(py::type::of(value).attr("__name__"))));
+      }
+      if (!ntn::io::scale_factor_valid(f))
+        throw std::invalid_argument("scale['" + name + "'] must be " + ntn::io::kScaleFactorRule +
+                                    ", got " + ntn::cli::num(f));
+      factors[k] = f;
+    }
     std::vector<ntn::io::Record> records(z.inputs);
     std::vector<char> fed(z.inputs, 0);
     for (const auto& [key, value] : inputs) {
       const std::string name = py::str(key);
       const std::size_t k = input_index(name);
       records[k] = as_record(value, name);
-      // As ntn-run reads a record: converted to the input's unit, every sample finite and in
-      // the input's range.
+      // As ntn-run reads a record: converted to the input's unit, scaled, every sample finite
+      // and in the input's range.
       const ntn::InputSpec& spec = d().inputs[k];
       const ntn::io::Unit unit = ntn::io::input_unit(
           spec.kind == ntn::InputKind::kGroundAcceleration, spec.dof, spec.scale);
       if (const auto e = records[k].to_unit(unit))
         throw std::invalid_argument("input '" + name + "': " + *e);
+      records[k].scale(factors[k]);
       for (std::size_t s = 0; s < records[k].values.size(); ++s) {
         const double v = records[k].values[s];
         if (!std::isfinite(v))
           throw std::invalid_argument("input '" + name + "': sample " + std::to_string(s) +
                                       " is not finite");
         if (v < spec.min || v > spec.max)
-          throw std::invalid_argument("input '" + name + "': sample " + std::to_string(s) + " = " +
-                                      std::to_string(v) + " " + unit.name +
-                                      " is outside the input's range");
+          throw std::invalid_argument(
+              "input '" + name + "': sample " + std::to_string(s) + " = " + std::to_string(v) +
+              " " + unit.name +
+              (factors[k] != 1 ? " (the record x " + ntn::cli::num(factors[k]) + ")" : "") +
+              " is outside the input's range");
       }
       fed[k] = 1;
     }
@@ -519,7 +540,8 @@ PYBIND11_MODULE(_ntnrt, m) {
       .def_property_readonly("block_bytes", [](PyModel& p) { return p.loaded().block_bytes(); })
       .def("info", &PyModel::info, "What `ntn-model info` prints.")
       .def("run", &PyModel::run, py::arg("inputs") = py::dict(), py::arg("duration") = py::none(),
-           py::arg("sampling") = "step", py::arg("threads") = 1, py::arg("element_pass") = "simd")
+           py::arg("sampling") = "step", py::arg("threads") = 1, py::arg("element_pass") = "simd",
+           py::arg("scale") = py::dict())
       .def("reset", &PyModel::reset)
       .def("step", &PyModel::step, py::arg("inputs"))
       .def_property_readonly("time", &PyModel::time)

@@ -60,7 +60,8 @@ inline void add_options(ntn::cli::App& app, RunOptions& o) {
   auto& threads = o.threads;
   app.add_option("-i,--input", input_args,
                  "NAME=FILE: feed input channel NAME from a record (AT2 or CSV; "
-                 "FILE:COLUMN picks a CSV column; values are converted to the input's unit)");
+                 "FILE:COLUMN picks a CSV column; values are converted to the input's unit; "
+                 "FILE*FACTOR scales them)");
   app.add_option("-t,--duration", duration, "simulated time in s (default: longest record)")
       ->check(ntn::cli::Positive());
   app.add_option("-s,--sampling", sampling_name,
@@ -403,6 +404,9 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
       if (r.unit_assumed) notes += " (the file states no unit: taken as " + r.units + ")";
       if (r.t0 != 0)
         notes += ", file time " + ntn::cli::num(r.t0) + " s played at t = 0 (its first row)";
+      if (r.scaled_by != 1) notes += ", scaled by " + ntn::cli::num(r.scaled_by) + " (FILE*FACTOR)";
+      if (spec.inputs[k].factor != 1)
+        notes += ", then by the model file's scale " + ntn::cli::num(spec.inputs[k].factor);
       std::printf("  input %-12s %s: %zu samples at %g s, peak %.4g %s%s\n",
                   std::string(info.input_names[k]).c_str(), r.source.c_str(), r.values.size(), r.dt,
                   r.peak_abs(), r.units.c_str(), notes.c_str());

@@ -73,7 +73,7 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
   for (std::size_t i = 0; i < m.sizes.inputs; ++i) {
     const InputSpec& in = m.inputs[i];
     if (in.kind == InputKind::kGroundAcceleration) {
-      w.ground[static_cast<std::size_t>(in.dof)] += s.held_inputs[i] * in.scale;
+      w.ground[static_cast<std::size_t>(in.dof)] += s.held_inputs[i] * in.scale * in.factor;
     }
   }
   w.load_g = {m.gravity[0] * fg - w.ground[0],

@@ -67,8 +67,11 @@ struct InputSpec {
   int node = 0;         // kNodalForce only
   int dof = 0;          // direction (0..2) or node DOF (0..5)
   double scale = 1;     // input value x scale = SI value (e.g. 9.80665 for records in g)
-  double min = -1e300;  // accepted range of the raw input value
+  double min = -1e300;  // accepted range of the raw input value (before scale and factor)
   double max = 1e300;
+  double factor = 1;  // kGroundAcceleration: the model file's `scale`, a factor on the motion
+                      // (a_g = value x scale x factor); 1 for a nodal force, whose model file
+                      // `scale` is its unit (scale above)
 };
 
 enum class OutputKind : std::uint8_t {

@@ -201,10 +201,12 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
     }
   }
 
-  // The records, in the input's unit. Their intensity measures are in g: PGA and Sa are linear
-  // in the record, so they are computed on it and converted once (exactly unchanged for an
-  // input in g).
-  const double to_g = io::input_unit(true, in.dof, in.scale).si / io::parse_unit("g")->si;
+  // The records, in the input's unit. Their intensity measures are in g, of the motion the model
+  // feels (the record times the model file's scale, InputSpec::factor): PGA and Sa are linear in
+  // the record, so they are computed on it and converted once (exactly unchanged for an input
+  // in g with no scale). |factor|: a negative one reverses the motion, not its intensity.
+  const double to_g =
+      io::input_unit(true, in.dof, in.scale).si * std::abs(in.factor) / io::parse_unit("g")->si;
   for (const std::string& path : config.record_paths) {
     RecordEntry e;
     e.path = path;

@@ -20,6 +20,7 @@ void add_channels(Compilation& comp) {
   for (const Input& in : p.inputs) {
     InputSpec is;
     is.kind = in.kind, is.dof = in.dof, is.scale = in.scale, is.min = in.min, is.max = in.max;
+    is.factor = in.factor;
     if (in.kind == InputKind::kNodalForce) {
       is.node = node_ref(in.node, in.node_at);
       if (is.node < 0) continue;

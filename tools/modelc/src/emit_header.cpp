@@ -325,7 +325,7 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "inputs", m.inputs, [](const InputSpec& i) {
     return "{.kind = " + std::string(input_kind(i.kind)) + ", .node = " + lit(i.node) +
            ", .dof = " + lit(i.dof) + ", .scale = " + lit(i.scale) + ", .min = " + lit(i.min) +
-           ", .max = " + lit(i.max) + "}";
+           ", .max = " + lit(i.max) + ", .factor = " + lit(i.factor) + "}";
   });
   array_init(o, "outputs", m.outputs, [](const OutputSpec& q) {
     return "{.kind = " + std::string(output_kind(q.kind)) + ", .node = " + lit(q.node) +

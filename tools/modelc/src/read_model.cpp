@@ -13,6 +13,7 @@
 #include "ntn/modelc/limits.hpp"
 #include "ntn/time_step.hpp"
 #include "read_hinge_parts.hpp"
+#include "record.hpp"  // tools/io: the rule of a scale factor
 #include "toml_reader.hpp"
 
 namespace ntn::modelc::compile {
@@ -589,20 +590,29 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     auto kind = head.choice("kind", Need::kRequired, kinds);
     if (!kind) return;
     const bool ground = *kind == 0;
-    Table t(
-        L, tt, path,
-        ground
-            ? std::vector<std::string_view>{"name", "kind", "direction", "units", "min", "max"}
-            : std::vector<std::string_view>{"name", "kind", "node", "dof", "scale", "min", "max"});
+    Table t(L, tt, path,
+            ground ? std::vector<std::string_view>{"name", "kind", "direction", "units", "scale",
+                                                   "min", "max"}
+                   : std::vector<std::string_view>{"name", "kind", "node", "dof", "scale", "min",
+                                                   "max"});
     t.check_unknown();
     bool ok = name.has_value();
     if (ground) {
       in.kind = InputKind::kGroundAcceleration;
       auto dir = t.choice("direction", Need::kRequired, kDirections3);
       auto units = t.choice("units", Need::kOptional, {"m/s2", "g"});
+      // `scale` multiplies the motion (InputSpec::factor): the raw values, their unit and range
+      // stay those of the channel.
+      auto factor = t.number("scale", Need::kOptional);
+      if (factor && !io::scale_factor_valid(*factor)) {
+        L.error(t.where("scale"),
+                std::string("must be ") + io::kScaleFactorRule + " (got " + num(*factor) + ")");
+        factor.reset();
+      }
       if (dir) in.dof = *dir;
       in.scale = units.value_or(0) == 1 ? kStandardGravity : 1.0;
-      ok = ok && dir && (units || !t.has("units"));
+      if (factor) in.factor = *factor;
+      ok = ok && dir && (units || !t.has("units")) && (factor || !t.has("scale"));
     } else {
       in.kind = InputKind::kNodalForce;
       auto node = t.integer("node", Need::kRequired, 0, kMaxNodeId);

@@ -158,6 +158,7 @@ struct Input {
   Where node_at;
   int dof = 0;
   double scale = 1, min = -1e300, max = 1e300;
+  double factor = 1;  // a ground acceleration's `scale` (InputSpec::factor)
 };
 
 enum class OutKind { kNode, kElementForce, kDrift, kReaction, kHinge };

@@ -120,7 +120,8 @@ double response_energy_bound(const Model<S>& m) {
   for (const LoadSpec& l : m.loads)
     p += at_dof(l.node, l.dof, l.value * time_function_peak(m, l.time_function));
   for (const InputSpec& in : m.inputs) {
-    const double range = std::max(std::abs(in.min), std::abs(in.max)) * std::abs(in.scale);
+    const double range =
+        std::max(std::abs(in.min), std::abs(in.max)) * std::abs(in.scale * in.factor);
     if (!(range < 1e100)) return kInf;  // the default range (+-1e300) bounds nothing
     p += in.kind == InputKind::kGroundAcceleration
              ? range * std::sqrt(mass_dir[static_cast<std::size_t>(in.dof)])

@@ -16,7 +16,10 @@
 namespace ntn::hil {
 
 // Reads `file` (`column` of a CSV, empty: its first data column) for the model input `spec`
-// named `name`, and converts its values to the input's unit (Record::to_unit: gal to g, ...).
+// named `name`, converts its values to the input's unit (Record::to_unit: gal to g, ...) and
+// multiplies them by `factor` (FILE*FACTOR: the record scaled is what the channel receives, so
+// its range and the input gate apply to the scaled values, as to those a feeder sends scaled;
+// the model file's own `scale` acts after them, in the kernel: InputSpec::factor).
 // With `check_range`, every sample must also lie in [spec.min, spec.max]: a run that feeds
 // the records at every kernel step (InputSampling::kStep) does not pass them through the input
 // gate, so they are checked whole here, before the run. Returns the message (one line, as the
@@ -29,12 +32,13 @@ std::optional<std::size_t> first_out_of_range(const InputSpec& spec,
 
 std::optional<std::string> load_input_record(const InputSpec& spec, const std::string& name,
                                              const std::string& file, const std::string& column,
-                                             bool check_range, io::Record& record);
+                                             bool check_range, io::Record& record,
+                                             double factor = 1);
 
 // Every --input argument's record by its channel (`names`, the model's input names, in the
-// order of `specs`), read by load_input_record: records[c] and given[c] = 1 for each channel
-// given. Returns the first problem's message (an unknown channel: "error: --input NAME=...: the
-// model has no input channel 'NAME'"), or nothing.
+// order of `specs`), read and scaled by load_input_record: records[c] and given[c] = 1 for each
+// channel given. Returns the first problem's message (an unknown channel: "error: --input NAME=...:
+// the model has no input channel 'NAME'"), or nothing.
 std::optional<std::string> load_input_records(std::span<const InputSpec> specs,
                                               std::span<const std::string_view> names,
                                               std::span<const cli::InputArg> args, bool check_range,
