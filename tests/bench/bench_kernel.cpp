@@ -26,6 +26,8 @@
 #include <vector>
 
 #include "frame_models.hpp"
+#include "ntn/hil/energy.hpp"
+#include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/worker_team.hpp"
 #include "ntn/runtime_storage.hpp"
 
@@ -563,6 +565,46 @@ void bm_step_runtime(benchmark::State& bs) {
   bs.counters["allocs"] = static_cast<double>(allocs);
 }
 
+// What ntn-run (and Python's run(), ntn-ida) does per kernel step on run-time storage: the step,
+// then its sink's work (tools/run/run_driver.hpp, RunSink::after_step): the energy books
+// (hil/energy.hpp), the output hash and the peaks. Against step/runtime_storage, the kernel's
+// step alone, in the same run.
+template <Grid G>
+void bm_step_user(benchmark::State& bs) {
+  static constexpr Sizes S = sizes_of(G);
+  RunTimeParts& p = runtime_of<G>();
+  const std::span<const double> in(kGround);
+  p.state.u.fill(0.0), p.state.v.fill(0.0), p.state.held_inputs.fill(0.0);
+  p.state.tick = 0, p.state.inputs_held = 0, p.state.faults = 0;
+  (void)start(p.model, p.state, p.scratch, in);
+  hil::EnergyBalance<kRunTime> books;
+  books.reserve(p.model.dofs());
+  books.begin(p.model, p.state);
+  hil::OutputHash hash;
+  std::vector<double> peaks(p.model.sizes.outputs, 0.0);
+  for (int k = 0; k < kWarmupSteps; ++k)
+    (void)step(p.model, p.state, p.scratch, in);
+  bool diverged = false;
+  const std::uint64_t allocs_before = g_allocations.load(std::memory_order_relaxed);
+  for (auto _ : bs) {
+    diverged |= step(p.model, p.state, p.scratch, in) == StepStatus::kDiverged;
+    books.after_step(p.model, p.state, p.scratch);
+    hash.add_step(p.scratch);
+    for (std::size_t c = 0; c < peaks.size(); ++c)
+      peaks[c] = std::max(peaks[c], std::fabs(p.scratch.outputs[c]));
+  }
+  const std::uint64_t allocs = g_allocations.load(std::memory_order_relaxed) - allocs_before;
+  if (allocs != 0) fail(bs, "heap allocation in the timed loop");
+  if (diverged) fail(bs, "the step diverged");
+  if (!(books.accounts(p.model, p.state).relative_residual() <= 1e-10))
+    fail(bs, "the energy books do not close");
+  const double element_steps = static_cast<double>(bs.iterations()) * S.elements;
+  bs.counters["elements"] = S.elements;
+  bs.counters["ns_per_element_step"] =
+      benchmark::Counter(element_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bs.counters["allocs"] = static_cast<double>(allocs);
+}
+
 // The peer's step, timed like bm_step: per element-step, allocations counted, and checked
 // against the kernel (the same K u in another order: rounding only).
 template <Grid G, bool kPrune>
@@ -638,6 +680,8 @@ void register_frame() {
                                bm_step<G, Formulation::kStored>)
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark(("step/runtime_storage/elements:" + n).c_str(), bm_step_runtime<G>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/user_path/elements:" + n).c_str(), bm_step_user<G>)
       ->Unit(benchmark::kMicrosecond);
   // The multi-core step: wall-clock time (the CPU time is the calling thread's alone).
   benchmark::RegisterBenchmark(("step/threads:1/elements:" + n).c_str(),

@@ -100,8 +100,14 @@ def test_run_summary_of_a_yielding_frame(el_centro):
     assert all(y["level"] >= 1 for y in s["yielded"])
     e = s["energy_J"]
     assert e["hysteretic"] > 0
-    # The work-energy identity of the scheme: the residual is rounding next to the input.
+    # The work-energy identity of the scheme: the residual is rounding next to the input, and the
+    # books by mechanism add up to the external work.
     assert abs(e["residual"]) < 1e-6 * max(abs(e["external"]), 1.0)
+    accounts = ("kinetic_change", "elastic", "viscous", "hysteretic", "friction", "impacts",
+                "fracture")
+    assert abs(e["external"] - sum(e[k] for k in accounts) - e["residual"]) <= \
+        1e-12 * abs(e["external"])
+    assert e["friction"] == 0 and e["impacts"] == 0 and e["fracture"] == 0
     # Peaks are the largest |value| of every step, so at least every frame's.
     for name, p in s["peaks"].items():
         assert p["abs"] >= np.max(np.abs(r["outputs"][name]))

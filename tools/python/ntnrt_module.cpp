@@ -390,12 +390,16 @@ class PyModel {
       end[py::str(d().output_names[c])] = r.last[c];
     }
     py::dict energy;
-    energy["external"] = r.energy.external();
-    energy["kinetic_change"] = r.energy.kinetic() - r.energy.kinetic0();
-    energy["internal"] = r.energy.internal();
-    energy["hysteretic"] = ntn::hil::hysteretic_energy(m_->state());
-    energy["damping"] = r.energy.damping();
-    energy["residual"] = r.energy.residual();
+    const ntn::hil::EnergyAccounts& books = r.accounts;
+    energy["external"] = books.external;
+    energy["kinetic_change"] = books.kinetic;
+    energy["elastic"] = books.elastic;
+    energy["viscous"] = books.viscous;
+    energy["hysteretic"] = books.hysteretic;
+    energy["friction"] = books.friction;
+    energy["impacts"] = books.impacts;
+    energy["fracture"] = books.fracture;
+    energy["residual"] = books.residual;
     py::list yielded;
     for (const auto& y : ntn::hil::yielded_directions(m_->model(), m_->state())) {
       py::dict e;

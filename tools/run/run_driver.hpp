@@ -183,6 +183,7 @@ struct RunResult {
   std::vector<detail::Peak> peaks;
   std::vector<double> last;
   hil::EnergyTotals energy;
+  hil::EnergyAccounts accounts;  // the energy books by mechanism at the end (hil/energy.hpp)
 };
 
 // Runs an init()ed model on its records through the real-time loop on the virtual clock, as
@@ -254,6 +255,7 @@ RunResult simulate(RunStorage<S> store, const ModelSpec<S>& spec, const ModelInf
   out.peaks = std::move(sink.peaks);
   out.last = std::move(sink.last);
   out.energy = sink.energy.numbers();
+  out.accounts = sink.energy.accounts(store.model, store.state);
   return out;
 }
 
@@ -466,15 +468,15 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
                   fmt("%.5g", 100 * sink.last[c]).c_str(), simulated);
     }
     {
-      const auto& e = sink.energy;
-      const double hyst = ntn::hil::hysteretic_energy(store.state);
+      const auto& e = run.accounts;
       std::printf(
-          "  energy      external work %s J = kinetic %s J + internal %s J (hysteretic %s J) "
-          "+ damping %s J; balance residual %.2g of the input\n",
-          fmt("%.6g", e.external()).c_str(), fmt("%.4g", e.kinetic() - e.kinetic0()).c_str(),
-          fmt("%.6g", e.internal()).c_str(), fmt("%.6g", hyst).c_str(),
-          fmt("%.6g", e.damping()).c_str(),
-          e.input_scale() > 0 ? std::fabs(e.residual()) / e.input_scale() : 0.0);
+          "  energy      external work %s J = kinetic %s J + elastic %s J + viscous %s J + "
+          "hysteretic %s J + friction %s J + impacts %s J + fracture %s J; balance residual "
+          "%.2g of the input\n",
+          fmt("%.6g", e.external).c_str(), fmt("%.4g", e.kinetic).c_str(),
+          fmt("%.6g", e.elastic).c_str(), fmt("%.6g", e.viscous).c_str(),
+          fmt("%.6g", e.hysteretic).c_str(), fmt("%.6g", e.friction).c_str(),
+          fmt("%.6g", e.impacts).c_str(), fmt("%.6g", e.fracture).c_str(), e.relative_residual());
     }
     if (const int np = ntn::hil::plastic_directions(store.model); np > 0) {
       const auto yielded = ntn::hil::yielded_directions(store.model, store.state);
@@ -526,13 +528,16 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
       js << (c ? ",\n" : "\n") << "    \"" << info.output_names[c]
          << "\": " << fmt("%.17g", sink.last[c]);
     }
-    const auto& bal = sink.energy;
-    js << "\n  },\n  \"energy_J\": {\"external\": " << fmt("%.17g", bal.external())
-       << ", \"kinetic_change\": " << fmt("%.17g", bal.kinetic() - bal.kinetic0())
-       << ", \"internal\": " << fmt("%.17g", bal.internal())
-       << ", \"hysteretic\": " << fmt("%.17g", ntn::hil::hysteretic_energy(store.state))
-       << ", \"damping\": " << fmt("%.17g", bal.damping())
-       << ", \"residual\": " << fmt("%.17g", bal.residual()) << "},\n  \"yielded\": [";
+    const auto& bal = run.accounts;
+    js << "\n  },\n  \"energy_J\": {\"external\": " << fmt("%.17g", bal.external)
+       << ", \"kinetic_change\": " << fmt("%.17g", bal.kinetic)
+       << ", \"elastic\": " << fmt("%.17g", bal.elastic)
+       << ", \"viscous\": " << fmt("%.17g", bal.viscous)
+       << ", \"hysteretic\": " << fmt("%.17g", bal.hysteretic)
+       << ", \"friction\": " << fmt("%.17g", bal.friction)
+       << ", \"impacts\": " << fmt("%.17g", bal.impacts)
+       << ", \"fracture\": " << fmt("%.17g", bal.fracture)
+       << ", \"residual\": " << fmt("%.17g", bal.residual) << "},\n  \"yielded\": [";
     const auto yielded = ntn::hil::yielded_directions(store.model, store.state);
     for (std::size_t i = 0; i < yielded.size(); ++i) {
       const auto& y = yielded[i];

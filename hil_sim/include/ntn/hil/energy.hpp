@@ -1,16 +1,26 @@
-// The energy balance of a run (issue 15): the discrete work-energy identity of the central
-// difference scheme, accumulated step by step from what each step used. With
-// Delta_n = (u_{n+1} - u_{n-1}) / 2 = dt (v_{n+1/2} + v_{n-1/2}) / 2 and M (v_{n+1/2} - v_{n-1/2})
-// = dt (P_n - F_n - C v_{n-1/2}) (+ constraint forces, which do no work on a compatible motion):
-//     K_{n+1/2} - K_{n-1/2} = Delta_n . P_n - Delta_n . F_n - Delta_n . alpha M v_{n-1/2},
-// K = 1/2 v^T M v at the half steps. Summed over a run: kinetic energy now minus at the start =
-// external work (gravity, base excitation -M iota a_g, loads, force inputs) - internal work (the
-// elements' elastic and beta K forces, hinge springs, plastic directions and dashpots) - the
-// mass-proportional damping's work; the residual is rounding (and the work of rigid stops' clamps,
-// which are impulses). The internal work includes the rigid-plastic directions' forces (slip.hpp:
-// they act through the slip stage, not F_n): f (B Delta_n)_k each. The internal work's
-// hysteretic share is the plastic directions' own record, State::dissipated (the plastic work
-// integral f dd_p; for a rigid-plastic direction the friction work f ds).
+// The energy books of a run: the discrete work-energy identity of the central difference scheme,
+// accumulated step by step from what each step used, one account per mechanism. With the step's
+// final velocities (after the stops, the slips and the projection) and
+// Delta_n = (u_{n+1} - u_{n-1}) / 2 = dt (v_{n+1/2} + v_{n-1/2}) / 2,
+//     K_{n+1/2} - K_{n-1/2} = Delta_n . (P_n - F_n - alpha M v_{n-1/2}) - sum f (b Delta_n),
+// K = 1/2 v^T M v at the half steps, the last sum over the slip and stop directions (their forces
+// act as moves of u_{n+1}, du = -f dt^2 M_c^-1 b; the constraint forces of rigid directions do no
+// work on a compatible Delta). F_n is split by what produced it: each hinge spring direction's
+// spring force and dashpot force times (B Delta)_k, the elements' force the rest. The accounts
+// (EnergyAccounts) are changes since the start:
+//   kinetic     K - K_0
+//   elastic     the elements' strain energy (their work, or with beta > 0 the staggered
+//               1/2 u_n^T K u_{n+1}), the elastic hinge springs' work (linear, curve, penalty) and
+//               the energy still stored in plastic, backbone and breaking springs
+//   viscous     alpha M, the hinge dashpots, and beta K (the elements' work less their strain
+//               energy)
+//   hysteretic  the work on plastic and backbone directions less what they still store (strength
+//               drops and failure past E release it here)
+//   friction    the slip directions' work (rigid_plastic, friction, fixed_if): f times the slide
+//   impacts     the stops' clamp forces' work: what a stop takes from a body it stops
+//   fracture    breaking springs' work less what they store, and rigid failure directions' slide
+// and external = kinetic + elastic + viscous + hysteretic + friction + impacts + fracture +
+// residual, the residual rounding.
 #pragma once
 
 #include <cmath>
@@ -18,47 +28,80 @@
 #include <vector>
 
 #include "ntn/hinge.hpp"
-#include "ntn/model.hpp"
-#include "ntn/residual.hpp"
-#include "ntn/state.hpp"
+#include "ntn/kernel.hpp"
 
 namespace ntn::hil {
 
-// The balance's totals (EnergyBalance keeps them; a run's result holds a copy).
+// One account per mechanism, J (the header's list).
+struct EnergyAccounts {
+  double external = 0;
+  double kinetic = 0;
+  double elastic = 0;
+  double viscous = 0;
+  double hysteretic = 0;
+  double friction = 0;
+  double impacts = 0;
+  double fracture = 0;
+  double residual = 0;     // external - the others: rounding
+  double input_scale = 0;  // the largest |external| reached: the residual's scale
+  double relative_residual() const {
+    return input_scale > 0 ? std::fabs(residual) / input_scale : 0.0;
+  }
+};
+
+// The works the steps add up (EnergyBalance keeps them; a run's result holds a copy).
 class EnergyTotals {
  public:
   double kinetic() const { return kinetic_; }    // J, at the last half step
   double kinetic0() const { return kinetic0_; }  // J, at v_{-1/2}
   double external() const { return external_; }  // J
-  double internal() const { return internal_; }  // J
+  double internal() const { return internal_; }  // J: Delta . F_n (elements, hinge springs)
   double damping() const { return damping_; }    // J, C = alpha M
-  // The largest |external work| reached so far: the scale of the balance's residual.
   double input_scale() const { return input_scale_; }
-  // (kinetic - kinetic0) - (external - internal - damping): rounding, plus the stops' work.
-  double residual() const { return (kinetic_ - kinetic0_) - (external_ - internal_ - damping_); }
+  // (kinetic - kinetic0) - (external - internal - damping - slip and stop work): rounding.
+  double residual() const {
+    return (kinetic_ - kinetic0_) -
+           (external_ - internal_ - damping_ - friction_ - fracture_slip_ - impacts_);
+  }
 
  protected:
   double kinetic0_ = 0, kinetic_ = 0, external_ = 0, internal_ = 0, damping_ = 0;
+  double springs_ = 0;        // elastic hinge springs: linear, curve, penalty
+  double plastic_ = 0;        // plastic and backbone directions' spring work
+  double breaking_ = 0;       // breaking springs' work (linear + failure, penalty failure)
+  double dashpots_ = 0;       // hinge dashpots
+  double friction_ = 0;       // slip directions but rigid failures
+  double fracture_slip_ = 0;  // rigid failure directions (slip.hpp, kBrittle)
+  double impacts_ = 0;        // the stops' clamp
+  double elements0_ = 0;      // the elements' staggered strain energy at the start (beta > 0)
   double input_scale_ = 0;
 };
 
 template <Sizes S>
 class EnergyBalance : public EnergyTotals {
  public:
-  // Room for v_{-1/2} of `dofs` DOFs, so that begin() allocates nothing (call before the run).
-  void reserve(std::size_t dofs) { v_prev_.reserve(dofs); }
+  // Room for v_{-1/2} and a DOF-sized work array, so that begin() and the steps allocate
+  // nothing (call before the run).
+  void reserve(std::size_t dofs) {
+    v_prev_.reserve(dofs);
+    work_.reserve(dofs);
+  }
   EnergyTotals numbers() const { return *this; }
   // Call after start(): takes v_{-1/2} and the kinetic energy at the start.
   void begin(const Model<S>& m, const State<S>& s) {
     v_prev_.assign(s.v.begin(), s.v.end());
+    work_.assign(s.v.size(), 0.0);
     kinetic0_ = kinetic_ = kinetic_energy(m, s);
     external_ = internal_ = damping_ = 0;
+    springs_ = plastic_ = breaking_ = dashpots_ = friction_ = fracture_slip_ = impacts_ = 0;
     input_scale_ = 0;
+    // u_{-1} = u_0 - dt v_{-1/2}: the staggered strain energy 1/2 u_{-1}^T K u_0.
+    elements0_ = m.beta > 0 ? element_energy(m, s) : 0.0;
   }
   // Call after each step(): `s` holds u_{n+1}, v_{n+1/2}; `w` the step's P_n and F_n.
   void after_step(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
     const double half_dt = 0.5 * m.dt;
-    double ext = 0, in = 0, damp = 0;
+    double ext = 0, in = 0, damp = 0, kin = 0;
     for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
       for (std::size_t d = 0; d < kDofsPerNode; ++d) {
         const std::size_t j = kDofsPerNode * n + d;
@@ -66,26 +109,7 @@ class EnergyBalance : public EnergyTotals {
         ext += delta * m.mass[j] * w.load_g[d];
         in += delta * w.f[j];
         damp += delta * m.alpha * m.mass[j] * v_prev_[j];
-      }
-    }
-    if constexpr (kMayHaveHystereses<S>) {  // rigid-plastic directions: f (B Delta)_k
-      for (int i = 0; i < m.num_slip_hinges; ++i) {
-        const HingeData& h =
-            m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
-        double delta1[6], delta2[6], bd[6];
-        for (std::size_t c = 0; c < 6; ++c) {
-          const auto j1 = static_cast<std::size_t>(kDofsPerNode * h.node1) + c;
-          delta1[c] = half_dt * (s.v[j1] + v_prev_[j1]);
-          if (h.node2 != kGround) {
-            const auto j2 = static_cast<std::size_t>(kDofsPerNode * h.node2) + c;
-            delta2[c] = half_dt * (s.v[j2] + v_prev_[j2]);
-          }
-        }
-        hinge_relative(h, delta1, h.node2 == kGround ? nullptr : delta2, bd);
-        for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-          if ((h.slip >> k) & 1U)
-            in += w.slip_force[static_cast<std::size_t>(h.history[k])] * bd[k];
-        }
+        kin += 0.5 * m.mass[j] * s.v[j] * s.v[j];
       }
     }
     for (int k = 0; k < m.num_slots; ++k) {  // where P_n is not m g: the load slots
@@ -94,11 +118,33 @@ class EnergyBalance : public EnergyTotals {
       ext +=
           delta * (w.p_slot[static_cast<std::size_t>(k)] - m.mass[j] * w.load_g[j % kDofsPerNode]);
     }
+    if constexpr (kMayHaveHinges<S>) hinge_work(m, s, w);
     external_ += ext, internal_ += in, damping_ += damp;
     input_scale_ = std::fmax(input_scale_, std::fabs(external_));
     for (std::size_t j = 0; j < v_prev_.size(); ++j)
       v_prev_[j] = s.v[j];
-    kinetic_ = kinetic_energy(m, s);
+    kinetic_ = kin;
+  }
+
+  // The accounts now (the header's list), from the totals and the state after the last step.
+  EnergyAccounts accounts(const Model<S>& m, const State<S>& s) {
+    EnergyAccounts a;
+    double stored_plastic = 0, stored_breaking = 0;
+    if constexpr (kMayHaveHystereses<S>) stored_springs(m, s, stored_plastic, stored_breaking);
+    const double elements = internal_ - springs_ - plastic_ - breaking_ - dashpots_;
+    const double strain = m.beta > 0 ? element_energy(m, s) - elements0_ : elements;
+    a.external = external_;
+    a.kinetic = kinetic_ - kinetic0_;
+    a.elastic = strain + springs_ + stored_plastic + stored_breaking;
+    a.viscous = damping_ + dashpots_ + (elements - strain);
+    a.hysteretic = plastic_ - stored_plastic;
+    a.friction = friction_;
+    a.impacts = impacts_;
+    a.fracture = fracture_slip_ + breaking_ - stored_breaking;
+    a.residual = a.external - (a.kinetic + a.elastic + a.viscous + a.hysteretic + a.friction +
+                               a.impacts + a.fracture);
+    a.input_scale = input_scale_;
+    return a;
   }
 
   static double kinetic_energy(const Model<S>& m, const State<S>& s) {
@@ -109,7 +155,143 @@ class EnergyBalance : public EnergyTotals {
   }
 
  private:
+  // Delta_n at the six DOFs of `node` (zero for the ground).
+  void node_delta(const Model<S>& m, const State<S>& s, int node, double* delta) const {
+    for (std::size_t c = 0; c < kDofsPerNode; ++c) {
+      if (node == kGround) {
+        delta[c] = 0;
+        continue;
+      }
+      const auto j = static_cast<std::size_t>(kDofsPerNode * node) + c;
+      delta[c] = 0.5 * m.dt * (s.v[j] + v_prev_[j]);
+    }
+  }
+
+  // A hinge's (B x)_k for node values x1, x2 (x2 unused for the ground).
+  static void relative(const HingeData& h, const double* x1, const double* x2, double* d) {
+    hinge_relative(h, x1, h.node2 == kGround ? nullptr : x2, d);
+  }
+
+  // u_n = u_{n+1} - dt v_{n+1/2} and v_{n-1/2} at the six DOFs of `node`.
+  void node_before(const Model<S>& m, const State<S>& s, int node, double* u, double* v) const {
+    for (std::size_t c = 0; c < kDofsPerNode; ++c) {
+      if (node == kGround) {
+        u[c] = v[c] = 0;
+        continue;
+      }
+      const auto j = static_cast<std::size_t>(kDofsPerNode * node) + c;
+      u[c] = s.u[j] - m.dt * s.v[j];
+      v[c] = v_prev_[j];
+    }
+  }
+
+  // The hinges' share of the step's work: each spring direction's spring and dashpot force at
+  // t_n (from u_n and v_{n-1/2}, as the spring stage made them) times (B Delta)_k, by the kind
+  // of its law; the slip and stop directions' forces (Scratch::slip_force, stop_force) likewise.
+  void hinge_work(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
+    double d1[6], d2[6], bd[6], u1[6], u2[6], v1[6], v2[6], d[6], d_dot[6], f[6];
+    for (int i = 0; i < m.num_spring_hinges; ++i) {
+      const HingeData& h =
+          m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
+      node_delta(m, s, h.node1, d1);
+      node_delta(m, s, h.node2, d2);
+      relative(h, d1, d2, bd);
+      node_before(m, s, h.node1, u1, v1);
+      node_before(m, s, h.node2, u2, v2);
+      relative(h, u1, u2, d);
+      relative(h, v1, v2, d_dot);
+      hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if (!((h.springs >> k) & 1U)) continue;
+        const bool curve = !((h.plastic >> k) & 1U) && h.behaviour[k] == HingeBehaviour::kCurve;
+        const double dash = curve ? 0.0 : h.dashpot[k] * d_dot[k];  // hinge_spring_force's
+        dashpots_ += dash * bd[k];
+        const double work = (f[k] - dash) * bd[k];
+        if (!((h.plastic >> k) & 1U)) {
+          springs_ += work;
+        } else if (m.hystereses[static_cast<std::size_t>(h.history[k])].rule ==
+                   HysteresisRule::kBrittle) {
+          breaking_ += work;
+        } else {
+          plastic_ += work;
+        }
+      }
+    }
+    if constexpr (kMayHaveHystereses<S>) {
+      for (int i = 0; i < m.num_slip_hinges; ++i) {
+        const HingeData& h =
+            m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
+        node_delta(m, s, h.node1, d1);
+        node_delta(m, s, h.node2, d2);
+        relative(h, d1, d2, bd);
+        for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+          if (!((h.slip >> k) & 1U)) continue;
+          const auto slot = static_cast<std::size_t>(h.history[k]);
+          const double work = w.slip_force[slot] * bd[k];
+          if (m.hystereses[slot].rule == HysteresisRule::kBrittle) {
+            fracture_slip_ += work;
+          } else {
+            friction_ += work;
+          }
+        }
+      }
+    }
+    for (int i = 0; i < m.num_branch_hinges; ++i) {
+      const auto hi = static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)]);
+      const HingeData& h = m.hinges[hi];
+      node_delta(m, s, h.node1, d1);
+      node_delta(m, s, h.node2, d2);
+      relative(h, d1, d2, bd);
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if ((h.branches >> k) & 1U) impacts_ += w.stop_force[hi][k] * bd[k];
+      }
+    }
+  }
+
+  // The energy plastic, backbone and breaking springs still store: 1/2 k (d_n - d_p)(d_{n+1} -
+  // d_p), the staggered form whose change the spring force's work is for an elastic spring (a
+  // broken spring stores nothing).
+  void stored_springs(const Model<S>& m, const State<S>& s, double& plastic,
+                      double& breaking) const {
+    double u1[6], u2[6], v1[6], v2[6], now[6], before[6];
+    for (int i = 0; i < m.num_spring_hinges; ++i) {
+      const HingeData& h =
+          m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
+      if (h.plastic == 0) continue;
+      node_before(m, s, h.node1, u1, v1);
+      node_before(m, s, h.node2, u2, v2);
+      relative(h, u1, u2, before);
+      relative(
+          h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+          h.node2 == kGround ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)],
+          now);
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if (!((h.plastic >> k) & 1U)) continue;
+        const auto slot = static_cast<std::size_t>(h.history[k]);
+        const double dp = s.plastic[slot];
+        const double e = 0.5 * h.stiffness[k] * (before[k] - dp) * (now[k] - dp);
+        if (m.hystereses[slot].rule == HysteresisRule::kBrittle) {
+          breaking += s.first_slip[slot] != 0 ? 0.0 : e;
+        } else {
+          plastic += e;
+        }
+      }
+    }
+  }
+
+  // The elements' staggered strain energy 1/2 u_n^T K u_{n+1}, u_n = u_{n+1} - dt v_{n+1/2}
+  // (after start(): u_{-1}^T K u_0): K u_{n+1} by the element pass without damping.
+  double element_energy(const Model<S>& m, const State<S>& s) {
+    element_forces_into(m.element_pass, m.beam_arrays(), m.sizes.elements, m.every_node_in_element,
+                        m.dofs(), s.u.data(), s.v.data(), 0.0, work_.data());
+    double e = 0;
+    for (std::size_t j = 0; j < work_.size(); ++j)
+      e += 0.5 * (s.u[j] - m.dt * s.v[j]) * work_[j];
+    return e;
+  }
+
   std::vector<double> v_prev_;
+  std::vector<double> work_;
 };
 
 // The hysteretic energy of a state: the plastic work of every plastic hinge direction, J.
