@@ -140,7 +140,9 @@ const Expected kExpected[] = {
   {"DriftUpsideDown", "drift_upside_down.toml", 39, 9, "outputs[0].nodes", "the upper node 1 (z = 0 m) is below the lower node 2 (z = 3.5 m)"},
   {"ReactionUnsupported", "reaction_unsupported.toml", 43, 13, "outputs[0].direction", "no support holds DOF rz, so this reaction is always zero"},
   // Mass and time step.
-  {"NoMembers", "no_members.toml", 1, 1, "members", "the model has no members, so it has no mass"},
+  {"NoMembersNoMasses", "no_members.toml", 1, 1, "members", "the model has no members and no point masses, so it has no mass and nothing to integrate"},
+  {"NoMembersMasslessNode", "no_members_massless.toml", 11, 6, "nodes[1].id", "node 2 has no mass in its free DOFs ux, uy, uz, rx, ry, rz"},
+  {"NoMembersPenaltyStiffness", "no_members_penalty.toml", 5, 16, "model.hinge_method", "hinge_method = \"penalty\" in a model without members needs model.penalty_stiffness and model.penalty_rotational_stiffness for its rigid hinge directions"},
   {"MasslessFreeDof", "massless_dof.toml", 27, 6, "nodes[2].id", "node 3 has no mass in its free DOFs rx, ry, rz"},
   {"DtAboveStable", "dt_unstable.toml", 4, 6, "model.dt", "dt = 0.001 s is above the stable step "},
   // Hinges (DESIGN §7): settings, values, axes, curves, references.
