@@ -1,7 +1,8 @@
 #include "ntn/modelc/model_description.hpp"
 
-#include <cstdio>
 #include <string>
+
+#include "messages.hpp"
 
 namespace ntn::modelc {
 
@@ -46,17 +47,14 @@ std::string ModelDescription::describe_node(int node) const {
 }
 
 std::string ModelDescription::describe_stable_step(const StableStepReport& r) const {
-  static const char* const kDof[kDofsPerNode] = {"ux", "uy", "uz", "rx", "ry", "rz"};
   if (r.governing_hinge >= 0 && r.hinge_direction >= 0 && r.hinge_direction < kDofsPerNode) {
     return describe_hinge(r.governing_hinge) + ", direction " +
-           kDof[static_cast<std::size_t>(r.hinge_direction)] +
+           std::string(compile::kDofNames[static_cast<std::size_t>(r.hinge_direction)]) +
            " (the spring with the largest share of the governing node's bound)";
   }
   if (r.governing_element >= 0) return describe_element(r.governing_element);
-  char alpha[32];
-  std::snprintf(alpha, sizeof alpha, "%g", settings.alpha);
   return settings.alpha > 0
-             ? "the damping alpha = " + std::string(alpha) +
+             ? "the damping alpha = " + compile::num(settings.alpha) +
                    " 1/s alone (2 / alpha: no element and no hinge spring bounds it)"
              : std::string("nothing (no element, hinge spring or damping bounds it)");
 }
