@@ -69,12 +69,16 @@ StableStepReport stable_time_step(const SpecView& spec) {
       if (r.cfl_element < 0 || cfl < r.dt_cfl) r.dt_cfl = cfl, r.cfl_element = static_cast<int>(i);
     }
   }
-  r.dt_stable = damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta);
+  // No element (a model of point masses and hinges): K_el = 0, so what is left of the bound is
+  // the mass-proportional damping's, 2 alpha dt < 4 (quadratic_step: 2 / alpha, or 1e300 when
+  // nothing bounds the step); the hinges' springs add theirs below.
+  r.dt_stable = r.omega_max > 0
+                    ? damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta)
+                    : quadratic_step(0.0, spec.settings.alpha);
   r.dt_elements = r.dt_stable;
   // An element without a finite frequency, or damping that leaves no step: refused, never
-  // dropped (a model without elements has omega_max = 0 and dt_stable = 0, no issue).
-  if (!(r.omega_max < std::numeric_limits<double>::infinity()) ||
-      (r.omega_max > 0 && !(r.dt_stable > 0))) {
+  // dropped.
+  if (!(r.omega_max < std::numeric_limits<double>::infinity()) || !(r.dt_stable > 0)) {
     r.issue = StepIssue::kNonFinite, r.dt_stable = 0, r.dt_elements = 0;
   }
   return r;

@@ -15,6 +15,7 @@
 
 #include "ntn/kernel.hpp"
 #include "support/builders.hpp"
+#include "support/hinges.hpp"
 #include "support/init_model.hpp"
 #include "support/no_heap.hpp"
 
@@ -141,6 +142,49 @@ TEST(StableTimeStep, ReportNamesTheGoverningElement) {
   EXPECT_EQ(rb.dt_stable,
             ntn::damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta));
   EXPECT_LT(rb.dt_stable, r.dt_stable);
+}
+
+// A model without elements (a point mass m on a hinge spring k with a dashpot c to the ground:
+// the SDOF): the elements' part of the bound is what alpha alone allows (2 / alpha; 1e300 when
+// nothing bounds the step), and the step is the oscillator's own, (2 / omega)(sqrt(1 + xi^2) - xi)
+// with omega^2 = k / m and xi = (alpha + c / m) / (2 omega), where the update of DESIGN §5 loses
+// stability (tolerances as above; 1e-12 on the step: the node bound's 6x6 eigenvalue is k / m
+// up to rounding). init() builds such a model in compiled storage, std::arrays of no elements.
+TEST(StableTimeStep, WithoutElementsItIsTheOscillatorsOwn) {
+  constexpr ntn::Sizes S{.nodes = 1, .hinges = 1};
+  static ntn::ModelSpec<S> spec;
+  static ntn::Model<S> model;
+  const double m = 1000, k = 4e5, omega = std::sqrt(k / m);
+  for (const auto& [c, alpha] : {std::pair{0.0, 0.0}, std::pair{2e3, 0.0}, std::pair{2e3, 3.0}}) {
+    spec = {};
+    spec.nodes[0].added = {m, m, m, 0, 0, 0};
+    spec.hinges[0] = ntn_test::hinge(0, ntn::kGround, ntn_test::kIdentity3);
+    spec.hinges[0].behaviour[ntn::kUx] = ntn::HingeBehaviour::kLinear;
+    spec.hinges[0].stiffness[ntn::kUx] = k;
+    spec.hinges[0].dashpot[ntn::kUx] = c;
+    spec.settings.alpha = alpha;
+    spec.settings.dt = 1e-3;
+    ASSERT_TRUE(ntn_test::init_model(spec, model).ok()) << c << " " << alpha;
+    const ntn::StableStepReport& r = model.stable;
+    const double damping = alpha + c / m;  // per unit mass
+    EXPECT_NEAR(r.dt_stable / ntn::damped_stable_step(omega, damping), 1.0, 1e-12);
+    EXPECT_LE(spectral_radius(omega, damping, r.dt_stable * (1 - 1e-6)), 1.0 + 1e-9);
+    EXPECT_GT(spectral_radius(omega, damping, r.dt_stable * (1 + 1e-6)), 1.0 + 1e-7);
+    EXPECT_EQ(r.dt_elements, alpha > 0 ? 2 / alpha : 1e300);
+    EXPECT_EQ(r.governing_hinge, 0);
+    EXPECT_EQ(r.hinge_direction, ntn::kUx);
+    EXPECT_EQ(r.governing_element, -1);
+    EXPECT_EQ(r.cfl_element, -1);
+  }
+  // A free mass alone: nothing bounds the step but alpha.
+  constexpr ntn::Sizes S0{.nodes = 1};
+  static ntn::ModelSpec<S0> free;
+  free = {};
+  free.nodes[0].added = {m, m, m, 1, 1, 1};
+  const std::array<double, 6> mass = free.nodes[0].added;
+  EXPECT_EQ(ntn::stable_time_step(ntn::view(free), mass).dt_stable, 1e300);
+  free.settings.alpha = 4.0;
+  EXPECT_EQ(ntn::stable_time_step(ntn::view(free), mass).dt_stable, 0.5);
 }
 
 // dt = "auto": the largest period / N, N integer, not above 0.9 dt_stable.

@@ -135,6 +135,23 @@ TEST(ModelModes, CantileverMatchesTheClosedForm) {
 // half an element's mass. Rounding only: 1e-12 relative for the totals (a sum of 21 lumped masses
 // in another order), 1e-9 for the sums over 120 modes (Gamma^2 of unit-mass shapes from a
 // symmetric eigensolver: orthogonality to ~1e-13 per mode).
+// A model without members (config/sdof.toml: m = 1000 kg on k = 400 kN/m to the ground along x,
+// the other directions rigid): one mode, f = sqrt(k / m) / (2 pi) = 3.1831 Hz with all the mass
+// along x. Tolerance 1e-12 relative: a 1 x 1 eigenproblem, k / m and a square root (the hinge's
+// dashpot is left out, as for every model: the modes are undamped).
+TEST(ModelModes, SdofIsTheOscillator) {
+  const Json j = modes_json("'" NTN_CONFIG_DIR "/sdof.toml'");
+  EXPECT_EQ(j["dofs"].number(), 6);
+  EXPECT_EQ(j["eigenproblem_size"].number(), 1);
+  const Json& modes = j["modes"];
+  ASSERT_EQ(modes.size(), 1U);
+  const double omega = std::sqrt(4.0e5 / 1000.0);
+  EXPECT_NEAR(modes[0]["frequency_hz"].number() / (omega / (2 * std::numbers::pi)), 1.0, 1e-12);
+  EXPECT_NEAR(modes[0]["omega_rad_s"].number() / omega, 1.0, 1e-12);
+  EXPECT_NEAR(modes[0]["effective_mass_kg"]["x"].number() / 1000.0, 1.0, 1e-12);
+  EXPECT_EQ(modes[0]["effective_mass_kg"]["y"].number(), 0.0);
+}
+
 TEST(ModelModes, EffectiveMassesAddUpToTheTotalMass) {
   const auto loaded = ntn::modelc::load_model(kCantilever);
   ASSERT_TRUE(loaded.ok());

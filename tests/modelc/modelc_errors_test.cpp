@@ -145,7 +145,9 @@ const Expected kExpected[] = {
   {"DriftUpsideDown", "drift_upside_down.toml", 39, 9, "outputs[0].nodes", "the upper node 1 (z = 0 m) is below the lower node 2 (z = 3.5 m)"},
   {"ReactionUnsupported", "reaction_unsupported.toml", 43, 13, "outputs[0].direction", "no support holds DOF rz and no hinge joins the ground, so this reaction is always zero"},
   // Mass and time step.
-  {"NoMembers", "no_members.toml", 1, 1, "members", "the model has no members, so it has no mass"},
+  {"NoMembersNoMasses", "no_members.toml", 1, 1, "members", "the model has no members and no point masses, so it has no mass and nothing to integrate"},
+  {"NoMembersMasslessNode", "no_members_massless.toml", 11, 6, "nodes[1].id", "node 2 has no mass in its free DOFs ux, uy, uz, rx, ry, rz"},
+  {"NoMembersPenaltyStiffness", "no_members_penalty.toml", 5, 16, "model.hinge_method", "hinge_method = \"penalty\" in a model without members needs model.penalty_stiffness and model.penalty_rotational_stiffness for its rigid hinge directions"},
   {"MasslessFreeDof", "massless_dof.toml", 27, 6, "nodes[2].id", "node 3 has no mass in its free DOFs rx, ry, rz"},
   {"DtAboveStable", "dt_unstable.toml", 4, 6, "model.dt", "dt = 0.001 s is above the stable step "},
   // Hinges (DESIGN §7): settings, values, axes, curves, references.
@@ -206,6 +208,14 @@ const Expected kExpected[] = {
   {"MasslessSpring", "hinge_massless_spring.toml", 28, 6, "nodes[2].id", "node 3 has no effective mass in rz (global axes), but a hinge spring, dashpot or curve acts there"},
   {"PenaltyMassless", "hinge_penalty_massless.toml", 29, 6, "nodes[2].id", "node 3 has no effective mass in ux, uy, uz, rx, ry, rz (global axes), but a hinge spring, dashpot or curve acts there: an explicit step cannot integrate a massless spring (its frequency is infinite). Give the node a point mass (with inertia for rotations), or make those hinge directions rigid or free. With hinge_method = \"penalty\" a rigid direction is a stiff spring: penalty needs mass on both nodes; give the joint a point mass or use ntn_exact"},
   {"DtAboveHingeStable", "dt_unstable_hinge.toml", 5, 6, "model.dt", "dt = 1e-05 s is above the stable step "},
+  // Hinges refused by their method, named by outputs of every hinge kind: the refusals alone
+  // (OutputsNamingARefusedHingeAddNoError below).
+  {"RefusedOffsetMassNamed", "refused_rigid_plastic_outputs.toml", 39, 10, "point_masses[0].offset", "a point mass on an offset is an eccentric rigid hinge, which needs hinge_method = \"ntn_exact\" or \"penalty\""},
+  {"RefusedRigidPlasticNamed", "refused_rigid_plastic_outputs.toml", 44, 6, "hinges[0].ux", "a rigid_plastic direction needs hinge_method = \"ntn_exact\" (exact stick and slip) or \"penalty\""},
+  {"RefusedReleaseNamed", "refused_failure_outputs.toml", 34, 22, "members[0].release_end.ry", "a rigid_plastic direction needs hinge_method = \"ntn_exact\""},
+  {"RefusedFailureNamed", "refused_failure_outputs.toml", 45, 6, "hinges[1].ux", "a failure direction needs hinge_method = \"ntn_exact\" (exact stick and slip) or \"penalty\""},
+  {"RefusedFrictionNamed", "refused_friction_outputs.toml", 38, 6, "hinges[0].ux", "a friction direction needs hinge_method = \"ntn_exact\": under \"penalty\" only a constant limit"},
+  {"RefusedFixedIfNamed", "refused_fixed_if_outputs.toml", 38, 6, "hinges[0].ux", "a fixed_if direction with a control needs hinge_method = \"ntn_exact\": under \"penalty\" only a constant limit"},
   // Issue 12: nesting refused before parsing (a dotted key 50 000 deep crashed the parser), the
   // frame rule, and numbers beyond double named at their key.
   {"DeepNesting", "deep_nesting.toml", 6, 62, "", "nested deeper than 32 levels (tables, arrays and inline tables one inside another"},
@@ -340,6 +350,34 @@ TEST(ModelErrors, DtAboveStableNamesGoverningHinge) {
   EXPECT_NE(msg.find(" s set by hinge H1, direction rz (the spring with the largest share"),
             std::string::npos)
       << msg;
+}
+
+// Outputs that name a refused hinge add no error and read no hinge: each of these models (a
+// rigid_plastic or rigid failure direction under ntn_paper, a friction or fixed_if direction with
+// a control under penalty, a refused member-end release and point mass on an offset, next to a
+// hinge that is built) gives exactly the errors of its text without the [[outputs]] tables, which
+// end each file: a hinge's name leads to a hinge that was built, or to none.
+TEST(ModelErrors, OutputsNamingARefusedHingeAddNoError) {
+  for (const char* name : {"refused_rigid_plastic_outputs.toml", "refused_failure_outputs.toml",
+                           "refused_friction_outputs.toml", "refused_fixed_if_outputs.toml"}) {
+    std::string text;
+    {
+      std::FILE* f = std::fopen(bad(name).c_str(), "rb");
+      ASSERT_NE(f, nullptr) << name;
+      char buf[4096];
+      std::size_t n;
+      while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+        text.append(buf, n);
+      std::fclose(f);
+    }
+    const std::size_t outputs = text.find("\n[[outputs]]");
+    ASSERT_NE(outputs, std::string::npos) << name;
+    const auto with = ntn::modelc::load_model_from_string(text, name);
+    const auto without = ntn::modelc::load_model_from_string(text.substr(0, outputs + 1), name);
+    ASSERT_FALSE(without.errors.empty()) << name;
+    EXPECT_EQ(ntn::modelc::format_all(with.errors), ntn::modelc::format_all(without.errors))
+        << name;
+  }
 }
 
 TEST(ModelErrors, MissingFile) {

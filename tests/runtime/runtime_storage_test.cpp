@@ -39,6 +39,7 @@
 #include "pinned_joint_model.hpp"
 #include "portal_plastic_model.hpp"
 #include "portal_slip_model.hpp"
+#include "sdof_model.hpp"
 #include "slip_connections_model.hpp"
 #include "support/alloc_counter.hpp"
 
@@ -250,6 +251,12 @@ TEST(RuntimeStorage, PortalPlasticConfig) {
 TEST(RuntimeStorage, PortalSlipConfig) {
   expect_file_same(ntn::models::portal_slip::kSpec, NTN_CONFIG_DIR "/portal_slip.toml", kSeconds);
 }
+#ifndef NTN_SANITIZE
+// No members: one node, a point mass and a hinge (no element blocks in either storage).
+TEST(RuntimeStorage, SdofConfig) {
+  expect_file_same(ntn::models::sdof::kSpec, NTN_CONFIG_DIR "/sdof.toml", kSeconds);
+}
+#endif
 #ifndef NTN_SANITIZE
 TEST(RuntimeStorage, PinnedJoint) {
   expect_file_same(ntn::models::pinned_joint::kSpec, NTN_MODELC_GOOD_DIR "/pinned_joint.toml",

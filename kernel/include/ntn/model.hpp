@@ -343,9 +343,9 @@ template <Sizes S>
   const Sizes& sz = model.sizes;
   if constexpr (S.runtime) {  // the storage was bound for this model (storage_bind.hpp)
     if (sizes_of(view(spec)) != sz || work.sizes != sz) return {InitError::kStorageSizes, -1};
-    if (sz.nodes < 2 || sz.elements < 1) return {InitError::kStorageSizes, -1};
+    if (sz.nodes < 1) return {InitError::kStorageSizes, -1};
   } else {
-    static_assert(S.nodes >= 2 && S.elements >= 1, "a model needs at least one element");
+    static_assert(S.nodes >= 1, "a model needs at least one node");  // elements: none or more
   }
   if (const InitStatus st = check_references(spec, work); !st.ok()) return st;
   for (std::size_t i = 0; i < sz.elements; ++i) {
@@ -432,9 +432,9 @@ template <Sizes S>
       double inv = 0.0;
       if (((fixed >> d) & 1U) || in_tree) {  // a tree's accelerations come from the forest
       } else if (!(divided[j] > 0)) {
-        // No mass: without hinges the node has no element either, which the model compiler
-        // refuses; with hinges it is a mechanism (DESIGN §7.1), held at zero. A spring on it
-        // makes the stable step zero, which is refused below.
+        // No mass: without hinges the node has no element and no point mass, which the model
+        // compiler refuses; with hinges it is a mechanism (DESIGN §7.1), held at zero. A spring
+        // on it makes the stable step zero, which is refused below.
         if (!kMayHaveHinges<S> || sz.hinges == 0) {
           return {InitError::kMassless, static_cast<int>(j)};
         } else {

@@ -20,7 +20,7 @@ enum class InitError : std::uint8_t {
   kBadHinge,             // a hinge with a bad node, frame, curve or stiffness (`where` = hinge)
   kRigidCycle,           // rigid hinge directions form a cycle (`where` = the closing hinge)
   kMechanism,            // an effective mass that cannot be inverted (`where` = hinge or node)
-  kStorageSizes,         // run-time storage bound for other sizes, or a model with no element
+  kStorageSizes,         // run-time storage bound for other sizes, or a model with no node
 };
 
 struct [[nodiscard]] InitStatus {
@@ -60,7 +60,7 @@ constexpr const char* to_string(InitError e) {
     case InitError::kMechanism:
       return "effective mass of a rigid tree cannot be inverted";
     case InitError::kStorageSizes:
-      return "storage bound for other sizes, or a model without elements";
+      return "storage bound for other sizes, or a model without nodes";
   }
   return "unknown";
 }

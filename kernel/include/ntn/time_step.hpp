@@ -65,7 +65,7 @@ struct StableStepReport {
   int governing_element = -1;  // element that sets omega_max
   double dt_cfl = 0;           // s, the seed's estimate min_e l / sqrt(E / rho) (S 9-10)
   int cfl_element = -1;        // element that sets dt_cfl
-  double dt_elements = 0;      // s, the elements' bound alone
+  double dt_elements = 0;      // s, the elements' bound alone (no element: 2 / alpha, or 1e300)
   double dt_hinges = 1e300;    // s, the hinges' springs' bound alone (1e300: no spring)
   int governing_hinge = -1;    // hinge with the largest share of the governing node's bound,
                                // or -1 when the elements' part is the larger
@@ -74,7 +74,8 @@ struct StableStepReport {
 };
 
 // The elements' bound alone: max_e omega_e and the damped step (dt_hinges stays 1e300), and the
-// seed's CFL estimate beside it.
+// seed's CFL estimate beside it. Without elements only alpha bounds it: 2 / alpha, 1e300 for
+// alpha = 0 (governing_element and cfl_element stay -1).
 StableStepReport stable_time_step(const SpecView& spec);
 
 // ---- The hinges' springs (DESIGN §6) --------------------------------------------------------

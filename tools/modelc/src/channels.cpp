@@ -84,15 +84,8 @@ void add_channels(Compilation& comp) {
       }
       case OutKind::kHinge: {
         os.kind = o.node_kind;
-        const auto it = comp.ids.hinges.find(o.hinge.id);
-        if (it == comp.ids.hinges.end()) {
-          L.error(o.hinge.at, "unknown hinge '" + o.hinge.id +
-                                  "' (hinges are named by their id, <member>.start and "
-                                  "<member>.end for releases, support.<node id> for supports "
-                                  "with axes)");
-          continue;
-        }
-        os.hinge = it->second;
+        os.hinge = comp.hinge_of(o.hinge);
+        if (os.hinge < 0) continue;  // unknown (reported here) or refused (reported there)
         const bool history = o.node_kind == OutputKind::kHingePlastic ||
                              o.node_kind == OutputKind::kHingeDissipated ||
                              o.node_kind == OutputKind::kHingeLevel;

@@ -75,6 +75,19 @@ int Compilation::ref(const std::map<std::string, int>& index, const IdAt& id,
   return -1;
 }
 
+int Compilation::hinge_of(const IdAt& name) {
+  const auto it = ids.hinges.find(name.id);
+  if (it != ids.hinges.end()) return it->second >= 0 ? it->second : -1;
+  L.error(name.at, "unknown hinge '" + name.id +
+                       "' (hinges are named by their id, <member>.start and <member>.end for "
+                       "releases, support.<node id> for supports with axes)");
+  return -1;
+}
+
+void Compilation::refuse_hinge(const std::string& name) {
+  ids.hinges.emplace(name, kRefusedHinge);
+}
+
 Where Compilation::node_at(int n) const {
   const auto i = static_cast<std::size_t>(n);
   if (i < p.nodes.size()) return p.nodes[i].at;

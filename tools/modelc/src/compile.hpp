@@ -54,10 +54,15 @@ namespace ntn::modelc::compile {
 // Index by id of each kind of thing the file names (resolve_ids).
 struct Ids {
   std::map<std::string, int> materials, sections, members, functions, curves;
-  std::map<std::string, int> hinges;  // explicit hinges, then the names of the hinges made for
-                                      // releases and supports with axes as they are added
-  std::map<long long, int> nodes;     // user node id -> node index
+  std::map<std::string, int> hinge_ids;  // explicit hinge id -> its index in SourceModel::hinges
+  // Hinge name -> its index in ModelDescription::hinges, set only when the hinge is added
+  // (add_hinge), so that no name leads to a hinge that was not built; kRefusedHinge for a hinge
+  // refused with an error (hinge_of).
+  std::map<std::string, int> hinges;
+  std::map<long long, int> nodes;  // user node id -> node index
 };
+
+inline constexpr int kRefusedHinge = -2;
 
 // A hinge made by a member-end release, waiting for the hinges stage (which adds explicit
 // hinges first).
@@ -107,6 +112,12 @@ struct Compilation {
   int node_of(const NodeRef& r, const Where& at);
   // The index of `id` in `index`, or -1 after an "unknown WHAT 'id'" error at the id.
   int ref(const std::map<std::string, int>& index, const IdAt& id, const std::string& what);
+  // The index in d.hinges of the hinge named `name`; -1 after an "unknown hinge" error at it,
+  // and -1 without one for a hinge that was refused (its error is the model's).
+  int hinge_of(const IdAt& name);
+  // A hinge that would be named `name` was refused with an error: a name that refers to it
+  // (hinge_of) adds none.
+  void refuse_hinge(const std::string& name);
   // The place of node n's id in the file (generated nodes: none, reported at 1:1).
   Where node_at(int n) const;
 };

@@ -37,8 +37,33 @@ void set_hinge_stiffness(Compilation& comp) {
     if (4.0 * e.E * std::max(e.Iy, e.Iz) / l > bending)
       bending = 4.0 * e.E * std::max(e.Iy, e.Iz) / l, bending_at = ei;
   }
+  // Without elements there is no default (0: no penalty spring, and no curve segment is a
+  // rigid branch, branch_slope_limit); penalty then needs the stiffness of each kind of
+  // direction it makes a spring of.
+  if (d.elements.empty() && s.hinge_method == HingeMethod::kPenalty) {
+    bool needs[2] = {false, false};
+    for (const HingeSpec& h : d.hinges) {
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        if (h.behaviour[k] == HingeBehaviour::kRigid ||
+            h.behaviour[k] == HingeBehaviour::kRigidPlastic)
+          needs[k / 3] = true;
+      }
+    }
+    const bool given[2] = {p.model.penalty_stiffness.has_value(),
+                           p.model.penalty_rotational_stiffness.has_value()};
+    if ((needs[0] && !given[0]) || (needs[1] && !given[1])) {
+      L.error(p.model.hinge_method_at,
+              std::string("hinge_method = \"penalty\" in a model without members needs ") +
+                  (needs[0] && !given[0] && needs[1] && !given[1]
+                       ? "model.penalty_stiffness and model.penalty_rotational_stiffness"
+                   : needs[0] && !given[0] ? "model.penalty_stiffness"
+                                           : "model.penalty_rotational_stiffness") +
+                  " for its rigid hinge directions: the default is 1e4 x the stiffest element");
+      return;
+    }
+  }
   // The defaults must be numbers too (they go into the header even without hinges).
-  for (int rotational = 0; rotational < 2; ++rotational) {
+  for (int rotational = 0; rotational < 2 && !d.elements.empty(); ++rotational) {
     const bool given = rotational == 0 ? p.model.penalty_stiffness && p.model.limit_stiffness
                                        : p.model.penalty_rotational_stiffness &&
                                              p.model.limit_rotational_stiffness;

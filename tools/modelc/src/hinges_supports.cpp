@@ -159,17 +159,18 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
   return ok;
 }
 
-// Adds a hinge with the places of its key and directions; a release or support with axes
-// whose name is also an explicit hinge's id is an error.
+// Adds a hinge with the places of its key and directions, and its name (the one place that
+// gives a name an index in d.hinges: Ids::hinges); a release or support with axes whose name is
+// also an explicit hinge's id is an error.
 void add_hinge(Compilation& comp, const HingeSpec& hs, const HingeInfo& info, const Where& at,
                const Behaviours* dirs) {
   DiagnosticSink& L = comp.L;
   const SourceModel& p = comp.p;
   ModelDescription& d = comp.d;
+  comp.ids.hinges.emplace(info.name, static_cast<int>(d.hinges.size()));  // a duplicate: the first
   if (info.origin != HingeOrigin::kExplicit) {
-    const auto [it, inserted] =
-        comp.ids.hinges.emplace(info.name, static_cast<int>(d.hinges.size()));
-    if (!inserted && it->second < static_cast<int>(p.hinges.size())) {
+    const auto it = comp.ids.hinge_ids.find(info.name);
+    if (it != comp.ids.hinge_ids.end()) {
       L.error(p.hinges[static_cast<std::size_t>(it->second)].id.at,
               "hinge id '" + info.name + "' is also the name of the " +
                   (info.origin == HingeOrigin::kRelease   ? "member-end release"
@@ -264,11 +265,17 @@ void add_hinges(Compilation& comp) {
       }
     }
     ok = set_dirs(comp, hs, h.dirs) && ok;
-    if (!ok) continue;
+    if (!ok) {
+      comp.refuse_hinge(h.id.id);
+      continue;
+    }
     add_hinge(comp, hs, {h.id.id, HingeOrigin::kExplicit, -1, 0}, h.nodes_at, &h.dirs);
   }
   for (PendingHinge& ph : comp.releases) {
-    if (!set_dirs(comp, ph.spec, *ph.dirs)) continue;
+    if (!set_dirs(comp, ph.spec, *ph.dirs)) {
+      comp.refuse_hinge(ph.info.name);
+      continue;
+    }
     MemberInfo& mi = d.members[static_cast<std::size_t>(ph.info.member)];
     (ph.info.end == 0 ? mi.start_hinge : mi.end_hinge) = static_cast<int>(d.hinges.size());
     add_hinge(comp, ph.spec, ph.info, ph.at, ph.dirs);
@@ -282,13 +289,18 @@ void add_supports(Compilation& comp) {
   std::map<int, int> support_of;  // node -> support index
   for (std::size_t i = 0; i < p.supports.size(); ++i) {
     const Support& sp = p.supports[i];
+    const std::string name = "support." + sp.node.text();  // with axes: a hinge of this name
     const int n = comp.node_of(sp.node, sp.at);
-    if (n < 0) continue;
+    if (n < 0) {
+      if (sp.axes) comp.refuse_hinge(name);
+      continue;
+    }
     const auto [it, inserted] = support_of.emplace(n, static_cast<int>(i));
     if (!inserted) {
       L.error(sp.at, "node " + sp.node.text() + " already has a support (line " +
                          std::to_string(p.supports[static_cast<std::size_t>(it->second)].at.line) +
                          ")");
+      if (sp.axes) comp.refuse_hinge(name);
       continue;
     }
     if (sp.axes) {
@@ -301,8 +313,7 @@ void add_supports(Compilation& comp) {
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         hs.behaviour[k] = ((sp.fixed >> k) & 1U) ? HingeBehaviour::kRigid : HingeBehaviour::kFree;
       }
-      add_hinge(comp, hs, {"support." + sp.node.text(), HingeOrigin::kSupport, -1, 0}, sp.axes_at,
-                nullptr);
+      add_hinge(comp, hs, {name, HingeOrigin::kSupport, -1, 0}, sp.axes_at, nullptr);
       continue;
     }
     d.nodes[static_cast<std::size_t>(n)].fixed = sp.fixed;
@@ -323,11 +334,16 @@ void add_point_masses(Compilation& comp) {
     if (n < 0) continue;
     if (pm.offset) {
       const std::array<double, 3>& e = *pm.offset;
+      const int nth = ++offsets_on[n];
+      const std::string name = "point mass at " + std::string(pm.node.point ? "" : "node ") +
+                               pm.node.text() + " (offset" +
+                               (nth > 1 ? " " + std::to_string(nth) : std::string()) + ")";
       if (d.settings.hinge_method == HingeMethod::kNtnPaper) {
         L.error(pm.offset_at,
                 "a point mass on an offset is an eccentric rigid hinge, which needs "
                 "hinge_method = \"ntn_exact\" or \"penalty\": the seed's algorithm "
                 "(\"ntn_paper\", S 17-37) has no eccentricity");
+        comp.refuse_hinge(name);
         continue;
       }
       const NodeSpec& at = d.nodes[static_cast<std::size_t>(n)];
@@ -349,12 +365,7 @@ void add_point_masses(Compilation& comp) {
         if (d.settings.hinge_method == HingeMethod::kPenalty && pm.inertia[k] == 0)
           hs.behaviour[3 + k] = HingeBehaviour::kFree;
       }
-      const int k = ++offsets_on[n];
-      add_hinge(comp, hs,
-                {"point mass at " + std::string(pm.node.point ? "" : "node ") + pm.node.text() +
-                     " (offset" + (k > 1 ? " " + std::to_string(k) : std::string()) + ")",
-                 HingeOrigin::kPointMass, -1, 0},
-                pm.offset_at, nullptr);
+      add_hinge(comp, hs, {name, HingeOrigin::kPointMass, -1, 0}, pm.offset_at, nullptr);
       continue;
     }
     auto& added = d.nodes[static_cast<std::size_t>(n)].added;

@@ -64,9 +64,12 @@ void mesh_members(Compilation& comp) {
     d.node_ids.push_back(static_cast<int>(n.id));
   }
 
-  if (p.members.empty()) {
+  // Members are optional (point masses on hinges are a model: an SDOF); with neither there is
+  // no mass anywhere. A node without mass in a free DOF is named by check_nodes_have_mass.
+  if (p.members.empty() && p.point_masses.empty()) {
     L.error_at_start("members",
-                     "the model has no members, so it has no mass and nothing to integrate");
+                     "the model has no members and no point masses, so it has no mass and nothing "
+                     "to integrate");
   }
 
   comp.member_index.assign(p.members.size(), -1);

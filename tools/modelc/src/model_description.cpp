@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "messages.hpp"
+
 namespace ntn::modelc {
 
 Sizes ModelDescription::sizes() const {
@@ -42,6 +44,19 @@ std::string ModelDescription::describe_node(int node) const {
              std::to_string(node) + ")";
   }
   return "model node " + std::to_string(node);
+}
+
+std::string ModelDescription::describe_stable_step(const StableStepReport& r) const {
+  if (r.governing_hinge >= 0 && r.hinge_direction >= 0 && r.hinge_direction < kDofsPerNode) {
+    return describe_hinge(r.governing_hinge) + ", direction " +
+           std::string(compile::kDofNames[static_cast<std::size_t>(r.hinge_direction)]) +
+           " (the spring with the largest share of the governing node's bound)";
+  }
+  if (r.governing_element >= 0) return describe_element(r.governing_element);
+  return settings.alpha > 0
+             ? "the damping alpha = " + compile::num(settings.alpha) +
+                   " 1/s alone (2 / alpha: no element and no hinge spring bounds it)"
+             : std::string("nothing (no element, hinge spring or damping bounds it)");
 }
 
 std::string ModelDescription::describe_hinge(int hinge) const {

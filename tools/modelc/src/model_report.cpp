@@ -301,8 +301,9 @@ std::string info_text(const ModelDescription& m) {
     }
     line("method", std::string(method_name(s.hinge_method)) + ", clamp " +
                        (s.clamp == ClampRule::kMomentum ? "momentum" : "paper (S 33)"));
-    const char* def = " (default: 1e4 x largest EA/l)";
-    const char* def_rot = " (default: 1e4 x largest 4EI/l)";
+    const bool members = z.elements > 0;  // without them no default (0)
+    const char* def = members ? " (default: 1e4 x largest EA/l)" : " (no members: no default)";
+    const char* def_rot = members ? " (default: 1e4 x largest 4EI/l)" : " (no members: no default)";
     line("", "penalty k " + f("%.4g", s.penalty_stiffness) + " N/m" +
                  (m.penalty_stiffness_given ? "" : def) + ", " +
                  f("%.4g", s.penalty_rotational_stiffness) + " N m/rad" +
@@ -316,28 +317,44 @@ std::string info_text(const ModelDescription& m) {
   const StableStepReport& st = m.stable;
   // The kernel's frame rule; a loaded model passes it (the compiler refuses the others).
   const Substeps substeps = frame_substeps(s.dt, s.frame_period);
+  const bool bounded = st.dt_stable < 1e300;  // 1e300: no element, hinge spring or damping
   line("dt", f("%.6g", s.dt) + " s, " +
                  (m.dt_auto ? std::string("auto (0.9 x stable, rounded down to fill a frame)")
                             : std::string("as given")) +
-                 ", dt / dt_stable = " + f("%.4g", s.dt / st.dt_stable));
-  line("stable dt", f("%.6g", st.dt_stable) +
-                        " s (element eigenvalue bound and hinge springs, with damping, "
-                        "omega_max = " +
-                        f("%.6g", st.omega_max) + " rad/s, f_max = " +
-                        f("%.6g", st.omega_max / (2.0 * std::numbers::pi)) + " Hz)");
-  if (st.governing_hinge >= 0) {
-    line("", "set by " + m.describe_hinge(st.governing_hinge) + ", direction " +
-                 kDofName[st.hinge_direction] +
-                 " (the spring with the largest share of the governing node's bound)");
+                 (bounded ? ", dt / dt_stable = " + f("%.4g", s.dt / st.dt_stable)
+                          : std::string(", the frame period")));
+  if (bounded) {
+    line("stable dt", f("%.6g", st.dt_stable) +
+                          " s (element eigenvalue bound and hinge springs, with damping, "
+                          "omega_max = " +
+                          f("%.6g", st.omega_max) +
+                          " rad/s, f_max = " + f("%.6g", st.omega_max / (2.0 * std::numbers::pi)) +
+                          " Hz" + (z.elements > 0 ? ")" : ": no elements)"));
   } else {
-    line("", "set by " + m.describe_element(st.governing_element));
+    line("stable dt", "none: nothing bounds it (no element, hinge spring or damping)");
   }
+  if (bounded) line("", "set by " + m.describe_stable_step(st));
   if (z.hinges > 0) {
     // The same model with each method (issue 3: the NTN / penalty ratio).
     const StableStepReport exact = stable_step_with(m, HingeMethod::kNtnExact);
     const StableStepReport pen = stable_step_with(m, HingeMethod::kPenalty);
     line("ntn_exact dt", f("%.6g", exact.dt_stable) + " s (rigid directions add no stiffness)");
-    if (pen.dt_stable > 0) {
+    // A model without elements has no default penalty stiffness (0): penalty cannot make its
+    // rigid directions springs unless the file gives it.
+    bool no_penalty_k = false;
+    for (const HingeSpec& h : m.hinges) {
+      for (std::size_t k = 0; k < kDofsPerNode; ++k) {
+        no_penalty_k = no_penalty_k || ((h.behaviour[k] == HingeBehaviour::kRigid ||
+                                         h.behaviour[k] == HingeBehaviour::kRigidPlastic) &&
+                                        !(penalty_stiffness(s, k) > 0));
+      }
+    }
+    if (no_penalty_k) {
+      line("penalty dt",
+           "none: no penalty stiffness (the default is 1e4 x the stiffest element, "
+           "and there is none; give model.penalty_stiffness and "
+           "penalty_rotational_stiffness)");
+    } else if (pen.dt_stable > 0) {
       std::string by = pen.governing_hinge >= 0 ? m.describe_hinge(pen.governing_hinge) +
                                                       ", direction " + kDofName[pen.hinge_direction]
                                                 : m.describe_element(pen.governing_element);
@@ -350,8 +367,9 @@ std::string info_text(const ModelDescription& m) {
            "on both nodes); ntn_exact / penalty = inf");
     }
   }
-  line("CFL (seed)",
-       f("%.6g", st.dt_cfl) + " s = l / sqrt(E / rho) at " + m.describe_element(st.cfl_element));
+  line("CFL (seed)", st.cfl_element < 0 ? std::string("none (no elements)")
+                                        : f("%.6g", st.dt_cfl) + " s = l / sqrt(E / rho) at " +
+                                              m.describe_element(st.cfl_element));
   line("substeps",
        (substeps.ok() ? std::to_string(substeps.count)
                       : f("%.6g", substeps.ratio) + " (" + to_string(substeps.error) + ")") +

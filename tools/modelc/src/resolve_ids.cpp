@@ -46,7 +46,7 @@ void resolve_ids(Compilation& comp) {
       L, p.outputs, [](const Output& x) -> const IdAt& { return x.name; }, "output name");
   comp.ids.curves = index_by_id(
       L, p.curves, [](const Curve& x) -> const IdAt& { return x.id; }, "curve id");
-  comp.ids.hinges = index_by_id(
+  comp.ids.hinge_ids = index_by_id(
       L, p.hinges, [](const HingeIn& x) -> const IdAt& { return x.id; }, "hinge id");
   std::map<long long, int>& node_index = comp.ids.nodes;
   for (std::size_t i = 0; i < p.nodes.size(); ++i) {

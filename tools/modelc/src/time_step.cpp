@@ -40,14 +40,7 @@ void choose_time_step(Compilation& comp) {
               "faster with the same plastic behaviour");
     }
   }
-  auto governing = [&](const StableStepReport& r) {
-    if (r.governing_hinge >= 0) {
-      return d.describe_hinge(r.governing_hinge) + ", direction " +
-             std::string(kDofNames[static_cast<std::size_t>(r.hinge_direction)]) +
-             " (the spring with the largest share of the governing node's bound)";
-    }
-    return d.describe_element(r.governing_element);
-  };
+  auto governing = [&](const StableStepReport& r) { return d.describe_stable_step(r); };
   if (!(d.stable.dt_stable > 0) || !std::isfinite(d.stable.dt_stable)) {
     // Where it showed: the hinge direction's value, or the governing element's member.
     const StableStepReport& st = d.stable;

@@ -156,6 +156,10 @@ struct ModelDescription {
   std::string describe_node(int node) const;
   // "hinge H1", "member-end release B1.start", "support with axes support.3".
   std::string describe_hinge(int hinge) const;
+  // What sets a stable step `r` of this model: "hinge H1, direction ry (the spring with ...)",
+  // "member C1, element 3 of 4 (model element 17)", or without elements the damping alpha, or
+  // nothing.
+  std::string describe_stable_step(const StableStepReport& r) const;
   // Counts of hinges by origin.
   int hinge_count(HingeOrigin origin) const;
 };
