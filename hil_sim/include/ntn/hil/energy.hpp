@@ -23,6 +23,7 @@
 // residual, the residual rounding.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -101,28 +102,53 @@ class EnergyBalance : public EnergyTotals {
   // Call after each step(): `s` holds u_{n+1}, v_{n+1/2}; `w` the step's P_n and F_n.
   void after_step(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
     const double half_dt = 0.5 * m.dt;
-    double ext = 0, in = 0, damp = 0, kin = 0;
-    for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
-      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
-        const std::size_t j = kDofsPerNode * n + d;
-        const double delta = half_dt * (s.v[j] + v_prev_[j]);
-        ext += delta * m.mass[j] * w.load_g[d];
-        in += delta * w.f[j];
-        damp += delta * m.alpha * m.mass[j] * v_prev_[j];
-        kin += 0.5 * m.mass[j] * s.v[j] * s.v[j];
-      }
-    }
+    double slots = 0;
     for (int k = 0; k < m.num_slots; ++k) {  // where P_n is not m g: the load slots
       const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
       const double delta = half_dt * (s.v[j] + v_prev_[j]);
-      ext +=
+      slots +=
           delta * (w.p_slot[static_cast<std::size_t>(k)] - m.mass[j] * w.load_g[j % kDofsPerNode]);
     }
-    if constexpr (kMayHaveHinges<S>) hinge_work(m, s, w);
+    if constexpr (kMayHaveHinges<S>) hinge_work(m, s, w);  // v_{n-1/2} still in v_prev_
+    // One pass over the DOFs, v_{n+1/2} kept for the next step in it. Each sum in kLanes partial
+    // sums (DOF j into partial j % kLanes, in DOF order), added in lane order at the end: a fixed
+    // order, so the same bits for every run, and no dependency chain through one accumulator.
+    constexpr std::size_t kLanes = 8, kBlock = 24;  // a block: 4 nodes, 3 x kLanes DOFs
+    double g[kBlock];
+    for (std::size_t l = 0; l < kBlock; ++l)
+      g[l] = w.load_g[l % kDofsPerNode];
+    double ext_l[kLanes] = {}, in_l[kLanes] = {}, damp_l[kLanes] = {}, kin_l[kLanes] = {};
+    const std::size_t dofs = m.dofs();
+    const double alpha = m.alpha;
+    const double* __restrict mass = m.mass.data();  // GCC's restrict: vp aliases none of them
+    const double* __restrict v = s.v.data();
+    const double* __restrict f = w.f.data();
+    double* __restrict vp = v_prev_.data();
+    // DOFs [j0, j0 + kLanes) into the partials, with the loads' pattern from gl.
+    const auto lanes = [&](std::size_t j0, const double* gl, std::size_t count) {
+      for (std::size_t l = 0; l < count; ++l) {
+        const std::size_t j = j0 + l;
+        const double delta = half_dt * (v[j] + vp[j]);
+        ext_l[l] += delta * mass[j] * gl[l];
+        in_l[l] += delta * f[j];
+        damp_l[l] += delta * alpha * mass[j] * vp[j];
+        kin_l[l] += 0.5 * mass[j] * v[j] * v[j];
+        vp[j] = v[j];
+      }
+    };
+    std::size_t j0 = 0;
+    for (; j0 + kBlock <= dofs; j0 += kBlock) {
+      for (std::size_t k = 0; k < kBlock; k += kLanes)
+        lanes(j0 + k, g + k, kLanes);
+    }
+    for (std::size_t k = 0; j0 + k < dofs; k += kLanes)
+      lanes(j0 + k, g + k, std::min(kLanes, dofs - j0 - k));
+    double ext = 0, in = 0, damp = 0, kin = 0;
+    for (std::size_t l = 0; l < kLanes; ++l)
+      ext += ext_l[l], in += in_l[l], damp += damp_l[l], kin += kin_l[l];
+    ext += slots;
     external_ += ext, internal_ += in, damping_ += damp;
     input_scale_ = std::fmax(input_scale_, std::fabs(external_));
-    for (std::size_t j = 0; j < v_prev_.size(); ++j)
-      v_prev_[j] = s.v[j];
     kinetic_ = kin;
   }
 
