@@ -17,24 +17,13 @@
 
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
+#include "support/temp_files.hpp"
 
 namespace modelc_no_members_test {
 
 using ntn::modelc::load_model_from_string;
 
-std::string read(const std::string& path) {
-  std::string text;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return text;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
-    text.append(buf, n);
-  std::fclose(f);
-  return text;
-}
-
-const std::string kSdof = read(NTN_CONFIG_DIR "/sdof.toml");
+const std::string kSdof = ntn_test::read_file(NTN_CONFIG_DIR "/sdof.toml");
 constexpr double kM = 1000.0, kK = 4.0e5, kC = 2.0e3;  // config/sdof.toml
 const std::string kDamped = "ux = { linear = 4.0e5, dashpot = 2.0e3 }";
 

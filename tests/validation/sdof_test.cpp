@@ -39,6 +39,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/run/loaded_model.hpp"
 #include "sdof_model.hpp"
+#include "support/temp_files.hpp"
 
 namespace sdof_test {
 
@@ -46,21 +47,9 @@ constexpr double kM = 1000.0, kK = 4.0e5;  // kg, N/m: config/sdof.toml
 const double kOmega = std::sqrt(kK / kM);  // 20 rad/s
 constexpr double kG = 9.80665;             // m/s^2 per g: the input's units
 
-std::string read(const std::string& path) {
-  std::string text;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return text;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
-    text.append(buf, n);
-  std::fclose(f);
-  return text;
-}
-
 // config/sdof.toml without the dashpot, and `tables` appended.
 std::string undamped(const std::string& tables = "") {
-  std::string t = read(NTN_CONFIG_DIR "/sdof.toml");
+  std::string t = ntn_test::read_file(NTN_CONFIG_DIR "/sdof.toml");
   const std::string damped = "ux = { linear = 4.0e5, dashpot = 2.0e3 }";
   const std::size_t at = t.find(damped);
   if (at == std::string::npos) return "";
@@ -190,7 +179,7 @@ ntn::InitWorkspace<sdof::kSizes> g_work;
 
 TEST(Sdof, CompiledStorageGivesTheRunTimeBits) {
   static_assert(sdof::kSizes.elements == 0 && sdof::kSizes.nodes == 1);
-  const auto rt = load(read(NTN_CONFIG_DIR "/sdof.toml"));
+  const auto rt = load(ntn_test::read_file(NTN_CONFIG_DIR "/sdof.toml"));
   ASSERT_NE(rt, nullptr);
   ASSERT_TRUE(ntn::init(sdof::kSpec, g_model, g_work).ok());
   ASSERT_EQ(g_model.dt, rt->model().dt);
