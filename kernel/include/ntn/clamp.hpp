@@ -473,12 +473,20 @@ void momentum_clamp(const Model<S>& m, State<S>& s, Scratch<S>& w) {
 
 // The stops stage of ntn_exact and penalty (ntn_paper's S 33 runs inside its S 27-37 pass): the
 // momentum-conserving clamp, or with clamp = "paper" the seed's S 33 alone (DESIGN §7.1).
+namespace detail {
+// Every stop direction's force (Scratch::stop_force) at zero, before a clamp adds its moves'.
+template <Sizes S>
+void clear_stop_forces(const Model<S>& m, Scratch<S>& w) {
+  for (int i = 0; i < m.num_branch_hinges; ++i)
+    w.stop_force[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])].fill(0.0);
+}
+}  // namespace detail
+
 // The stops' forces (Scratch::stop_force) start at zero: the clamp adds its moves' forces; S 33
 // scales displacements and reports none.
 template <Sizes S>
 void clamp_stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-  for (int i = 0; i < m.num_branch_hinges; ++i)
-    w.stop_force[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])].fill(0.0);
+  detail::clear_stop_forces(m, w);
   if (m.clamp == ClampRule::kMomentum) {
     detail::momentum_clamp(m, s, w);
   } else {
@@ -491,8 +499,7 @@ void clamp_stops(const Model<S>& m, State<S>& s, Scratch<S>& w) {
 // ClampWork weights).
 template <Sizes S>
 void clamp_start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
-  for (int i = 0; i < m.num_branch_hinges; ++i)
-    w.stop_force[static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)])].fill(0.0);
+  detail::clear_stop_forces(m, w);
   if (m.clamp == ClampRule::kMomentum) {
     detail::momentum_clamp(m, s, w);
   } else {
