@@ -124,7 +124,7 @@ inline constexpr double kMaxSteps = 1e12;
 // time), every frame's outputs as a CSV row (with the loop's flags under --flags).
 template <Sizes S>
 struct RunSink {
-  const Model<S>* model;
+  Model<S>* model;  // the books turn Model::books on (after_start)
   hil::OutputHash* hash;
   hil::CsvWriter* csv;
   bool flags = false;

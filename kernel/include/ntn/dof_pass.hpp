@@ -5,15 +5,18 @@
 //   v_{n+1/2} = v_{n-1/2} + dt a_n
 //   u_{n+1}   = u_n + dt v_{n+1/2}
 // the same operations in the same order as the unfused stages (residual_nodes(), then update()),
-// so their bits. Two paths compute it, as the element pass (element_pass.hpp): the scalar
-// reference below, and the SIMD path (kernel/src/dof_pass.cpp, Highway, run-time dispatch) with
-// the same operations in every lane; Model::element_pass picks both.
+// so their bits. With Model::books on, the pass also sums the step's energy books over its
+// DOFs (books.hpp) from the values it has in hand: v_{n-1/2}, a_n, v_{n+1/2}, P_n and F_n. Two
+// paths compute it, as the element pass (element_pass.hpp): the scalar reference below, and the
+// SIMD path (kernel/src/dof_pass.cpp, Highway, run-time dispatch) with the same operations in every
+// lane; Model::element_pass picks both.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 
+#include "ntn/books.hpp"
 #include "ntn/element_pass.hpp"
 #include "ntn/model_spec.hpp"
 #include "ntn/shared_table.hpp"
@@ -37,6 +40,7 @@ struct alignas(64) MassBlock {
 constexpr std::size_t mass_groups(std::size_t nodes) {
   return nodes / kMassGroup;  // whole groups; the last nodes % kMassGroup nodes have none
 }
+static_assert(kBookNodes % kMassGroup == 0, "a book group is whole mass groups (books.hpp)");
 
 // Fills the table from the DOF arrays of `nodes` nodes: entry[k] is group k's entry, shared with
 // an equal one by share_entry() (shared_table.hpp). Returns the number of entries; those past it
@@ -72,6 +76,13 @@ struct DofPassData {
   double* u;                       // in u_n, out u_{n+1}
   const MassBlock* mass_table;     // the same masses by group (fill_mass_table), for the SIMD path
   const std::int32_t* mass_entry;  // [group]: its entry of mass_table
+  // The energy books (books.hpp), when not null: each book group's sums, written when the pass
+  // finishes the group's last node (of `nodes`); the partials of the group being summed; the
+  // damping velocity's lead, v_d = v_{n-1/2} + lead a_n (0: the lagged damping).
+  GroupBooks* group_books = nullptr;
+  BookPartials* partials = nullptr;
+  std::size_t nodes = 0;
+  double damp_lead = 0;
 };
 
 namespace detail {
@@ -97,10 +108,43 @@ inline double dof_update(const DofPassData& x, std::size_t j, double p) {
   return advance(x.dt, a, x.v[j], x.u[j]);
 }
 
+// The same with the DOF's terms of the energy books into x.partials.
+inline double dof_update_booked(const DofPassData& x, std::size_t j, double p) {
+  const double v0 = x.v[j], m = x.mass[j];
+  const double a = acceleration(p, x.f[j], x.alpha, m, v0, x.inv_mass[j]);
+  x.a[j] = a;
+  const double v = advance(x.dt, a, x.v[j], x.u[j]);
+  const double am = x.alpha * m;
+  book_dof(*x.partials, j, 0.5 * x.dt, v0, v, p, x.f[j],
+           x.damp_lead != 0.0 ? am * (v0 + x.damp_lead * a) : am * v0, m);
+  return v;
+}
+
+// True when node n is the last of its book group among `nodes`.
+constexpr bool ends_book_group(std::size_t n, std::size_t nodes) {
+  return (n + 1) % kBookNodes == 0 || n + 1 == nodes;
+}
+
+// After node n with the books on: its group's sums out when n ends the group.
+inline void end_booked_node(const DofPassData& x, std::size_t n) {
+  if (ends_book_group(n, x.nodes)) flush_group(*x.partials, x.group_books[n / kBookNodes].data());
+}
+
 // Nodes [first, last), none with a load slot, by the scalar reference. Returns 1 when a velocity
 // is non-finite, else 0 (x - x is 0 for finite x only: no libm).
 inline double dof_pass_nodes_scalar(const DofPassData& x, std::size_t first, std::size_t last) {
   double bad = 0;
+  if (x.group_books != nullptr) {
+    for (std::size_t n = first; n < last; ++n) {
+      for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+        const std::size_t j = kDofsPerNode * n + d;
+        const double v = dof_update_booked(x, j, x.mass[j] * x.g[d]);
+        bad = v - v == 0.0 ? bad : 1.0;
+      }
+      end_booked_node(x, n);
+    }
+    return bad;
+  }
   for (std::size_t n = first; n < last; ++n) {
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {
       const std::size_t j = kDofsPerNode * n + d;

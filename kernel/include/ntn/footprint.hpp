@@ -96,6 +96,7 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::inv_dt);
   v(&M::substeps);
   v(&M::element_pass);
+  v(&M::books);
 }
 
 template <class V>
@@ -146,6 +147,8 @@ constexpr void scratch_members(const Sizes& s, V&& v) {
   v(&M::slip_force, s.hystereses);
   v(&M::slip_normal, s.hystereses);
   v(&M::stop_force, s.hinges);
+  v(&M::group_books, book_groups(s.nodes));
+  v(&M::books);
   v(&M::clamp);  // a ClampWork: clamp_work_members
   v(&M::ground);
   v(&M::time);

@@ -536,6 +536,10 @@ template <Sizes S>
   slip_outputs(m, s, w);  // the slip directions' forces at t_n and states into their channels
   constraint_projection(m, s, w);  // constraint projection: S 27-37, §7.1
   constraint_outputs(m, s, w);     // outputs the constraint stages change: a_n, contact forces
+  if (m.books) {                   // the energy books over the DOFs (books.hpp)
+    if (!fused) book_dofs(m, s, w);
+    w.books = books_total(w.group_books.data(), book_groups(m.sizes.nodes));
+  }
   ++s.tick;
   if (!finite) {
     s.faults |= kFaultDiverged;

@@ -126,6 +126,10 @@ struct Model : SizesOf<S> {
   // The element pass's path: the SIMD one where the build has it (the same bits as the scalar
   // reference, element_pass.hpp). Not part of the model file: a driver or a test may switch it.
   ElementPass element_pass = ElementPass::kSimd;
+  // The step's energy books over the DOFs into Scratch::books (books.hpp): off unless a driver
+  // asks for them (hil::EnergyBalance::begin turns them on); the state's bits are the same
+  // either way.
+  bool books = false;
 
   std::size_t dofs() const { return kDofsPerNode * this->sizes.nodes; }  // kDofs, in any storage
 

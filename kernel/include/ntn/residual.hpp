@@ -82,17 +82,24 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
 template <Sizes S>
 bool residual_update(const Model<S>& m, State<S>& s, Scratch<S>& w, std::size_t first,
                      std::size_t last) {
-  const DofPassData x{m.mass.data(),
-                      m.inv_mass.data(),
-                      w.f.data(),
-                      w.load_g.data(),
-                      m.alpha,
-                      m.dt,
-                      w.a.data(),
-                      s.v.data(),
-                      s.u.data(),
-                      m.mass_table.data(),
-                      m.mass_entry.data()};
+  DofPassData x{m.mass.data(),
+                m.inv_mass.data(),
+                w.f.data(),
+                w.load_g.data(),
+                m.alpha,
+                m.dt,
+                w.a.data(),
+                s.v.data(),
+                s.u.data(),
+                m.mass_table.data(),
+                m.mass_entry.data()};
+  BookPartials partials;
+  if (m.books) {
+    x.group_books = w.group_books.data();
+    x.partials = &partials;
+    x.nodes = m.sizes.nodes;
+    x.damp_lead = 0.0;
+  }
   double bad = 0;
   int k = 0;  // the first slot at or after node `first`
   while (k < m.num_slots &&
@@ -110,12 +117,36 @@ bool residual_update(const Model<S>& m, State<S>& s, Scratch<S>& w, std::size_t 
       double p = m.mass[j] * w.load_g[d];
       if (k < m.num_slots && static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) == j)
         p = w.p_slot[static_cast<std::size_t>(k++)];
-      const double v = dof_update(x, j, p);
+      const double v = m.books ? dof_update_booked(x, j, p) : dof_update(x, j, p);
       bad = v - v == 0.0 ? bad : 1.0;
     }
+    if (m.books) end_booked_node(x, loaded);
     n = loaded + 1;
   }
   return bad == 0;
+}
+
+// A model with hinges, with Model::books on: the energy books' sums over every DOF after the
+// constraint stages (books.hpp), from the v_{n+1/2} and a_n they left (v_{n-1/2} = v_{n+1/2} -
+// dt a_n), DOF by DOF and group by group as the DOF pass sums them.
+template <Sizes S>
+void book_dofs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
+  BookPartials b;
+  const double dt = m.dt, half_dt = 0.5 * m.dt, lead = 0.0;
+  int k = 0;  // the next load slot, by DOF
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
+    for (std::size_t d = 0; d < kDofsPerNode; ++d) {
+      const std::size_t j = kDofsPerNode * n + d;
+      double p = m.mass[j] * w.load_g[d];
+      if (k < m.num_slots && static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]) == j)
+        p = w.p_slot[static_cast<std::size_t>(k++)];
+      const double v = s.v[j], a = w.a[j], mass = m.mass[j];
+      const double v0 = v - dt * a;
+      const double am = m.alpha * mass;
+      book_dof(b, j, half_dt, v0, v, p, w.f[j], lead != 0.0 ? am * (v0 + lead * a) : am * v0, mass);
+    }
+    if (ends_book_group(n, m.sizes.nodes)) flush_group(b, w.group_books[n / kBookNodes].data());
+  }
 }
 
 // a_n at DOF j of a model without hinges, as residual_update() will compute it: the outputs read

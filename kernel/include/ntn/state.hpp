@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 
+#include "ntn/dof_pass.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
@@ -131,6 +132,11 @@ struct Scratch : SizesOf<S> {
   // (a move du = -f dt^2 M_c^-1 b). Written by the stops stage (0 where no stop acts), read by
   // the hinge-force and reaction outputs after it.
   Array<std::array<double, kDofsPerNode>, S, S.hinges> stop_force{};
+  // The energy books (books.hpp, Model::books on): each book group's sums, written by the DOF
+  // pass (a model without hinges) or the books stage after the constraint stages, and the step's
+  // totals from them, written last in the step and read by the caller.
+  Array<GroupBooks, S, book_groups(S.nodes)> group_books{};
+  StepBooks books{};
   ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
   std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
   double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller

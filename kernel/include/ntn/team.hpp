@@ -106,9 +106,12 @@ template <Sizes S>
   t.node_start[m.sizes.nodes] = static_cast<std::int32_t>(2 * m.sizes.elements);
   const auto blocks = static_cast<std::int64_t>(beam_blocks(m.sizes.elements));
   const auto nodes = static_cast<std::int64_t>(m.sizes.nodes);
+  constexpr auto kGroup = static_cast<std::int64_t>(kBookNodes);
   for (int k = 0; k <= size; ++k) {
     t.block_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(blocks * k / size);
-    t.node_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(nodes * k / size);
+    // whole book groups (books.hpp), so that each group's energy books are one worker's
+    const std::int64_t split = k == size ? nodes : nodes * k / size / kGroup * kGroup;
+    t.node_split[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(split);
   }
   // Interior nodes: the first and the last of their elements (in element order) are in the same
   // worker's blocks, so all are.

@@ -28,9 +28,11 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per node: 6 DOFs x 9 per-DOF double arrays (Model: mass, inv_mass, damping, u0, v0; State:
   // u, v; Scratch: f, a), plus Model::fixed (1 byte) and Model::supported_nodes (4 bytes), and
   // its share of the mass table's capacity (Model::mass_table, mass_entry: one entry per group of
-  // kMassGroup nodes).
+  // kMassGroup nodes) and of the energy books' group sums (Scratch::group_books, one per
+  // kBookNodes nodes).
   f.per_node = kDofsPerNode * 9 * sizeof(double) + sizeof(std::uint8_t) + sizeof(std::int32_t) +
-               (sizeof(MassBlock) + sizeof(std::int32_t)) / kMassGroup;
+               (sizeof(MassBlock) + sizeof(std::int32_t)) / kMassGroup +
+               sizeof(GroupBooks) / kBookNodes;
   // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
   // of hinges with springs, with branches, of projected edges, of the trees' stops and with slip
   // directions, a tree slot (a forest has at most one tree per hinge), its clamp check mark and

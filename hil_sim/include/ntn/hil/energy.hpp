@@ -20,7 +20,9 @@
 //   impacts     the stops' clamp forces' work: what a stop takes from a body it stops
 //   fracture    breaking springs' work less what they store, and rigid failure directions' slide
 // and external = kinetic + elastic + viscous + hysteretic + friction + impacts + fracture +
-// residual, the residual rounding.
+// residual, the residual rounding. The sums over every DOF (P, F, alpha M, the kinetic energy)
+// are the kernel's, made in the step's own passes (Model::books, books.hpp); the hinges' shares
+// are added here, hinge by hinge, with v_{n-1/2} = v_{n+1/2} - dt a_n.
 #pragma once
 
 #include <algorithm>
@@ -81,16 +83,14 @@ class EnergyTotals {
 template <Sizes S>
 class EnergyBalance : public EnergyTotals {
  public:
-  // Room for v_{-1/2} and a DOF-sized work array, so that begin() and the steps allocate
-  // nothing (call before the run).
-  void reserve(std::size_t dofs) {
-    v_prev_.reserve(dofs);
-    work_.reserve(dofs);
-  }
+  // Room for a DOF-sized work array (the strain energy under beta > 0), so that begin() and
+  // the steps allocate nothing (call before the run).
+  void reserve(std::size_t dofs) { work_.reserve(dofs); }
   EnergyTotals numbers() const { return *this; }
-  // Call after start(): takes v_{-1/2} and the kinetic energy at the start.
-  void begin(const Model<S>& m, const State<S>& s) {
-    v_prev_.assign(s.v.begin(), s.v.end());
+  // Call after start(): turns the kernel's books on (Model::books: the step's sums over the DOFs,
+  // books.hpp) and takes the kinetic energy at the start.
+  void begin(Model<S>& m, const State<S>& s) {
+    m.books = true;
     work_.assign(s.v.size(), 0.0);
     kinetic0_ = kinetic_ = kinetic_energy(m, s);
     external_ = internal_ = damping_ = 0;
@@ -99,57 +99,13 @@ class EnergyBalance : public EnergyTotals {
     // u_{-1} = u_0 - dt v_{-1/2}: the staggered strain energy 1/2 u_{-1}^T K u_0.
     elements0_ = m.beta > 0 ? element_energy(m, s) : 0.0;
   }
-  // Call after each step(): `s` holds u_{n+1}, v_{n+1/2}; `w` the step's P_n and F_n.
+  // Call after each step(): `s` holds u_{n+1}, v_{n+1/2}; `w` the step's P_n, F_n, a_n and its
+  // books over the DOFs (Scratch::books).
   void after_step(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
-    const double half_dt = 0.5 * m.dt;
-    double slots = 0;
-    for (int k = 0; k < m.num_slots; ++k) {  // where P_n is not m g: the load slots
-      const auto j = static_cast<std::size_t>(m.slot_dof[static_cast<std::size_t>(k)]);
-      const double delta = half_dt * (s.v[j] + v_prev_[j]);
-      slots +=
-          delta * (w.p_slot[static_cast<std::size_t>(k)] - m.mass[j] * w.load_g[j % kDofsPerNode]);
-    }
-    if constexpr (kMayHaveHinges<S>) hinge_work(m, s, w);  // v_{n-1/2} still in v_prev_
-    // One pass over the DOFs, v_{n+1/2} kept for the next step in it. Each sum in kLanes partial
-    // sums (DOF j into partial j % kLanes, in DOF order), added in lane order at the end: a fixed
-    // order, so the same bits for every run, and no dependency chain through one accumulator.
-    constexpr std::size_t kLanes = 8, kBlock = 24;  // a block: 4 nodes, 3 x kLanes DOFs
-    double g[kBlock];
-    for (std::size_t l = 0; l < kBlock; ++l)
-      g[l] = w.load_g[l % kDofsPerNode];
-    double ext_l[kLanes] = {}, in_l[kLanes] = {}, damp_l[kLanes] = {}, kin_l[kLanes] = {};
-    const std::size_t dofs = m.dofs();
-    const double alpha = m.alpha;
-    const double* __restrict mass = m.mass.data();  // GCC's restrict: vp aliases none of them
-    const double* __restrict v = s.v.data();
-    const double* __restrict f = w.f.data();
-    double* __restrict vp = v_prev_.data();
-    // DOFs [j0, j0 + kLanes) into the partials, with the loads' pattern from gl.
-    const auto lanes = [&](std::size_t j0, const double* gl, std::size_t count) {
-      for (std::size_t l = 0; l < count; ++l) {
-        const std::size_t j = j0 + l;
-        const double delta = half_dt * (v[j] + vp[j]);
-        ext_l[l] += delta * mass[j] * gl[l];
-        in_l[l] += delta * f[j];
-        damp_l[l] += delta * alpha * mass[j] * vp[j];
-        kin_l[l] += 0.5 * mass[j] * v[j] * v[j];
-        vp[j] = v[j];
-      }
-    };
-    std::size_t j0 = 0;
-    for (; j0 + kBlock <= dofs; j0 += kBlock) {
-      for (std::size_t k = 0; k < kBlock; k += kLanes)
-        lanes(j0 + k, g + k, kLanes);
-    }
-    for (std::size_t k = 0; j0 + k < dofs; k += kLanes)
-      lanes(j0 + k, g + k, std::min(kLanes, dofs - j0 - k));
-    double ext = 0, in = 0, damp = 0, kin = 0;
-    for (std::size_t l = 0; l < kLanes; ++l)
-      ext += ext_l[l], in += in_l[l], damp += damp_l[l], kin += kin_l[l];
-    ext += slots;
-    external_ += ext, internal_ += in, damping_ += damp;
+    if constexpr (kMayHaveHinges<S>) hinge_work(m, s, w);
+    external_ += w.books.external, internal_ += w.books.internal, damping_ += w.books.damping;
     input_scale_ = std::fmax(input_scale_, std::fabs(external_));
-    kinetic_ = kin;
+    kinetic_ = w.books.kinetic;
   }
 
   // The accounts now (the header's list), from the totals and the state after the last step.
@@ -181,15 +137,22 @@ class EnergyBalance : public EnergyTotals {
   }
 
  private:
+  // v_{n-1/2} at DOF j after a step: v_{n+1/2} - dt a_n, the a_n the step ended with (every
+  // force of the step in it).
+  static double v_before(const Model<S>& m, const State<S>& s, const Scratch<S>& w, std::size_t j) {
+    return s.v[j] - m.dt * w.a[j];
+  }
+
   // Delta_n at the six DOFs of `node` (zero for the ground).
-  void node_delta(const Model<S>& m, const State<S>& s, int node, double* delta) const {
+  static void node_delta(const Model<S>& m, const State<S>& s, const Scratch<S>& w, int node,
+                         double* delta) {
     for (std::size_t c = 0; c < kDofsPerNode; ++c) {
       if (node == kGround) {
         delta[c] = 0;
         continue;
       }
       const auto j = static_cast<std::size_t>(kDofsPerNode * node) + c;
-      delta[c] = 0.5 * m.dt * (s.v[j] + v_prev_[j]);
+      delta[c] = 0.5 * m.dt * (s.v[j] + v_before(m, s, w, j));
     }
   }
 
@@ -198,8 +161,10 @@ class EnergyBalance : public EnergyTotals {
     hinge_relative(h, x1, h.node2 == kGround ? nullptr : x2, d);
   }
 
-  // u_n = u_{n+1} - dt v_{n+1/2} and v_{n-1/2} at the six DOFs of `node`.
-  void node_before(const Model<S>& m, const State<S>& s, int node, double* u, double* v) const {
+  // u_n = u_{n+1} - dt v_{n+1/2} and v_{n-1/2} at the six DOFs of `node` (v unused without a
+  // step's scratch: w null).
+  static void node_before(const Model<S>& m, const State<S>& s, const Scratch<S>* w, int node,
+                          double* u, double* v) {
     for (std::size_t c = 0; c < kDofsPerNode; ++c) {
       if (node == kGround) {
         u[c] = v[c] = 0;
@@ -207,7 +172,7 @@ class EnergyBalance : public EnergyTotals {
       }
       const auto j = static_cast<std::size_t>(kDofsPerNode * node) + c;
       u[c] = s.u[j] - m.dt * s.v[j];
-      v[c] = v_prev_[j];
+      v[c] = w != nullptr ? v_before(m, s, *w, j) : 0.0;
     }
   }
 
@@ -219,11 +184,11 @@ class EnergyBalance : public EnergyTotals {
     for (int i = 0; i < m.num_spring_hinges; ++i) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
-      node_delta(m, s, h.node1, d1);
-      node_delta(m, s, h.node2, d2);
+      node_delta(m, s, w, h.node1, d1);
+      node_delta(m, s, w, h.node2, d2);
       relative(h, d1, d2, bd);
-      node_before(m, s, h.node1, u1, v1);
-      node_before(m, s, h.node2, u2, v2);
+      node_before(m, s, &w, h.node1, u1, v1);
+      node_before(m, s, &w, h.node2, u2, v2);
       relative(h, u1, u2, d);
       relative(h, v1, v2, d_dot);
       hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
@@ -247,8 +212,8 @@ class EnergyBalance : public EnergyTotals {
       for (int i = 0; i < m.num_slip_hinges; ++i) {
         const HingeData& h =
             m.hinges[static_cast<std::size_t>(m.slip_hinges[static_cast<std::size_t>(i)])];
-        node_delta(m, s, h.node1, d1);
-        node_delta(m, s, h.node2, d2);
+        node_delta(m, s, w, h.node1, d1);
+        node_delta(m, s, w, h.node2, d2);
         relative(h, d1, d2, bd);
         for (std::size_t k = 0; k < kDofsPerNode; ++k) {
           if (!((h.slip >> k) & 1U)) continue;
@@ -265,8 +230,8 @@ class EnergyBalance : public EnergyTotals {
     for (int i = 0; i < m.num_branch_hinges; ++i) {
       const auto hi = static_cast<std::size_t>(m.branch_hinges[static_cast<std::size_t>(i)]);
       const HingeData& h = m.hinges[hi];
-      node_delta(m, s, h.node1, d1);
-      node_delta(m, s, h.node2, d2);
+      node_delta(m, s, w, h.node1, d1);
+      node_delta(m, s, w, h.node2, d2);
       relative(h, d1, d2, bd);
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if ((h.branches >> k) & 1U) impacts_ += w.stop_force[hi][k] * bd[k];
@@ -284,8 +249,8 @@ class EnergyBalance : public EnergyTotals {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
       if (h.plastic == 0) continue;
-      node_before(m, s, h.node1, u1, v1);
-      node_before(m, s, h.node2, u2, v2);
+      node_before(m, s, nullptr, h.node1, u1, v1);
+      node_before(m, s, nullptr, h.node2, u2, v2);
       relative(h, u1, u2, before);
       relative(
           h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
@@ -316,7 +281,6 @@ class EnergyBalance : public EnergyTotals {
     return e;
   }
 
-  std::vector<double> v_prev_;
   std::vector<double> work_;
 };
 
