@@ -113,6 +113,42 @@ def test_run_summary_of_a_yielding_frame(el_centro):
         assert p["abs"] >= np.max(np.abs(r["outputs"][name]))
 
 
+ENERGY_CHANNELS = ("external", "kinetic", "elastic", "viscous", "hysteretic", "friction",
+                   "impacts", "fracture", "residual")
+
+
+def test_energy_channels_every_frame(el_centro, tmp_path):
+    # The books as channels: every frame's accounts, the last frame's the summary's (the same
+    # state: bit for bit), each frame's closing (external = the others + residual, the residual
+    # rounding), and ntn-run --energy writes the same values as CSV columns, without changing
+    # the output hash.
+    path = os.path.join(CONFIG, "portal_plastic.toml")
+    model = ntnrt.load(path)
+    r = model.run(inputs={"ag_x": el_centro}, duration=10.0)
+    e = r["energy"]
+    assert tuple(e.keys()) == ENERGY_CHANNELS
+    assert all(len(e[k]) == len(r["time"]) for k in ENERGY_CHANNELS)
+    end = r["summary"]["energy_J"]
+    assert e["external"][-1] == end["external"] and e["kinetic"][-1] == end["kinetic_change"]
+    assert e["hysteretic"][-1] == end["hysteretic"] and e["residual"][-1] == end["residual"]
+    scale = np.maximum.accumulate(np.abs(e["external"]))
+    assert np.all(np.abs(e["residual"]) <= 1e-10 * np.maximum(scale, 1.0))
+    others = sum(e[k] for k in ENERGY_CHANNELS[1:-1])
+    assert np.all(np.abs(e["external"] - others - e["residual"]) <= 1e-12 * np.maximum(scale, 1.0))
+    assert e["hysteretic"][-1] > 0 and e["viscous"][-1] > 0
+    csv = str(tmp_path / "energy.csv")
+    args = [NTN_RUN, path, "--input", "ag_x=" + EL_CENTRO, "--duration", "10"]
+    with_energy = cli_hash(args + ["--energy", "--out", csv])
+    assert with_energy == cli_hash(args) == r["hash"]
+    with open(csv) as f:
+        header = f.readline().strip().split(",")
+    table = np.loadtxt(csv, delimiter=",", skiprows=1)
+    names = ["energy_" + k + "[J]" for k in ENERGY_CHANNELS]
+    assert header[-len(names):] == names
+    for c, k in enumerate(ENERGY_CHANNELS):
+        assert np.array_equal(table[:, len(header) - len(names) + c], e[k]), k
+
+
 def test_modes_against_the_cantilever_closed_form():
     model = ntnrt.load(os.path.join(CONFIG, "cantilever.toml"))
     m = model.modes(6)

@@ -218,8 +218,9 @@ class PyModel {
     request.steps = static_cast<std::int64_t>(wanted);
     request.sampling = *sampling;
     request.threads = threads;
-    std::vector<double> frames;
+    std::vector<double> frames, energy_frames;
     request.frames = &frames;
+    request.energy_frames = &energy_frames;
     ntn::run::RunResult r;
     {
       py::gil_scoped_release unlocked;  // the loop runs in C++
@@ -229,7 +230,8 @@ class PyModel {
     started_ = true;  // the state is where the run ended: step() continues from it
 
     const std::size_t nout = z.outputs;
-    const std::size_t nframes = nout > 0 ? frames.size() / nout : 0;
+    // every frame has its energy accounts (a model may have no outputs)
+    const std::size_t nframes = energy_frames.size() / ntn::hil::kEnergyChannels.size();
     py::dict out;
     Array time(static_cast<py::ssize_t>(nframes));
     for (std::size_t k = 0; k < nframes; ++k)
@@ -243,6 +245,15 @@ class PyModel {
       channels[py::str(d().output_names[c])] = a;
     }
     out["outputs"] = channels;
+    py::dict energy;  // the energy books by mechanism, J, every frame after its last step
+    const std::size_t na = ntn::hil::kEnergyChannels.size();
+    for (std::size_t c = 0; c < na; ++c) {
+      Array a(static_cast<py::ssize_t>(nframes));
+      for (std::size_t k = 0; k < nframes; ++k)
+        a.mutable_data()[k] = energy_frames[k * na + c];
+      energy[py::str(std::string(ntn::hil::kEnergyChannels[c]))] = a;
+    }
+    out["energy"] = energy;
     out["hash"] = std::string(r.hash);
     out["steps"] = r.steps;
     out["diverged"] = r.diverged;

@@ -46,6 +46,7 @@ struct RunOptions {
   bool flags = false;
   std::string element_pass = "simd";
   int threads = 1;
+  bool energy = false;
 };
 
 inline void add_options(ntn::cli::App& app, RunOptions& o) {
@@ -73,6 +74,11 @@ inline void add_options(ntn::cli::App& app, RunOptions& o) {
   app.add_flag("--flags", flags,
                "add the loop's flags column to the CSV (input gate, alarm, diverged bits), as "
                "ntn-hil writes it");
+  app.add_flag("--energy", o.energy,
+               "add the energy books as channels: CSV columns energy_external, energy_kinetic, "
+               "energy_elastic, energy_viscous, energy_hysteretic, energy_friction, "
+               "energy_impacts, energy_fracture, energy_residual [J] after the outputs, each "
+               "frame's after its last step");
   app.add_option("--summary-json", json_path, "also write the summary as JSON");
   app.add_flag("-q,--quiet", quiet, "print only errors and the output hash");
   app.add_option("--element-pass", element_pass,
@@ -132,8 +138,12 @@ struct RunSink {
   std::vector<Peak> peaks;
   std::vector<double> last;  // the channels at the last step (residual drifts)
   std::int64_t steps = 0;
-  hil::EnergyBalance<S> energy;  // the run's work-energy identity (hil/energy.hpp)
-  void after_start(const State<S>& s, const Scratch<S>&) { energy.begin(*model, s); }
+  hil::EnergyBalance<S> energy;     // the run's work-energy identity (hil/energy.hpp)
+  const State<S>* state = nullptr;  // the loop's state (after_start)
+  void after_start(const State<S>& s, const Scratch<S>&) {
+    energy.begin(*model, s);
+    state = &s;
+  }
   void after_step(const State<S>& s, const Scratch<S>& w) {
     ++steps;
     energy.after_step(*model, s, w);
@@ -145,13 +155,30 @@ struct RunSink {
     }
   }
   std::vector<double>* frames = nullptr;  // every frame's outputs appended (reserved)
+  // The energy accounts as channels after the outputs (kEnergyChannels): every frame's
+  // appended to energy_frames (reserved), and in the CSV rows with csv_energy.
+  std::vector<double>* energy_frames = nullptr;
+  bool csv_energy = false;
+  std::vector<double> row;  // a CSV row: the outputs, then the accounts (reserved)
   void frame_outputs(std::int64_t k, std::span<const double> v, std::uint16_t f) {
     if (frames != nullptr) frames->insert(frames->end(), v.begin(), v.end());
-    if (csv == nullptr || !csv->is_open()) return;
+    const bool to_csv = csv != nullptr && csv->is_open();
+    std::span<const double> values = v;
+    if (energy_frames != nullptr || (to_csv && csv_energy)) {
+      const auto accounts = energy.accounts(*model, *state).channels();
+      if (energy_frames != nullptr)
+        energy_frames->insert(energy_frames->end(), accounts.begin(), accounts.end());
+      if (csv_energy) {
+        row.assign(v.begin(), v.end());
+        row.insert(row.end(), accounts.begin(), accounts.end());
+        values = row;
+      }
+    }
+    if (!to_csv) return;
     if (flags) {
-      csv->row(static_cast<double>(k) * period, v, f);
+      csv->row(static_cast<double>(k) * period, values, f);
     } else {
-      csv->row(static_cast<double>(k) * period, v);
+      csv->row(static_cast<double>(k) * period, values);
     }
   }
 };
@@ -167,6 +194,10 @@ struct RunRequest {
   hil::CsvWriter* csv = nullptr;          // every frame's outputs as a row (opened, header written)
   bool csv_flags = false;                 // with the loop's flags column
   std::vector<double>* frames = nullptr;  // every frame's outputs appended (reserved here)
+  // Every frame's energy accounts appended (kEnergyChannels, after the frame's last step;
+  // reserved here), and with csv_energy in the CSV rows after the outputs.
+  std::vector<double>* energy_frames = nullptr;
+  bool csv_energy = false;
 };
 
 // What a run gives: the loop's result, the output hash (every output of every step, then the
@@ -227,10 +258,19 @@ RunResult simulate(RunStorage<S> store, const ModelSpec<S>& spec, const ModelInf
                           std::vector<double>(z.outputs),
                           0,
                           {},
-                          request.frames};
+                          nullptr,
+                          request.frames,
+                          request.energy_frames,
+                          request.csv_energy,
+                          {}};
   if (request.frames != nullptr)
     request.frames->reserve(request.frames->size() +
                             static_cast<std::size_t>(config.frames) * z.outputs);
+  if (request.energy_frames != nullptr)
+    request.energy_frames->reserve(request.energy_frames->size() +
+                                   static_cast<std::size_t>(config.frames) *
+                                       hil::kEnergyChannels.size());
+  sink.row.reserve(z.outputs + hil::kEnergyChannels.size());
   sink.energy.reserve(store.model.dofs());
   hil::VirtualClock clock;
   hil::FrameTimes times;  // not kept: no latency on the virtual clock
@@ -365,8 +405,18 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
                  csv.error().c_str());
     return 2;
   }
-  csv.header(info.output_names, info.output_units, flags);
+  std::vector<std::string_view> names(info.output_names.begin(), info.output_names.end());
+  std::vector<std::string_view> units(info.output_units.begin(), info.output_units.end());
+  std::vector<std::string> energy_names;
+  if (opt.energy) {
+    for (const std::string_view a : ntn::hil::kEnergyChannels)
+      energy_names.push_back("energy_" + std::string(a));
+    for (const std::string& a : energy_names)
+      names.push_back(a), units.push_back("J");
+  }
+  csv.header(names, units, flags);
   RunRequest request;
+  request.csv_energy = opt.energy;
   request.steps = steps;
   request.sampling = sampling;
   request.threads = threads;

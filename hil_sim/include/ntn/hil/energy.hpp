@@ -26,14 +26,22 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <string_view>
 #include <vector>
 
 #include "ntn/hinge.hpp"
 #include "ntn/kernel.hpp"
 
 namespace ntn::hil {
+
+// The accounts as channels (EnergyAccounts::channels), in this order: what ntn-run --energy
+// names its CSV columns `energy_<name>` and Python's run() its "energy" arrays.
+inline constexpr std::array<std::string_view, 9> kEnergyChannels = {
+    "external", "kinetic", "elastic",  "viscous", "hysteretic",
+    "friction", "impacts", "fracture", "residual"};
 
 // One account per mechanism, J (the header's list).
 struct EnergyAccounts {
@@ -49,6 +57,10 @@ struct EnergyAccounts {
   double input_scale = 0;  // the largest |external| reached: the residual's scale
   double relative_residual() const {
     return input_scale > 0 ? std::fabs(residual) / input_scale : 0.0;
+  }
+  // The accounts in kEnergyChannels' order.
+  std::array<double, kEnergyChannels.size()> channels() const {
+    return {external, kinetic, elastic, viscous, hysteretic, friction, impacts, fracture, residual};
   }
 };
 
