@@ -5,7 +5,7 @@
 # -DCONFIG=config/, -DRECORD=the record, -DOUT=a folder.
 file(MAKE_DIRECTORY ${OUT})
 set(models frame3d portal_plastic portal_slip)
-set(central_hashes CENTRAL_FRAME3D CENTRAL_PORTAL_PLASTIC CENTRAL_PORTAL_SLIP)
+set(central_hashes 6e2293debe9ca748 621633f7c486646f 8f1fa49ac3259877)
 set(lagged_hashes fe2a0f51b4edafe7 2fe81548b9c160e2 26a01166d648d2fe)
 foreach(i RANGE 2)
   list(GET models ${i} model)
