@@ -173,6 +173,7 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
   if (!((h.springs >> k) & 1U)) return 0.0;
   double f[6];
   hinge_spring_local(m, s, h, f);
+  if (m.damping_velocity != DampingVelocity::kCentral) return f[static_cast<std::size_t>(k)];
   return f[static_cast<std::size_t>(k)] +
          w.dashpot_force[static_cast<std::size_t>(hinge)][static_cast<std::size_t>(k)];
 }
@@ -242,7 +243,8 @@ double ground_hinge_reaction(const Model<S>& m, const State<S>& s, Scratch<S>& w
     if (h.node2 != kGround || (h.rigid | h.springs) == 0) continue;
     double f[6] = {}, node1[6] = {}, ground[6] = {};
     if (h.springs != 0) hinge_spring_local(m, s, h, f);
-    for (std::size_t k = 0; h.springs != 0 && k < kDofsPerNode; ++k)
+    const bool central = m.damping_velocity == DampingVelocity::kCentral;
+    for (std::size_t k = 0; central && h.springs != 0 && k < kDofsPerNode; ++k)
       f[k] += w.dashpot_force[i][k];  // the dashpots at t_n (dashpot.hpp)
     for (int k = 0; k < 6; ++k) {
       if ((h.rigid >> k) & 1U)

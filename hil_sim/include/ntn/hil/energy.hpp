@@ -220,6 +220,7 @@ class EnergyBalance : public EnergyTotals {
   // directions' forces (Scratch::slip_force, stop_force) likewise.
   void hinge_work(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
     double d1[6], d2[6], bd[6], u1[6], u2[6], v1[6], v2[6], d[6], d_dot[6], f[6];
+    const bool central = m.damping_velocity == DampingVelocity::kCentral;
     for (int i = 0; i < m.num_spring_hinges; ++i) {
       const auto hi = static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)]);
       const HingeData& h = m.hinges[hi];
@@ -235,7 +236,7 @@ class EnergyBalance : public EnergyTotals {
         if (!((h.springs >> k) & 1U)) continue;
         const bool curve = !((h.plastic >> k) & 1U) && h.behaviour[k] == HingeBehaviour::kCurve;
         const double dash = curve ? 0.0 : h.dashpot[k] * d_dot[k];  // hinge_spring_force's
-        dashpots_ += (dash + w.dashpot_force[hi][k]) * bd[k];
+        dashpots_ += (central ? dash + w.dashpot_force[hi][k] : dash) * bd[k];
         const double work = (f[k] - dash) * bd[k];
         if (!((h.plastic >> k) & 1U)) {
           springs_ += work;
