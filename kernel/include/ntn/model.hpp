@@ -387,9 +387,11 @@ template <Sizes S>
   model.clamp = spec.settings.clamp;
   const auto& divided = work.divided_mass;
   work.divided_mass = model.mass;
-  // The step mass M_e = (1 + alpha dt/2) M of damping_velocity = "central" (Model::mass_factor).
+  // The step mass M_e = (1 + alpha dt/2) M of damping_velocity = "central" (Model::mass_factor):
+  // 1 without alpha, and for a dt that is refused below (not positive, NaN).
   model.damping_velocity = spec.settings.damping_velocity;
-  model.mass_factor = model.damping_velocity == DampingVelocity::kCentral
+  model.mass_factor = model.damping_velocity == DampingVelocity::kCentral &&
+                              spec.settings.alpha > 0 && spec.settings.dt > 0
                           ? 1.0 + spec.settings.alpha * (0.5 * spec.settings.dt)
                           : 1.0;
   if (model.mass_factor != 1.0) {
