@@ -7,9 +7,10 @@
 //   dt_stable = (2 / omega) (sqrt(1 + xi^2) - xi),  omega = sqrt(k / m),  xi = (alpha + c / m) / (2
 //   omega),
 // 2 / omega undamped; alpha counts only with damping_velocity = "lagged" (central: alpha drops
-// out, the dashpot keeps its lagged term). Tolerance 1e-12 relative: the kernel computes k / m as the eigenvalue of a
-// 6x6 block with that one entry and the bound as 2 / (omega (sqrt(1 + xi^2) + xi)), a few
-// roundings. `ntn-model info` prints the same number (to its 6 digits) and names the spring.
+// out, the dashpot keeps its lagged term). Tolerance 1e-12 relative: the kernel computes k / m
+// as the eigenvalue of a 6x6 block with that one entry and the bound as
+// 2 / (omega (sqrt(1 + xi^2) + xi)), a few roundings. `ntn-model info` prints the same number (to
+// its 6 digits) and names the spring.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -102,11 +102,11 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
 
 // F_n = sum over elements of T^T K_L T u_n, scattered in element order (S 2). With stiffness-
 // proportional damping (beta > 0, C = alpha M + beta K_el) the elements' dashpots join in the
-// same pass: F_n = sum T^T K_L T (u_n + beta v_{n-1/2}), the velocity lagged as the mass-
-// proportional part's (S 3). So the reactions and the NTN constraint forces, which come from F_n,
-// include the elements' damping forces; the element-force output channels (K_L T u_n) do not.
-// beta = 0 runs the elastic loop alone, unchanged (the same bits). The path, scalar or SIMD, is
-// the model's (Model::element_pass): the same bits either way (element_pass.hpp).
+// same pass: F_n = sum T^T K_L T (u_n + beta v_{n-1/2}), the velocity lagged (S 3) whatever
+// Model::damping_velocity says of alpha M. So the reactions and the NTN constraint forces, which
+// come from F_n, include the elements' damping forces; the element-force output channels (K_L T
+// u_n) do not. beta = 0 runs the elastic loop alone, unchanged (the same bits). The path, scalar or
+// SIMD, is the model's (Model::element_pass): the same bits either way (element_pass.hpp).
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   ntn::element_forces_into(m.element_pass, m.beam_arrays(), m.sizes.elements,
