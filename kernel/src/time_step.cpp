@@ -72,9 +72,9 @@ StableStepReport stable_time_step(const SpecView& spec) {
   // No element (a model of point masses and hinges): K_el = 0, so what is left of the bound is
   // the mass-proportional damping's, 2 alpha dt < 4 (quadratic_step: 2 / alpha, or 1e300 when
   // nothing bounds the step); the hinges' springs add theirs below.
-  r.dt_stable = r.omega_max > 0
-                    ? damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta)
-                    : quadratic_step(0.0, spec.settings.alpha);
+  const double alpha = stable_step_alpha(spec.settings);  // 0 with central damping
+  r.dt_stable = r.omega_max > 0 ? damped_stable_step(r.omega_max, alpha, spec.settings.beta)
+                                : quadratic_step(0.0, alpha);
   r.dt_elements = r.dt_stable;
   // An element without a finite frequency, or damping that leaves no step: refused, never
   // dropped.
@@ -262,7 +262,7 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
     }
   };
 
-  const double alpha = spec.settings.alpha, beta = spec.settings.beta;
+  const double alpha = stable_step_alpha(spec.settings), beta = spec.settings.beta;
   double dt_best = 1e300, dt_springs = 1e300;
   std::array<Block6, kStepChunk> P, Q;  // springs, dashpots
   std::array<Vec6, kStepChunk> E;       // elements (the diagonal E_n)

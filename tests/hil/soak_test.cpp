@@ -92,17 +92,20 @@ struct SoakSink {
     if (!measure) return;
     const double dt = model.dt;
     double kin = 0, strain = 0, in = 0, damp = 0, magnitude = 0;
+    // The damping's velocity: v_n = vbar (damping_velocity = "central"), else v_{n-1/2}.
+    const bool central = model.damping_velocity == ntn::DampingVelocity::kCentral;
     for (std::size_t j = 0; j < kDofs; ++j) {
       const double vp = s.v[j] - dt * w.a[j];
       const double vbar = 0.5 * (s.v[j] + vp);
+      const double vd = central ? vbar : vp;
       const double m = model.mass[j];
       const double p = ntn::external_load(model, w, j);
       kin += m * s.v[j] * s.v[j];
       strain += w.f[j] * s.u[j];
       in += vbar * p;
-      damp += vbar * model.damping[j] * vp;
+      damp += vbar * model.damping[j] * vd;
       magnitude += m * s.v[j] * s.v[j] + std::abs(w.f[j] * s.u[j]) +
-                   dt * (std::abs(vbar * p) + std::abs(vbar * model.damping[j] * vp)) +
+                   dt * (std::abs(vbar * p) + std::abs(vbar * model.damping[j] * vd)) +
                    (steps == 0 ? m * vp * vp : 0.0);
       if (steps == 0) v_prev[j] = vp;
     }
@@ -288,17 +291,22 @@ struct Soak : ::testing::Test {
     EXPECT_LT(measured.energy_max, bound);
     // Periodic steady state: a solution started from rest differs from the periodic one by a
     // free vibration, which mass-proportional damping makes decay by |lambda| = sqrt(1 - alpha
-    // dt) per step in every mode; the peak energies of repetitions c and the last then differ by
-    // at most 2 r + r^2 of the peak, r = sqrt(2) |lambda|^(steps before c) (sqrt 2: energy vs
-    // mode amplitude within 1/sqrt(2) of critical damping), plus rounding: a relative eps per
-    // step, decaying by alpha dt / 2 per step, sums to at most 2 eps / (alpha dt); 16 x that.
+    // dt) per step in every mode (lagged; central: sqrt((1 - alpha dt/2) / (1 + alpha dt/2))); the
+    // peak energies of repetitions c and the last then differ by at most 2 r + r^2 of the peak, r =
+    // sqrt(2) |lambda|^(steps before c) (sqrt 2: energy vs mode amplitude within 1/sqrt(2) of
+    // critical damping), plus rounding: a relative eps per step, decaying by alpha dt / 2 per step,
+    // sums to at most 2 eps / (alpha dt); 16 x that.
     const double noise = 16 * 2 * kEps / (alpha * model.dt);
     std::printf("  periodic steady state: rounding allowance %.3g of the peak\n", noise);
     if (cycles >= 3) {
       const double last = peaks[cycles - 1];
       for (std::size_t c = 1; c + 1 < cycles; ++c) {
         const double before = static_cast<double>(c) * static_cast<double>(samples.size() * n);
-        const double r = std::sqrt(2.0) * std::pow(1.0 - alpha * model.dt, before / 2);
+        const double x = 0.5 * alpha * model.dt;
+        const double lambda2 = model.damping_velocity == ntn::DampingVelocity::kCentral
+                                   ? (1.0 - x) / (1.0 + x)
+                                   : 1.0 - alpha * model.dt;
+        const double r = std::sqrt(2.0) * std::pow(lambda2, before / 2);
         EXPECT_LE(std::abs(peaks[c] - last), (2 * r + r * r + noise) * last) << "repetition " << c;
       }
     }

@@ -58,9 +58,11 @@ TEST(Model, LumpedMassAddsUpToTheTotalMass) {
   EXPECT_GT(model.mass[dof(6, ntn::kRz)], 30.0);  // point inertia added to the element's
 }
 
-// Supported DOFs get zero inverse mass (they never move); damping is C = alpha M per DOF.
+// Supported DOFs get zero inverse mass (they never move); damping is C = alpha M per DOF, and
+// the inverse mass that of the step mass (1 + alpha dt/2) M (damping_velocity = "central").
 TEST(Model, SupportsAndDamping) {
   ASSERT_TRUE(init_frame([](ntn::ModelSpec<kS>& s) { s.settings.alpha = 0.7; }).ok());
+  EXPECT_EQ(model.mass_factor, 1.0 + 0.7 * (0.5 * model.dt));
   EXPECT_EQ(model.num_supported, 4);
   for (std::size_t n = 0; n < kS.nodes; ++n) {
     for (int d = 0; d < 6; ++d) {
@@ -68,7 +70,7 @@ TEST(Model, SupportsAndDamping) {
       if (n < 4) {
         EXPECT_EQ(model.inv_mass[j], 0.0);
       } else {
-        EXPECT_DOUBLE_EQ(model.inv_mass[j] * model.mass[j], 1.0);
+        EXPECT_DOUBLE_EQ(model.inv_mass[j] * (model.mass[j] * model.mass_factor), 1.0);
       }
       EXPECT_DOUBLE_EQ(model.damping[j], 0.7 * model.mass[j]);
     }

@@ -133,6 +133,7 @@ TEST(StableTimeStep, ReportNamesTheGoverningElement) {
   EXPECT_NEAR(r.omega_max, 2 * wave / 0.5, 1e-12 * r.omega_max);
   EXPECT_NEAR(r.dt_stable, 0.5 / wave, 1e-12 * r.dt_stable);  // axial governs: equals the CFL
   spec.settings.alpha = 0.2 * r.omega_max;
+  spec.settings.damping_velocity = ntn::DampingVelocity::kLagged;  // alpha M at v_{n-1/2} (S 3)
   r = ntn::stable_time_step(ntn::view(spec));
   EXPECT_DOUBLE_EQ(r.dt_stable, ntn::damped_stable_step(r.omega_max, spec.settings.alpha));
   EXPECT_LT(r.dt_stable, r.dt_cfl);
@@ -142,6 +143,10 @@ TEST(StableTimeStep, ReportNamesTheGoverningElement) {
   EXPECT_EQ(rb.dt_stable,
             ntn::damped_stable_step(r.omega_max, spec.settings.alpha, spec.settings.beta));
   EXPECT_LT(rb.dt_stable, r.dt_stable);
+  // Central: alpha drops out of the bound (stable_step_alpha), beta stays.
+  spec.settings.damping_velocity = ntn::DampingVelocity::kCentral;
+  EXPECT_EQ(ntn::stable_time_step(ntn::view(spec)).dt_stable,
+            ntn::damped_stable_step(r.omega_max, 0.0, spec.settings.beta));
 }
 
 // A model without elements (a point mass m on a hinge spring k with a dashpot c to the ground:
@@ -163,6 +168,7 @@ TEST(StableTimeStep, WithoutElementsItIsTheOscillatorsOwn) {
     spec.hinges[0].stiffness[ntn::kUx] = k;
     spec.hinges[0].dashpot[ntn::kUx] = c;
     spec.settings.alpha = alpha;
+    spec.settings.damping_velocity = ntn::DampingVelocity::kLagged;  // spectral_radius's update
     spec.settings.dt = 1e-3;
     ASSERT_TRUE(ntn_test::init_model(spec, model).ok()) << c << " " << alpha;
     const ntn::StableStepReport& r = model.stable;
@@ -184,7 +190,10 @@ TEST(StableTimeStep, WithoutElementsItIsTheOscillatorsOwn) {
   const std::array<double, 6> mass = free.nodes[0].added;
   EXPECT_EQ(ntn::stable_time_step(ntn::view(free), mass).dt_stable, 1e300);
   free.settings.alpha = 4.0;
+  free.settings.damping_velocity = ntn::DampingVelocity::kLagged;
   EXPECT_EQ(ntn::stable_time_step(ntn::view(free), mass).dt_stable, 0.5);
+  free.settings.damping_velocity = ntn::DampingVelocity::kCentral;  // alpha drops out
+  EXPECT_EQ(ntn::stable_time_step(ntn::view(free), mass).dt_stable, 1e300);
 }
 
 // dt = "auto": the largest period / N, N integer, not above 0.9 dt_stable.

@@ -64,7 +64,8 @@ TEST(ModelBytes, PerElementNodeAndHinge) {
   EXPECT_EQ(f.per_hinge, sizeof(ntn::HingeData) + sizeof(ntn::ForestEdge) +
                              sizeof(ntn::ForestEdgeMatrices) + sizeof(ntn::ForestRoot) +
                              6 * sizeof(std::int32_t) + sizeof(ntn::ForestTree) +
-                             sizeof(std::int64_t) + 6 * sizeof(double));
+                             sizeof(std::int64_t) + 6 * sizeof(double) +
+                             6 * sizeof(double));  // Scratch's stop_force, dashpot_force
   // 64 more nodes in a model with hinges: the per-node arrays plus the hinge ones.
   constexpr ntn::Sizes hn{72, 8, 0, 0, 0, 0, 0, 2, 0, 0};
   EXPECT_EQ(ntn::modelc::model_bytes(hn) - ntn::modelc::model_bytes(h2),

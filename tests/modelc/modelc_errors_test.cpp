@@ -153,6 +153,7 @@ const Expected kExpected[] = {
   // Hinges (DESIGN §7): settings, values, axes, curves, references.
   {"HingeMethodChoice", "hinge_settings.toml", 4, 16, "model.hinge_method", "must be one of \"ntn_exact\", \"ntn_paper\", \"penalty\" (got \"exact\")"},
   {"ClampChoice", "hinge_settings.toml", 5, 9, "model.clamp", "must be one of \"momentum\", \"paper\" (got \"S33\")"},
+  {"DampingVelocityChoice", "damping_velocity.toml", 4, 20, "model.damping_velocity", "must be one of \"central\", \"lagged\" (got \"leading\")"},
   {"PenaltyStiffnessPositive", "hinge_settings.toml", 6, 21, "model.penalty_stiffness", "must be positive (got 0)"},
   {"PenaltyRotationalPositive", "hinge_settings.toml", 7, 32, "model.penalty_rotational_stiffness", "must be positive (got -1e+09)"},
   {"LimitStiffnessPositive", "hinge_settings.toml", 8, 19, "model.limit_stiffness", "must be positive (got 0)"},

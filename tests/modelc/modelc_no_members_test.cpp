@@ -6,9 +6,11 @@
 // step"):
 //   dt_stable = (2 / omega) (sqrt(1 + xi^2) - xi),  omega = sqrt(k / m),  xi = (alpha + c / m) / (2
 //   omega),
-// 2 / omega undamped. Tolerance 1e-12 relative: the kernel computes k / m as the eigenvalue of a
-// 6x6 block with that one entry and the bound as 2 / (omega (sqrt(1 + xi^2) + xi)), a few
-// roundings. `ntn-model info` prints the same number (to its 6 digits) and names the spring.
+// 2 / omega undamped; alpha counts only with damping_velocity = "lagged" (central: alpha drops
+// out, the dashpot keeps its lagged term). Tolerance 1e-12 relative: the kernel computes k / m
+// as the eigenvalue of a 6x6 block with that one entry and the bound as
+// 2 / (omega (sqrt(1 + xi^2) + xi)), a few roundings. `ntn-model info` prints the same number (to
+// its 6 digits) and names the spring.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -53,16 +55,26 @@ double printed_stable_step(const std::string& info) {
 struct Case {
   const char* what;
   std::string text;
-  double alpha, c;
+  double alpha, c;  // what the bound takes: alpha only with damping_velocity = "lagged"
 };
+
+// `text` with damping_velocity = "lagged" in its [model] table.
+std::string lagged(std::string text) {
+  const std::size_t at = text.find("[model]\n");
+  if (at != std::string::npos) text.insert(at + 8, "damping_velocity = \"lagged\"\n");
+  return text;
+}
 
 TEST(ModelcNoMembers, SdofStableStepIsTheOscillatorsOwn) {
   ASSERT_FALSE(kSdof.empty());
   const Case cases[] = {
       {"undamped", sdof("ux = { linear = 4.0e5 }"), 0.0, 0.0},
       {"the file's dashpot", kSdof, 0.0, kC},
-      {"dashpot and alpha", sdof(kDamped, "[model.damping]\nalpha = 3.0"), 3.0, kC},
-      {"alpha alone", sdof("ux = { linear = 4.0e5 }", "[model.damping]\nalpha = 3.0"), 3.0, 0.0},
+      {"dashpot and alpha", sdof(kDamped, "[model.damping]\nalpha = 3.0"), 0.0, kC},
+      {"alpha alone", sdof("ux = { linear = 4.0e5 }", "[model.damping]\nalpha = 3.0"), 0.0, 0.0},
+      {"dashpot and alpha, lagged", lagged(sdof(kDamped, "[model.damping]\nalpha = 3.0")), 3.0, kC},
+      {"alpha alone, lagged",
+       lagged(sdof("ux = { linear = 4.0e5 }", "[model.damping]\nalpha = 3.0")), 3.0, 0.0},
   };
   for (const Case& c : cases) {
     const auto r = load_model_from_string(c.text, "sdof.toml");

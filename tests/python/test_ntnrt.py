@@ -24,8 +24,8 @@ RUNNERS = os.environ["NTN_RUNNERS"]  # the folder of the compiled ntn-run-<model
 CHECK_MODES = os.environ["NTN_CHECK_MODES"]
 EXAMPLE = os.environ["NTN_EXAMPLE"]
 
-# ntn-run-frame3d on El Centro since issue 17 (tests/tools/runner_test.cmake, tests/determinism).
-FRAME3D_EL_CENTRO = "fe2a0f51b4edafe7"
+# ntn-run-frame3d on El Centro since damping_velocity = "central" (tests/tools/runner_test.cmake).
+FRAME3D_EL_CENTRO = "6e2293debe9ca748"
 
 
 def cli_hash(args):

@@ -287,6 +287,7 @@ void damped_check(const char* name, ntn::ModelSpec<S>& s, double xi_beta = 0) {
   const double kt = 0.1 * ntn_test::kSteel.E * sec.A, kr = 0.4 * ntn_test::kSteel.E * sec.Iy;
   s.settings.hinge_method = ntn::HingeMethod::kNtnExact;
   s.settings.alpha = 20;
+  s.settings.damping_velocity = ntn::DampingVelocity::kLagged;  // the truth's recursion (S 3)
   // beta K_el with the ratio xi_beta at the elements' highest frequency.
   s.settings.beta = 0;
   s.settings.beta = 2 * xi_beta / ntn::stable_time_step(ntn::view(s)).omega_max;

@@ -45,6 +45,8 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::damping, dofs);
   v(&M::alpha);
   v(&M::beta);
+  v(&M::damping_velocity);
+  v(&M::mass_factor);
   v(&M::u0, dofs);
   v(&M::v0, dofs);
   v(&M::fixed, s.nodes);
@@ -149,6 +151,7 @@ constexpr void scratch_members(const Sizes& s, V&& v) {
   v(&M::stop_force, s.hinges);
   v(&M::group_books, book_groups(s.nodes));
   v(&M::books);
+  v(&M::dashpot_force, s.hinges);
   v(&M::clamp);  // a ClampWork: clamp_work_members
   v(&M::ground);
   v(&M::time);

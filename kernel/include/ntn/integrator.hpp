@@ -1,8 +1,8 @@
 // Fixed-step central difference (DESIGN §5, seed S 1-8) as a fixed pipeline of stages, step():
-// inputs -> loads -> element forces -> hinge springs -> residual -> NTN coupling -> outputs ->
-// update -> stops -> constraint projection. The hinge method's stages are hinge_methods.hpp's. A
-// model without hinges fuses the residual and the update into one pass after the outputs
-// (dof_pass.hpp).
+// inputs -> loads -> element forces -> hinge springs -> residual -> NTN coupling -> dashpots ->
+// outputs -> update -> stops -> constraint projection. The hinge method's stages are
+// hinge_methods.hpp's. A model without hinges fuses the residual and the update into one pass after
+// the outputs (dof_pass.hpp).
 #pragma once
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <cstddef>
 
 #include "ntn/beam.hpp"
+#include "ntn/dashpot.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
 #include "ntn/hysteresis.hpp"
@@ -101,11 +102,11 @@ void apply_loads(const Model<S>& m, const State<S>& s, Scratch<S>& w, double t) 
 
 // F_n = sum over elements of T^T K_L T u_n, scattered in element order (S 2). With stiffness-
 // proportional damping (beta > 0, C = alpha M + beta K_el) the elements' dashpots join in the
-// same pass: F_n = sum T^T K_L T (u_n + beta v_{n-1/2}), the velocity lagged as the mass-
-// proportional part's (S 3). So the reactions and the NTN constraint forces, which come from F_n,
-// include the elements' damping forces; the element-force output channels (K_L T u_n) do not.
-// beta = 0 runs the elastic loop alone, unchanged (the same bits). The path, scalar or SIMD, is
-// the model's (Model::element_pass): the same bits either way (element_pass.hpp).
+// same pass: F_n = sum T^T K_L T (u_n + beta v_{n-1/2}), the velocity lagged (S 3) whatever
+// Model::damping_velocity says of alpha M. So the reactions and the NTN constraint forces, which
+// come from F_n, include the elements' damping forces; the element-force output channels (K_L T
+// u_n) do not. beta = 0 runs the elastic loop alone, unchanged (the same bits). The path, scalar or
+// SIMD, is the model's (Model::element_pass): the same bits either way (element_pass.hpp).
 template <Sizes S>
 void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   ntn::element_forces_into(m.element_pass, m.beam_arrays(), m.sizes.elements,
@@ -172,7 +173,9 @@ double hinge_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hing
   if (!((h.springs >> k) & 1U)) return 0.0;
   double f[6];
   hinge_spring_local(m, s, h, f);
-  return f[static_cast<std::size_t>(k)];
+  if (m.damping_velocity != DampingVelocity::kCentral) return f[static_cast<std::size_t>(k)];
+  return f[static_cast<std::size_t>(k)] +
+         w.dashpot_force[static_cast<std::size_t>(hinge)][static_cast<std::size_t>(k)];
 }
 
 // The friction directions' normal forces N at t_n (slip.hpp), before the update moves u: the
@@ -240,6 +243,9 @@ double ground_hinge_reaction(const Model<S>& m, const State<S>& s, Scratch<S>& w
     if (h.node2 != kGround || (h.rigid | h.springs) == 0) continue;
     double f[6] = {}, node1[6] = {}, ground[6] = {};
     if (h.springs != 0) hinge_spring_local(m, s, h, f);
+    const bool central = m.damping_velocity == DampingVelocity::kCentral;
+    for (std::size_t k = 0; central && h.springs != 0 && k < kDofsPerNode; ++k)
+      f[k] += w.dashpot_force[i][k];  // the dashpots at t_n (dashpot.hpp)
     for (int k = 0; k < 6; ++k) {
       if ((h.rigid >> k) & 1U)
         f[k] = constraint_force(m, s, w, static_cast<int>(i), k, coupled_tree);
@@ -517,6 +523,7 @@ template <Sizes S>
   } else {
     residual_stage(m, s, w);  // residual R_n - C v_{n-1/2}, a_n where uncoupled (S 2-4)
     ntn_coupling(m, s, w);    // NTN coupling: a_n at coupled DOFs (S 17-26, §7.1)
+    dashpots_at_tn(m, w);     // central damping: the hinge dashpots at v_n (dashpot.hpp)
   }
   slip_normals(m, s, w);       // friction: the normal forces N at t_n (slip.hpp)
   sample_outputs(m, s, w, t);  // outputs: the channels at t_n
@@ -580,15 +587,30 @@ namespace detail {
 // stops first move u_0 onto their limits with a_0 untouched (a_scale 0), and the trial starts
 // from there (the first step then clamps u_0's excess, as it would without this). u_0 and v_0
 // are kept as they were.
+//
+// With damping_velocity = "central" the stages before solve M_e a = R_0 (the step mass,
+// Model::mass_factor), while at t_0 v_0 is known and C v_0 is already in R_0: a_0 = M^-1 R_0 is
+// that a times mass_factor (every stage is linear in a uniform scale of the mass). The normal
+// forces are taken before, from M_e and its a (the same forces); the trial's move weight
+// h2 = mass_factor dt^2/2 makes the clamp's and the slips' forces those of M (their moves
+// -f h2 M_e^-1 b = -f dt^2/2 M^-1 b).
 template <Sizes S>
 void start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  bool forces = false;
   if constexpr (kMayHaveHinges<S>) {
-    if (m.sizes.hinges == 0 || (m.num_branch_hinges == 0 && m.num_slip_hinges == 0)) return;
+    forces = m.sizes.hinges > 0 && (m.num_branch_hinges > 0 || m.num_slip_hinges > 0);
+    if (forces) slip_normals(m, s, w);  // friction: N at t_0
+  }
+  if (m.mass_factor != 1.0) {  // a_0 = M^-1 R_0
+    for (std::size_t j = 0; j < m.dofs(); ++j)
+      w.a[j] *= m.mass_factor;
+  }
+  if constexpr (kMayHaveHinges<S>) {
+    if (!forces) return;
     const double dt = m.dt;
     for (std::size_t j = 0; j < m.dofs(); ++j)
       w.clamp.start_u[j] = s.u[j];
-    w.clamp.h2 = 0.5 * dt * dt, w.clamp.v_rate = 0.0, w.clamp.a_scale = 0.0;
-    slip_normals(m, s, w);        // friction: N at t_0
+    w.clamp.h2 = 0.5 * dt * dt * m.mass_factor, w.clamp.v_rate = 0.0, w.clamp.a_scale = 0.0;
     hinge_start_forces(m, s, w);  // u_0 onto the stops, a_0 as it is
     for (std::size_t j = 0; j < m.dofs(); ++j)
       s.u[j] += dt * s.v[j] + 0.5 * dt * dt * w.a[j];
@@ -603,7 +625,8 @@ void start_forces(const Model<S>& m, State<S>& s, Scratch<S>& w) {
 
 // Starts a run from the caller's u_0 and v_0 in `s` (initial_state(), or the caller's own): with
 // ntn_exact, u_0 and v_0 first take the rigid components of their tree parents (the constraints
-// hold from t_0); a_0 with the slip and stop forces at t_0 (start_forces); v_{-1/2} = v_0 - dt/2
+// hold from t_0); a_0 = M^-1 (P_0 - F_0 - C v_0) with the slip and stop forces at t_0
+// (start_forces); v_{-1/2} = v_0 - dt/2
 // a_0 (DESIGN §5), tick = 0.
 template <Sizes S>
 [[nodiscard]] StepStatus start(const Model<S>& m, State<S>& s, Scratch<S>& w, StepInputs<S> in) {
@@ -618,6 +641,10 @@ template <Sizes S>
   detail::hinge_springs(m, s, w);
   detail::residual_stage(m, s, w);
   detail::ntn_coupling(m, s, w);
+  if constexpr (kMayHaveHinges<S>) {  // the dashpots at t_0 take v_0 itself: no correction
+    for (auto& f : w.dashpot_force)
+      f.fill(0.0);
+  }
   detail::start_forces(m, s, w);
   for (std::size_t j = 0; j < m.dofs(); ++j) {
     s.v[j] -= 0.5 * m.dt * w.a[j];

@@ -42,8 +42,8 @@ struct Model : SizesOf<S> {
   Array<std::int32_t, S, S.elements> element_slot{};
   Array<double, S, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
-  // the hinge-summed mass (S 22-26); 0 at supported DOFs (which stay at zero), tree DOFs
-  // (ntn_exact: the forest gives them) and mechanism DOFs (held at zero).
+  // the hinge-summed mass (S 22-26), times 1 / mass_factor (below); 0 at supported DOFs (which stay
+  // at zero), tree DOFs (ntn_exact: the forest gives them) and mechanism DOFs (held at zero).
   Array<double, S, kDofs> inv_mass{};
   // mass and inv_mass again by groups of kMassGroup nodes, equal groups sharing an entry
   // (dof_pass.hpp): what the SIMD DOF pass reads.
@@ -53,6 +53,12 @@ struct Model : SizesOf<S> {
   Array<double, S, kDofs> damping{};  // N s/m, diagonal C = alpha M (S 1)
   double alpha = 0;  // 1/s: damping[j] is alpha * mass[j], which the residual pass recomputes
   double beta = 0;   // s: stiffness-proportional damping beta K_el, in the element pass
+  // Settings::damping_velocity. "central": alpha M acts at v_n, so a_n solves
+  // (M + alpha M dt/2) a_n = R_n - alpha M v_{n-1/2}: every stage that divides by the mass
+  // (inv_mass, the forest, the clamp and the slips) takes the step mass M_e = mass_factor M,
+  // mass_factor = 1 + alpha dt/2 (1 when lagged); `mass` and `damping` stay M and alpha M.
+  DampingVelocity damping_velocity = DampingVelocity::kCentral;
+  double mass_factor = 1;
   // The run's initial state u_0, v_0 (NodeSpec::u0, v0; zero by default): initial_state() puts
   // it in a State before start().
   Array<double, S, kDofs> u0{};
@@ -145,7 +151,8 @@ struct Model : SizesOf<S> {
 template <Sizes S>
 struct InitWorkspace : SizesOf<S> {
   // The mass the accelerations divide by, before init() inverts it into Model::inv_mass: the
-  // lumped mass, or the hinge-summed one (ntn_paper, S 22-26).
+  // lumped mass times Model::mass_factor (the forest is built from it), or the hinge-summed one
+  // (ntn_paper, S 22-26).
   Array<double, S, Model<S>::kDofs> divided_mass{};
   Array<ForestWork, S, S.hinges> forest{};  // ntn_exact: build_forest's, one per hinge
   // ntn_exact with slip directions: an impulse along one and the trees' response to it, for
@@ -384,6 +391,17 @@ template <Sizes S>
   model.clamp = spec.settings.clamp;
   const auto& divided = work.divided_mass;
   work.divided_mass = model.mass;
+  // The step mass M_e = (1 + alpha dt/2) M of damping_velocity = "central" (Model::mass_factor):
+  // 1 without alpha, and for a dt that is refused below (not positive, NaN).
+  model.damping_velocity = spec.settings.damping_velocity;
+  model.mass_factor = model.damping_velocity == DampingVelocity::kCentral &&
+                              spec.settings.alpha > 0 && spec.settings.dt > 0
+                          ? 1.0 + spec.settings.alpha * (0.5 * spec.settings.dt)
+                          : 1.0;
+  if (model.mass_factor != 1.0) {
+    for (double& x : work.divided_mass)
+      x *= model.mass_factor;
+  }
   if constexpr (kMayHaveHinges<S>) {
     if (sz.hinges > 0) {
       for (std::size_t i = 0; i < sz.hinges; ++i) {

@@ -127,6 +127,13 @@ enum class HingeMethod : std::uint8_t {
   kPenalty,   // rigid directions as stiff springs K = B^T K_p B
 };
 
+// The velocity the damping forces take, alpha M and the hinge dashpots (beta K_el stays at
+// v_{n-1/2} either way).
+enum class DampingVelocity : std::uint8_t {
+  kCentral,  // v_n = v_{n-1/2} + dt/2 a_n: (M + C dt/2) a_n = R_n - C v_{n-1/2}, second order
+  kLagged,   // v_{n-1/2} (S 3-4): first order
+};
+
 enum class ClampRule : std::uint8_t {
   kMomentum,  // project a pair onto its rigid branch keeping its mass-weighted centre
   kPaper,     // scale both local displacements by d_lim / d (S 33)
@@ -232,10 +239,11 @@ struct OutputSpec {
 };
 
 struct Settings {
-  double dt = 0;                    // s, resolved by the model compiler ("auto" -> number)
-  double frame_period = 1e-3;       // s, the I/O frame that dt divides into substeps
-  double alpha = 0;                 // 1/s, mass-proportional damping: C = alpha M + beta K_el
-  double beta = 0;                  // s, stiffness-proportional damping (K_el: the elements')
+  double dt = 0;               // s, resolved by the model compiler ("auto" -> number)
+  double frame_period = 1e-3;  // s, the I/O frame that dt divides into substeps
+  double alpha = 0;            // 1/s, mass-proportional damping: C = alpha M + beta K_el
+  double beta = 0;             // s, stiffness-proportional damping (K_el: the elements')
+  DampingVelocity damping_velocity = DampingVelocity::kCentral;  // alpha M's and the dashpots'
   std::array<double, 3> gravity{};  // m/s^2, applied as M g on translations
   int gravity_function = kConstant;
   bool rotary_inertia = false;  // add rho I l / 2 to the bending rotation masses (DESIGN §4)

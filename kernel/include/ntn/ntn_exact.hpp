@@ -57,13 +57,13 @@ struct NtnExactMethod {
     return true;
   }
 
-  // The forest (build_forest: trees, edges parents first, each edge's matrices, the roots'
-  // inverse masses, the mechanism DOFs held), hinge -> edge, the trees, and which edges the step
-  // re-projects (select_projected_edges).
+  // The forest of the step mass (InitWorkspace::divided_mass; build_forest: trees, edges parents
+  // first, each edge's matrices, the roots' inverse masses, the mechanism DOFs held), hinge ->
+  // edge, the trees, and which edges the step re-projects (select_projected_edges).
   template <Sizes S>
   static InitStatus init(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<S>& work) {
     const ForestBuild fb =
-        build_forest(model.hinges, spec.nodes, model.mass, model.node_tree, model.edges,
+        build_forest(model.hinges, spec.nodes, work.divided_mass, model.node_tree, model.edges,
                      model.edge_matrices, model.roots, work.forest, model.held);
     if (!fb.status.ok()) return fb.status;
     model.num_edges = fb.edges, model.num_roots = fb.roots, model.held_dofs = fb.held_dofs;

@@ -267,7 +267,7 @@ struct NtnPaperMethod {
   static void project_initial(const Model<S>&, State<S>&) {}
 
   // The force of rigid direction k on node 1, hinge frame: T (m_1 a_1 - R_1) from node 1's own
-  // mass and force, which holds every hinge on node 1 together.
+  // step mass (Model::mass_factor m_1) and force, which holds every hinge on node 1 together.
   template <Sizes S>
   static double constraint_force(const Model<S>& m, const State<S>& s, Scratch<S>& w, int hinge,
                                  int k, int&) {
@@ -276,7 +276,7 @@ struct NtnPaperMethod {
     double own[kDofsPerNode], g[6], l[6];
     detail::node_residual(m, s, w, h.node1, own);
     for (std::size_t c = 0; c < 6; ++c)
-      g[c] = m.mass[i1 + c] * w.a[i1 + c] - own[c];
+      g[c] = (m.mass[i1 + c] * m.mass_factor) * w.a[i1 + c] - own[c];
     detail::to_hinge(h, g + (k < 3 ? 0 : 3), l);
     return l[k % 3];
   }

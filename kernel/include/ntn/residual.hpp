@@ -76,6 +76,13 @@ void residual(const Model<S>& m, const State<S>& s, const Scratch<S>& w, const d
   residual_slots<S, kScaled>(m, s, w, scale, out);
 }
 
+// The lead of the damping velocity that alpha M acts at, v_d = v_{n-1/2} + lead a_n, s: dt/2 with
+// damping_velocity = "central" (v_n), 0 with "lagged" or no alpha.
+template <Sizes S>
+double damping_lead(const Model<S>& m) {
+  return m.mass_factor != 1.0 ? 0.5 * m.dt : 0.0;
+}
+
 // A model without hinges: the residual, a_n and the update of nodes [first, last) in one pass
 // (dof_pass.hpp), the load slots' DOFs (sorted by DOF: make_model) with their whole P_n. Returns
 // false when a velocity is non-finite.
@@ -98,7 +105,7 @@ bool residual_update(const Model<S>& m, State<S>& s, Scratch<S>& w, std::size_t 
     x.group_books = w.group_books.data();
     x.partials = &partials;
     x.nodes = m.sizes.nodes;
-    x.damp_lead = 0.0;
+    x.damp_lead = damping_lead(m);
   }
   double bad = 0;
   int k = 0;  // the first slot at or after node `first`
@@ -132,7 +139,7 @@ bool residual_update(const Model<S>& m, State<S>& s, Scratch<S>& w, std::size_t 
 template <Sizes S>
 void book_dofs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
   BookPartials b;
-  const double dt = m.dt, half_dt = 0.5 * m.dt, lead = 0.0;
+  const double dt = m.dt, half_dt = 0.5 * m.dt, lead = damping_lead(m);
   int k = 0;  // the next load slot, by DOF
   for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
     for (std::size_t d = 0; d < kDofsPerNode; ++d) {

@@ -137,6 +137,11 @@ struct Scratch : SizesOf<S> {
   // totals from them, written last in the step and read by the caller.
   Array<GroupBooks, S, book_groups(S.nodes)> group_books{};
   StepBooks books{};
+  // N or N m, by hinge and direction: with damping_velocity = "central", what a dashpot's force
+  // adds to c d_dot_{n-1/2} for the relative velocity at t_n (dashpot.hpp; 0 elsewhere and in
+  // start()). Written by the dashpot stage (after the coupling), read by the hinge-force and
+  // reaction outputs.
+  Array<std::array<double, kDofsPerNode>, S, S.hinges> dashpot_force{};
   ClampWork<S> clamp;              // the momentum clamp's (the stops stage)
   std::array<double, 3> ground{};  // m/s^2, a_g at t_n (x, y, z): written by loads, read by outputs
   double time = 0;                 // s, t_n of `outputs`: written by outputs, read by the caller

@@ -51,6 +51,19 @@ inline double damped_stable_step(double omega, double alpha, double beta) {
   return damped_stable_step(omega, eta);
 }
 
+// The alpha that bounds the step. With damping_velocity = "central" alpha M acts at v_n, so a_n
+// solves M_e a_n = R_n - alpha M v_{n-1/2} - C' v_{n-1/2}, M_e = (1 + alpha dt/2) M, C' the lagged
+// rest (beta K_el, the dashpots as the bound takes them): the lagged scheme with mass M_e and
+// damping alpha M + C', whose condition 4 M_e - 2 dt (alpha M + C') - dt^2 K > 0 (below) is
+// 4 M - 2 dt C' - dt^2 K > 0: alpha drops out. One DOF: (1 + c/2) z^2 - (2 - h^2) z + (1 - c/2),
+// h = omega dt, c = alpha dt, whose roots lie in the unit circle (Jury: |1 - c/2| < 1 + c/2,
+// h^2 > 0, 4 - h^2 > 0) for dt < 2 / omega and any alpha >= 0. The hinge dashpots at t_n
+// (dashpot.hpp) keep their lagged term in the bound: exact at t_n, one dashpot drops out the same
+// way, so the lagged term is a margin. Lagged: alpha itself (S 3).
+constexpr double stable_step_alpha(const Settings& s) {
+  return s.damping_velocity == DampingVelocity::kCentral ? 0.0 : s.alpha;
+}
+
 // Why a stable step is 0 (StableStepReport::issue).
 enum class StepIssue : std::uint8_t {
   kNone,
@@ -103,7 +116,8 @@ StableStepReport stable_time_step(const SpecView& spec);
 // node n, at most Omega^2 = max_e omega_e^2)
 //     u^T (K_el + K_s) u <= sum_n y_n^T (E_n + P_n) y_n,
 //     u^T C u <= sum_n y_n^T (alpha I + beta E_n + Q_n) y_n     (C = alpha M + beta K_el + C_s).
-// Central difference with the damping lagged to v_{n-1/2} (S 3, the dashpots too) keeps
+// Central difference with the damping lagged to v_{n-1/2} (S 3, the dashpots too; alpha is
+// stable_step_alpha's) keeps
 // F = 1/2 v^T (M - dt/2 C - dt^2/4 K) v + 1/2 u_bar^T K u_bar non-increasing
 // (F_{n+1/2} - F_{n-1/2} = -dt/4 (v+ + v-)^T C (v+ + v-), u_bar = (u_n + u_{n+1}) / 2), so
 // 4 M - 2 dt C - dt^2 K > 0 is sufficient for stability with any symmetric C >= 0, K >= 0. It

@@ -29,6 +29,7 @@ void start_description(Compilation& comp, const std::string& file) {
   s.frame_period = 1.0 / p.model.frame_rate;
   s.alpha = p.model.alpha;
   s.beta = p.model.beta;
+  s.damping_velocity = p.model.damping_velocity;
   s.gravity = p.model.gravity;
   s.rotary_inertia = p.model.rotary_inertia;
   s.allow_unstable = p.model.allow_unstable;

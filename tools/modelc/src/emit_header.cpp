@@ -249,6 +249,16 @@ const char* clamp_rule(ClampRule c) {
   throw std::invalid_argument("emit_header: unknown clamp rule");
 }
 
+const char* damping_velocity(DampingVelocity v) {
+  switch (v) {
+    case DampingVelocity::kCentral:
+      return "ntn::DampingVelocity::kCentral";
+    case DampingVelocity::kLagged:
+      return "ntn::DampingVelocity::kLagged";
+  }
+  throw std::invalid_argument("emit_header: unknown damping velocity");
+}
+
 std::string behaviours(const std::array<HingeBehaviour, kDofsPerNode>& a) {
   std::string s = "{{";
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -374,6 +384,7 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +
        ", .alpha = " + lit(s.alpha) + ", .beta = " + lit(s.beta) +
+       ", .damping_velocity = " + damping_velocity(s.damping_velocity) +
        ", .gravity = " + lits(s.gravity) + ", .gravity_function = " + lit(s.gravity_function) +
        ", .rotary_inertia = " + lit(s.rotary_inertia) +
        ", .allow_unstable = " + lit(s.allow_unstable) +

@@ -36,10 +36,10 @@ MemoryFootprint memory_footprint(const Sizes& s) {
   // Per hinge: its data, its forest slots (edge, root, hinge -> edge), its places in the lists
   // of hinges with springs, with branches, of projected edges, of the trees' stops and with slip
   // directions, a tree slot (a forest has at most one tree per hinge), its clamp check mark and
-  // its six stop forces (Scratch).
+  // its six stop forces and six dashpot forces (Scratch).
   f.per_hinge = sizeof(HingeData) + sizeof(ForestEdge) + sizeof(ForestEdgeMatrices) +
                 sizeof(ForestRoot) + 6 * sizeof(std::int32_t) + sizeof(ForestTree) +
-                sizeof(std::int64_t) + kDofsPerNode * sizeof(double);
+                sizeof(std::int64_t) + 2 * kDofsPerNode * sizeof(double);
   // A model with hinges also has per node a tree index and mechanism bits (Model::node_tree,
   // held), the residual scale of its 6 DOFs (Model::residual_scale), their coupled force
   // (Scratch::r), the clamp's impulse, response and the start's u_0 (Scratch::clamp) and its

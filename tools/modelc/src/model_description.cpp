@@ -53,10 +53,11 @@ std::string ModelDescription::describe_stable_step(const StableStepReport& r) co
            " (the spring with the largest share of the governing node's bound)";
   }
   if (r.governing_element >= 0) return describe_element(r.governing_element);
-  return settings.alpha > 0
-             ? "the damping alpha = " + compile::num(settings.alpha) +
-                   " 1/s alone (2 / alpha: no element and no hinge spring bounds it)"
-             : std::string("nothing (no element, hinge spring or damping bounds it)");
+  // The kernel's alpha of the bound (stable_step_alpha): 0 with damping_velocity = "central".
+  const double alpha = stable_step_alpha(settings);
+  return alpha > 0 ? "the damping alpha = " + compile::num(alpha) +
+                         " 1/s alone (2 / alpha: no element and no hinge spring bounds it)"
+                   : std::string("nothing (no element, hinge spring or damping bounds it)");
 }
 
 std::string ModelDescription::describe_hinge(int hinge) const {

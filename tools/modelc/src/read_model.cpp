@@ -27,6 +27,7 @@ const std::vector<std::string_view> kReactionDirections = {"x", "y", "z", "rx", 
 const std::vector<std::string_view> kComponents = {"N", "Vy", "Vz", "T", "My", "Mz"};
 const std::vector<std::string_view> kHingeMethods = {"ntn_exact", "ntn_paper", "penalty"};
 const std::vector<std::string_view> kClampRules = {"momentum", "paper"};
+const std::vector<std::string_view> kDampingVelocities = {"central", "lagged"};
 const std::vector<std::string_view> kPlanes = {"xz", "xy", "yz"};
 
 void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
@@ -40,11 +41,11 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
     L.error(n->source(), "model", "expected a table ([model]), got " + type_name(*n));
     return;
   }
-  Table t(
-      L, *mt, "model",
-      {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
-       "allow_unstable", "damping", "hinge_method", "clamp", "penalty_stiffness",
-       "penalty_rotational_stiffness", "limit_stiffness", "limit_rotational_stiffness", "plane"});
+  Table t(L, *mt, "model",
+          {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
+           "allow_unstable", "damping", "damping_velocity", "hinge_method", "clamp",
+           "penalty_stiffness", "penalty_rotational_stiffness", "limit_stiffness",
+           "limit_rotational_stiffness", "plane"});
   t.check_unknown();
   if (auto name = t.string("name", Need::kRequired)) {
     if (is_cpp_identifier(*name)) {
@@ -95,6 +96,8 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
   m.hinge_method_at = t.where("hinge_method");
   if (auto c = t.choice("clamp", Need::kOptional, kClampRules))
     m.clamp = static_cast<ClampRule>(*c);
+  if (auto c = t.choice("damping_velocity", Need::kOptional, kDampingVelocities))
+    m.damping_velocity = static_cast<DampingVelocity>(*c);
   if (auto pl = t.choice("plane", Need::kOptional, kPlanes)) m.plane = static_cast<Plane>(*pl + 1);
   m.plane_at = t.where("plane");
   m.penalty_stiffness = t.positive("penalty_stiffness", Need::kOptional);
@@ -262,6 +265,8 @@ static_assert(static_cast<int>(Plane::kXz) == 1 && static_cast<int>(Plane::kXy) 
               static_cast<int>(Plane::kYz) == 3);  // the order of kPlanes, after kNone
 static_assert(static_cast<int>(ClampRule::kMomentum) == 0 &&
               static_cast<int>(ClampRule::kPaper) == 1);  // the order of kClampRules
+static_assert(static_cast<int>(DampingVelocity::kCentral) == 0 &&
+              static_cast<int>(DampingVelocity::kLagged) == 1);  // kDampingVelocities' order
 
 // One [[member_loads]] table: the member, q or q_start + q_end, axes, the part (from / to or
 // from_m / to_m) and the time function. Ranges in metres need the member's length: checked by

@@ -200,6 +200,7 @@ struct ModelTable {
   Where damping_modes_at;
   HingeMethod hinge_method = HingeMethod::kNtnExact;
   ClampRule clamp = ClampRule::kMomentum;
+  DampingVelocity damping_velocity = DampingVelocity::kCentral;  // alpha M's and the dashpots'
   std::optional<double> penalty_stiffness, penalty_rotational_stiffness;
   std::optional<double> limit_stiffness, limit_rotational_stiffness;
   Where hinge_method_at;

@@ -2,7 +2,9 @@
 // accumulated step by step from what each step used, one account per mechanism. With the step's
 // final velocities (after the stops, the slips and the projection) and
 // Delta_n = (u_{n+1} - u_{n-1}) / 2 = dt (v_{n+1/2} + v_{n-1/2}) / 2,
-//     K_{n+1/2} - K_{n-1/2} = Delta_n . (P_n - F_n - alpha M v_{n-1/2}) - sum f (b Delta_n),
+//     K_{n+1/2} - K_{n-1/2} = Delta_n . (P_n - F_n - alpha M v_d) - sum f (b Delta_n),
+// v_d = v_{n-1/2} with damping_velocity = "lagged", v_n = (v_{n-1/2} + v_{n+1/2}) / 2 with
+// "central" (the step mass M_e = (1 + alpha dt/2) M moves alpha M dt/2 a_n to the damping),
 // K = 1/2 v^T M v at the half steps, the last sum over the slip and stop directions (their forces
 // act as moves of u_{n+1}, du = -f dt^2 M_c^-1 b; the constraint forces of rigid directions do no
 // work on a compatible Delta). F_n is split by what produced it: each hinge spring direction's
@@ -189,13 +191,15 @@ class EnergyBalance : public EnergyTotals {
   }
 
   // The hinges' share of the step's work: each spring direction's spring and dashpot force at
-  // t_n (from u_n and v_{n-1/2}, as the spring stage made them) times (B Delta)_k, by the kind
-  // of its law; the slip and stop directions' forces (Scratch::slip_force, stop_force) likewise.
+  // t_n (from u_n and v_{n-1/2}, as the spring stage made them, the dashpot with the dashpot
+  // stage's Scratch::dashpot_force) times (B Delta)_k, by the kind of its law; the slip and stop
+  // directions' forces (Scratch::slip_force, stop_force) likewise.
   void hinge_work(const Model<S>& m, const State<S>& s, const Scratch<S>& w) {
     double d1[6], d2[6], bd[6], u1[6], u2[6], v1[6], v2[6], d[6], d_dot[6], f[6];
+    const bool central = m.damping_velocity == DampingVelocity::kCentral;
     for (int i = 0; i < m.num_spring_hinges; ++i) {
-      const HingeData& h =
-          m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
+      const auto hi = static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)]);
+      const HingeData& h = m.hinges[hi];
       node_delta(m, s, w, h.node1, d1);
       node_delta(m, s, w, h.node2, d2);
       relative(h, d1, d2, bd);
@@ -208,7 +212,7 @@ class EnergyBalance : public EnergyTotals {
         if (!((h.springs >> k) & 1U)) continue;
         const bool curve = !((h.plastic >> k) & 1U) && h.behaviour[k] == HingeBehaviour::kCurve;
         const double dash = curve ? 0.0 : h.dashpot[k] * d_dot[k];  // hinge_spring_force's
-        dashpots_ += dash * bd[k];
+        dashpots_ += (central ? dash + w.dashpot_force[hi][k] : dash) * bd[k];
         const double work = (f[k] - dash) * bd[k];
         if (!((h.plastic >> k) & 1U)) {
           springs_ += work;
