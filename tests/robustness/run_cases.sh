@@ -19,7 +19,7 @@
 set -u
 group=$1 cases=$2 work=$3 src=$4
 shift 4
-timeout_s=${CASE_TIMEOUT:-20}
+timeout_s=${CASE_TIMEOUT:-120}
 
 declare -A ph
 for kv in "$@"; do ph[${kv%%=*}]=${kv#*=}; done
@@ -87,6 +87,9 @@ while IFS= read -r line; do
   trim() { local v=$1; v=${v#"${v%%[![:space:]]*}"}; printf '%s' "${v%"${v##*[![:space:]]}"}"; }
   g=$(trim "$g"); expect=$(trim "$expect"); msg=$(trim "$msg")
   [[ $g == "$group" ]] || continue
+  # @FULL_STDOUT@ (anywhere in COMMAND): the tool's standard output is /dev/full.
+  stdout_to=$tmp/case.out
+  if [[ $cmd == *@FULL_STDOUT@* ]]; then cmd=${cmd//@FULL_STDOUT@/}; stdout_to=/dev/full; fi
   for key in "${!ph[@]}"; do cmd=${cmd//@$key@/${ph[$key]}}; msg=${msg//@$key@/${ph[$key]}}; done
   if [[ $cmd =~ @[A-Za-z0-9_-]+@ ]]; then
     echo "SKIP  $cmd   (no ${BASH_REMATCH[0]}: tool or fixture missing)"
@@ -95,7 +98,8 @@ while IFS= read -r line; do
   eval "argv=( $cmd )"
   out=$tmp/case.out err=$tmp/case.err
   t0=$(date +%s%N)
-  (cd "$tmp" && exec timeout -k 2 "$timeout_s" "${argv[@]}" >"$out" 2>"$err" </dev/null)
+  : >"$out"
+  (cd "$tmp" && exec timeout -k 2 "$timeout_s" "${argv[@]}" >"$stdout_to" 2>"$err" </dev/null)
   rc=$?
   ms=$((($(date +%s%N) - t0) / 1000000))
   why=""

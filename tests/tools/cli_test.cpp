@@ -11,6 +11,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/temp_files.hpp"
@@ -127,6 +128,38 @@ TEST(Cli, IntegerWantsDigitsWithinBounds) {
   for (const char* good : {"1", "+7", "1000000"})
     EXPECT_EQ(says(v, good), "") << good;
   EXPECT_NE(says(v, "0").find("[1, 1000000]"), std::string::npos);
+}
+
+// write_output_file: a regular file is replaced whole (beside itself, then renamed); through a
+// symbolic link its target is, and the link stays; a FIFO (as a device: /dev/null) is written
+// into and stays a FIFO, never replaced by a regular file; a directory is refused.
+TEST(Cli, OutputFilesAreReplacedOnlyWhenRegular) {
+  ntn_test::TempDir dir("cli_write");
+  using ntn::cli::write_output_file;
+  const std::string file = dir / "out.hpp";
+  EXPECT_FALSE(write_output_file(file, "first", "--output"));
+  EXPECT_FALSE(write_output_file(file, "second", "--output"));
+  EXPECT_EQ(ntn_test::read_file(file), "second");
+  EXPECT_FALSE(std::filesystem::exists(file + ".tmp"));
+  const std::string link = dir / "link.hpp";
+  std::filesystem::create_symlink("out.hpp", link);
+  EXPECT_FALSE(write_output_file(link, "through the link", "--output"));
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_EQ(ntn_test::read_file(file), "through the link");
+  const std::string fifo = dir / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string got;
+  std::thread reader([&] { got = ntn_test::read_file(fifo); });
+  EXPECT_FALSE(write_output_file(fifo, "into the pipe", "--output"));
+  reader.join();
+  EXPECT_EQ(got, "into the pipe");
+  struct stat st {};
+  ASSERT_EQ(::lstat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
+  const auto refused = write_output_file(dir.str(), "x", "--output");
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->find("--output"), std::string::npos);
+  EXPECT_NE(refused->find("directory"), std::string::npos);
 }
 
 TEST(Cli, OutputPathProblemsAreFoundBeforeARun) {

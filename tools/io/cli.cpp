@@ -3,6 +3,10 @@
 #include "cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 
 namespace ntn::cli {
 
@@ -52,7 +56,27 @@ std::size_t Option::count() const {
   return o_->count();
 }
 
+namespace {
+
+// At exit: what the program wrote to standard output must have reached it. A write error (a full
+// disk, /dev/full, a closed pipe's EPIPE with SIGPIPE ignored, a closed descriptor) is the
+// program's error, whatever its own exit code was: exit 2 with a message, as a write error on
+// any file the program names.
+void check_standard_output() {
+  errno = 0;
+  if (std::fflush(stdout) == 0 && std::ferror(stdout) == 0) return;
+  const int e = errno != 0 ? errno : EIO;
+  std::fprintf(stderr, "error: write error on standard output: %s\n", std::strerror(e));
+  std::_Exit(2);
+}
+
+}  // namespace
+
+// Every tool makes one App to parse its command line: its construction registers the check of
+// standard output at exit, once per program.
 App::App(std::string description, std::string name) : owned_(std::make_unique<Parts>()) {
+  static const bool registered = std::atexit(check_standard_output) == 0;
+  (void)registered;
   owned_->top = std::make_unique<CLI::App>(std::move(description), std::move(name));
   app_ = owned_->top.get();
   parts_ = owned_.get();

@@ -221,6 +221,53 @@ inline std::optional<std::string> output_path_problem(const std::string& path,
   return std::nullopt;
 }
 
+// Writes `text` to the output file `path` so that a reader never sees half of it and nothing
+// but a regular file is ever replaced: a regular file (or a new one) is written beside itself
+// and renamed over (through a symbolic link, its target's place, so the link stays); anything
+// else that exists there (a device such as /dev/null, a FIFO, a socket) is written into, as
+// the shell's `>` would. Returns the message naming the option and the path, or nothing.
+inline std::optional<std::string> write_output_file(const std::string& path, std::string_view text,
+                                                    std::string_view option) {
+  namespace fs = std::filesystem;
+  const std::string where = std::string(option) + ": cannot write '" + path + "': ";
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);  // follows links
+  if (fs::exists(st) && !fs::is_regular_file(st)) {
+    if (fs::is_directory(st)) return where + "it is a directory";
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (f == nullptr) return where + std::strerror(errno);
+    const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    const int err = errno;
+    if (std::fclose(f) != 0 || !written) return where + std::strerror(written ? errno : err);
+    return std::nullopt;
+  }
+  fs::path target(path);
+  if (fs::is_symlink(fs::symlink_status(target, ec))) {
+    target = fs::read_symlink(target, ec);
+    if (ec) return where + ec.message();
+    if (target.is_relative()) target = fs::path(path).parent_path() / target;
+  }
+  const fs::path tmp = target.string() + ".tmp";
+  {
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (f == nullptr) return where + "cannot create " + tmp.string() + ": " + std::strerror(errno);
+    const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    const int err = errno;
+    if (std::fclose(f) != 0 || !written) {
+      const int e = written ? errno : err;
+      fs::remove(tmp, ec);
+      return where + std::strerror(e != 0 ? e : EIO);
+    }
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(tmp, ec);
+    return where + why;
+  }
+  return std::nullopt;
+}
+
 // Closes an output stream written during a run; a failed write or close (disk full) is an error
 // of the run: the message names the option and the file.
 inline std::optional<std::string> close_output(std::ofstream& out, std::string_view option,

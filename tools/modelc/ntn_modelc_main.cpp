@@ -4,8 +4,6 @@
 // an output that cannot be written, checked before the model is read). Notes (file:line:column:
 // note: ...) go to stderr and do not change the exit code.
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "cli.hpp"  // tools/io: output_path_problem
@@ -30,9 +28,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ntn-modelc: %s\n", problem->c_str());
     return 2;
   }
-  namespace fs = std::filesystem;
-  const fs::path out(out_path);
-  std::error_code ec;
 
   const ntn::modelc::LoadResult r = ntn::modelc::load_model(model_path);
   if (!r.ok()) {
@@ -50,23 +45,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ntn-modelc: %s\n", e.what());
     return 1;
   }
-  // Write beside the target, then rename: a reader never sees half a header.
-  const fs::path tmp = out.string() + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << text;
-    if (!f.flush()) {
-      std::fprintf(stderr, "ntn-modelc: --output '%s': cannot write %s\n", out_path.c_str(),
-                   tmp.c_str());
-      fs::remove(tmp, ec);
-      return 2;
-    }
-  }
-  fs::rename(tmp, out, ec);
-  if (ec) {
-    std::fprintf(stderr, "ntn-modelc: --output '%s': cannot write it: %s\n", out_path.c_str(),
-                 ec.message().c_str());
-    fs::remove(tmp, ec);
+  // Beside the target, then renamed (a reader never sees half a header); a device is written
+  // into, never replaced.
+  if (const auto problem = ntn::cli::write_output_file(out_path, text, "--output")) {
+    std::fprintf(stderr, "ntn-modelc: %s\n", problem->c_str());
     return 2;
   }
   return 0;
