@@ -42,14 +42,13 @@
 #include "record.hpp"
 
 #include "ntn/hil/model_info.hpp"
-
-// SIGINT / SIGTERM: the handler only records the signal; the loop ends after the frame it is in
-// (LoopConfig::stop), and the program flushes the CSV, the log and the JSON and says so.
-extern "C" inline void ntn_hil_on_stop_signal(int signal);
+#include "ntn/hil/stop_signals.hpp"
 
 namespace ntn::hil::program {
 
-inline volatile std::sig_atomic_t g_stop = 0;
+// SIGINT / SIGTERM (stop_signals.hpp): the loop ends after the frame it is in, and the program
+// flushes the CSV, the log and the JSON and says so.
+using ntn::hil::g_stop_signal;
 
 // Runs are bounded so that nothing the run keeps grows without limit: at most kMaxFrames frames
 // (11.6 days at 1 kHz; the CSV's time column, %.9g, resolves 1 ms frames up to 10^6 s), and the
@@ -97,9 +96,9 @@ struct UdpSource {
     const std::int64_t start = ntn::hil::monotonic_ns();
     bool ended = false;
     drain(0, ended);
-    for (std::int64_t left = first_wait_ns; left > 0 && g_stop == 0;
+    for (std::int64_t left = first_wait_ns; left > 0 && g_stop_signal == 0;
          left = start + first_wait_ns - ntn::hil::monotonic_ns()) {
-      // In slices of 0.1 s, so that SIGINT / SIGTERM (g_stop) ends the wait soon.
+      // In slices of 0.1 s, so that SIGINT / SIGTERM (g_stop_signal) ends the wait soon.
       if (socket->wait_readable(std::chrono::nanoseconds(
               std::min<std::int64_t>(left, 100'000'000))) != ntn::hil::WaitStatus::kReadable)
         continue;
@@ -127,7 +126,7 @@ struct UdpSource {
     if (k == 0 && !lock_step) wait_first_packet();
     bool ended = false;
     drain(k, ended);
-    while (lock_step && !ended && g_stop == 0) {
+    while (lock_step && !ended && g_stop_signal == 0) {
       if (socket->wait_readable(std::chrono::seconds(2)) != ntn::hil::WaitStatus::kReadable) {
         ++timeouts;  // the sender went away: the frame is missing, values held
         break;
@@ -627,12 +626,8 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
 
   // SIGINT / SIGTERM from here on end the run after the frame in progress, with every file
   // written (exit 4); before, they end the program as usual (nothing written yet).
-  struct sigaction action {};
-  action.sa_handler = ntn_hil_on_stop_signal;
-  sigemptyset(&action.sa_mask);
-  (void)sigaction(SIGINT, &action, nullptr);
-  (void)sigaction(SIGTERM, &action, nullptr);
-  config.stop = &g_stop;
+  ntn::hil::catch_stop_signals();
+  config.stop = &g_stop_signal;
 
   ntn::hil::InputGate gate(std::span<const ntn::InputSpec>(spec.inputs));
   (void)gate.set_run_frames(frames);  // a packet for a frame outside the run: out_of_run
@@ -761,7 +756,7 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
                            " (the CSV is incomplete)");
   }
   const std::uint64_t hash_value = run_hash.finish(store.state);
-  const char* stop_signal = g_stop == SIGINT ? "SIGINT" : g_stop == SIGTERM ? "SIGTERM" : "";
+  const char* stop_signal = ntn::hil::stop_signal_name();
 
   // ---- summary ----
   const auto& gc = gate.counters();
@@ -964,7 +959,3 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
 }
 
 }  // namespace ntn::hil::program
-
-extern "C" inline void ntn_hil_on_stop_signal(int signal) {
-  ntn::hil::program::g_stop = signal;
-}

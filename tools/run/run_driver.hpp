@@ -28,6 +28,7 @@
 #include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/hil/sampling.hpp"
+#include "ntn/hil/stop_signals.hpp"
 #include "ntn/hil/worker_team.hpp"
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
@@ -198,6 +199,8 @@ struct RunRequest {
   // reserved here), and with csv_energy in the CSV rows after the outputs.
   std::vector<double>* energy_frames = nullptr;
   bool csv_energy = false;
+  // Not null: the run ends after the frame in which *stop became non-zero (LoopConfig::stop).
+  const volatile std::sig_atomic_t* stop = nullptr;
 };
 
 // What a run gives: the loop's result, the output hash (every output of every step, then the
@@ -241,6 +244,7 @@ RunResult simulate(RunStorage<S> store, const ModelSpec<S>& spec, const ModelInf
   config.sampling = request.sampling;
   config.kinetic_limit = std::numeric_limits<double>::infinity();
   config.stop_at_divergence = true;
+  config.stop = request.stop;
   std::vector<hil::Alarm> alarms(z.outputs);
   for (std::size_t c = 0; c < alarms.size(); ++c) {
     alarms[c].enabled = info.alarm_limits[c] > 0;
@@ -417,6 +421,10 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
   csv.header(names, units, flags);
   RunRequest request;
   request.csv_energy = opt.energy;
+  // SIGINT / SIGTERM from here on end the run after the frame in progress, with the CSV and the
+  // summary written (exit 4), as ntn-hil does.
+  ntn::hil::catch_stop_signals();
+  request.stop = &ntn::hil::g_stop_signal;
   request.steps = steps;
   request.sampling = sampling;
   request.threads = threads;
@@ -550,6 +558,10 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
     if (diverged)
       std::printf("  DIVERGED    the state became non-finite at step %lld\n",
                   static_cast<long long>(n));
+    if (result.stopped)
+      std::printf("  STOPPED     by %s after %lld of %lld frames (%.3f s simulated)\n",
+                  ntn::hil::stop_signal_name(), static_cast<long long>(result.frames),
+                  static_cast<long long>((steps + per_frame - 1) / per_frame), simulated);
     if (!out_path.empty()) {
       std::printf("  response    %s (%lld rows, one per frame)\n", out_path.c_str(),
                   static_cast<long long>(result.frames));
@@ -566,8 +578,10 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
        << ",\n  \"simulated_s\": " << fmt("%.17g", simulated)
        << ",\n  \"wall_s\": " << fmt("%.6g", wall)
        << ",\n  \"real_time_factor\": " << fmt("%.6g", simulated / wall)
-       << ",\n  \"diverged\": " << (diverged ? "true" : "false") << ",\n  \"output_hash\": \""
-       << digest << "\",\n  \"peaks\": {";
+       << ",\n  \"diverged\": " << (diverged ? "true" : "false") << ",\n  \"stopped_by\": "
+       << (result.stopped ? "\"" + std::string(ntn::hil::stop_signal_name()) + "\""
+                          : std::string("null"))
+       << ",\n  \"output_hash\": \"" << digest << "\",\n  \"peaks\": {";
     for (std::size_t c = 0; c < z.outputs; ++c) {
       js << (c ? ",\n" : "\n") << "    \"" << info.output_names[c]
          << "\": {\"abs\": " << fmt("%.17g", peaks[c].value)
@@ -607,7 +621,14 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
       return 2;
     }
   }
-  return diverged ? 3 : 0;
+  if (result.stopped) {
+    std::fprintf(stderr, "stopped by %s after %lld frames\n", ntn::hil::stop_signal_name(),
+                 static_cast<long long>(result.frames));
+  }
+  // Exit codes (README): 2 a file could not be written, 3 diverged, 4 stopped by SIGINT /
+  // SIGTERM, 0 otherwise.
+  if (diverged) return 3;
+  return result.stopped ? 4 : 0;
 }
 
 }  // namespace ntn::run
