@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -56,16 +57,39 @@ struct PyRecord {
   ntn::io::Record r;
 };
 
+void check_path(const std::string& path);
+
 PyRecord read_record(const std::string& path, const std::string& column) {
+  check_path(path);
   ntn::io::ReadResult res = ntn::io::read_record(path, column);
   if (res.error) throw std::invalid_argument(res.error->format());
   return {std::move(*res.record)};
 }
 
-PyRecord make_record(const Array& values, double dt, const std::string& units) {
-  if (values.ndim() != 1) throw std::invalid_argument("a record's values are one-dimensional");
-  if (!(dt > 0) || !std::isfinite(dt))
-    throw std::invalid_argument("dt must be a finite number > 0");
+// A record's values: a one-dimensional array of real numbers (floats or integers), at least one.
+// Booleans, complex numbers, strings and objects are refused rather than cast (forcecast would
+// take the real part of a complex array and 1.0 for True).
+Array record_values(const py::handle& values) {
+  const py::array a = py::array::ensure(values);
+  if (!a) throw py::type_error("values: give a sequence or array of numbers");
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw py::type_error("values: give real numbers (floats or integers), got an array of dtype " +
+                         std::string(py::str(a.dtype())));
+  if (a.ndim() != 1)
+    throw py::value_error("values: a record's values are one-dimensional, got " +
+                          std::to_string(a.ndim()) + " dimensions");
+  if (a.size() == 0) throw py::value_error("values: a record needs at least one value");
+  return a.cast<Array>();
+}
+
+PyRecord make_record(const py::object& values_in, double dt, const std::string& units) {
+  const Array values = record_values(values_in);
+  if (!(dt >= ntn::io::kMinSampleInterval && dt <= ntn::io::kMaxSampleInterval))
+    throw py::value_error("dt: the sample interval must be in [" +
+                          ntn::cli::num(ntn::io::kMinSampleInterval) + ", " +
+                          ntn::cli::num(ntn::io::kMaxSampleInterval) + "] s (as the record " +
+                          "files'), got " + ntn::cli::num(dt));
   PyRecord p;
   p.r.source = "array";
   p.r.dt = dt;
@@ -89,6 +113,7 @@ class PyState {
   ntn::State<ntn::kRunTime>& state() { return state_; }
   const ntn::Sizes& sizes() const { return sizes_; }
   bool started = false;
+  std::uint64_t model = 0;  // the serial of the Model it came from
 
  private:
   struct Free {
@@ -100,6 +125,27 @@ class PyState {
   std::unique_ptr<std::byte, Free> block_;
   ntn::State<ntn::kRunTime> state_;
 };
+
+// One call at a time on a Model: run() releases the GIL while it runs, and a second thread's
+// call on the same Model (run, step, reset, restore, state) would share its state. It raises
+// instead: a Model is one run's; load one per thread to run in parallel.
+class Busy {
+ public:
+  explicit Busy(std::atomic<bool>& flag) : flag_(flag) {
+    if (flag_.exchange(true))
+      throw std::runtime_error(
+          "the model is busy: another thread is running it (load one Model per thread)");
+  }
+  ~Busy() { flag_.store(false); }
+  Busy(const Busy&) = delete;
+  Busy& operator=(const Busy&) = delete;
+
+ private:
+  std::atomic<bool>& flag_;
+};
+
+// Each loaded Model's number: a State restores only into the Model it came from.
+inline std::atomic<std::uint64_t> g_model_serial{0};
 
 class PyModel {
  public:
@@ -146,6 +192,7 @@ class PyModel {
   // scale={name: factor})
   py::dict run(const py::dict& inputs, py::object duration, const std::string& sampling_name,
                int threads, const std::string& element_pass, const py::dict& scale) {
+    const Busy busy(busy_);
     const ntn::Sizes z = m_->model().sizes;
     const auto sampling = ntn::hil::parse_sampling(sampling_name);
     if (!sampling) throw std::invalid_argument("sampling must be 'step', 'hold' or 'interpolate'");
@@ -205,12 +252,19 @@ class PyModel {
       longest = std::max(longest, records[k].duration());
     }
     double seconds = longest;
-    if (!duration.is_none()) seconds = duration.cast<double>();
+    if (!duration.is_none()) {
+      if (!py::isinstance<py::float_>(duration) && !py::isinstance<py::int_>(duration))
+        throw py::type_error("duration: give a number of seconds, got " +
+                             std::string(py::str(py::type::of(duration).attr("__name__"))));
+      seconds = duration.cast<double>();
+    }
     if (!(seconds > 0) || !std::isfinite(seconds))
       throw std::invalid_argument("give duration, a finite number > 0 (no input record)");
     const double wanted = std::ceil(seconds / dt() - 1e-9);
     if (!(wanted >= 1) || wanted > 1e12)
-      throw std::invalid_argument("duration gives " + std::to_string(wanted) + " steps");
+      throw std::invalid_argument("duration: " + ntn::cli::num(seconds) + " s gives " +
+                                  ntn::cli::num(wanted) + " steps of dt = " + ntn::cli::num(dt()) +
+                                  " s (at least 1, at most 1e12)");
 
     m_->model().element_pass =
         element_pass == "scalar" ? ntn::ElementPass::kScalar : ntn::ElementPass::kSimd;
@@ -262,12 +316,14 @@ class PyModel {
   }
 
   void reset() {
+    const Busy busy(busy_);
     ntn::initial_state(m_->model(), m_->state());
     started_ = false;
   }
   // One kernel step with these inputs (a sequence in channel order, or {name: value}); the
   // outputs at t_n. The first step after load() / reset() starts the run with its inputs.
   Array step(const py::object& inputs) {
+    const Busy busy(busy_);
     read_step_inputs(inputs);
     auto& m = m_->model();
     if (!started_) {
@@ -285,14 +341,18 @@ class PyModel {
   std::int64_t tick() const { return m_->state().tick; }
 
   std::shared_ptr<PyState> state() {
+    const Busy busy(busy_);
     auto s = std::make_shared<PyState>(m_->model().sizes);
     s->state() = m_->state();  // element by element (Slice)
     s->started = started_;
+    s->model = serial_;
     return s;
   }
   void restore(const PyState& s) {
-    if (s.sizes() != m_->model().sizes)
-      throw std::invalid_argument("the state is of another model");
+    const Busy busy(busy_);
+    if (s.model != serial_ || s.sizes() != m_->model().sizes)
+      throw std::invalid_argument(
+          "the state is of another model (a State restores into the Model it came from)");
     m_->state() = const_cast<PyState&>(s).state();
     started_ = s.started;
   }
@@ -301,6 +361,8 @@ class PyModel {
   Array velocities() const { return node_rows(m_->state().v); }
 
   py::dict modes(int n) const {
+    if (n < 1)
+      throw py::value_error("n: give the number of modes, at least 1, got " + std::to_string(n));
     ntn::modal::ModalOptions options;
     options.modes = n;
     ntn::modal::ModalResult r;
@@ -343,31 +405,55 @@ class PyModel {
       const auto t = value.cast<py::tuple>();
       if (t.size() == 2 || t.size() == 3) {
         const std::string units = t.size() == 3 ? py::str(t[2]).cast<std::string>() : "";
-        return make_record(t[0].cast<Array>(), t[1].cast<double>(), units).r;
+        return make_record(py::reinterpret_borrow<py::object>(t[0]), t[1].cast<double>(), units).r;
       }
     }
     throw std::invalid_argument("input '" + name +
                                 "': give an ntnrt.Record or a tuple (values, dt[, units])");
   }
+  // The inputs of one step: as run() reads a record's samples, every value finite and inside
+  // its input's [min, max] (the kernel would hold a value outside it: step() says so instead).
   void read_step_inputs(const py::object& inputs) {
     std::vector<double> v(in_.size(), 0.0);
+    const std::string wanted = "inputs: give " + std::to_string(in_.size()) +
+                               " numbers in channel order, or {name: value}";
     if (py::isinstance<py::dict>(inputs)) {
       const auto dict = inputs.cast<py::dict>();
       if (dict.size() != in_.size())
         throw std::invalid_argument("give a value for every input channel (" +
                                     std::to_string(in_.size()) + ")");
-      for (const auto& [key, value] : dict)
-        v[input_index(py::str(key))] = value.cast<double>();
+      for (const auto& [key, value] : dict) {
+        const std::size_t k = input_index(py::str(key));
+        if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+            !py::isinstance(value, py::module_::import("numbers").attr("Real")))
+          throw py::type_error("inputs['" + d().input_names[k] + "']: give a number, got " +
+                               std::string(py::str(py::type::of(value).attr("__name__"))));
+        v[k] = value.cast<double>();
+      }
     } else {
-      const Array a = inputs.cast<Array>();
-      if (a.ndim() != 1 || static_cast<std::size_t>(a.size()) != in_.size())
-        throw std::invalid_argument("the model has " + std::to_string(in_.size()) +
-                                    " input channels; got " + std::to_string(a.size()) + " values");
-      std::copy(a.data(), a.data() + a.size(), v.begin());
+      if (inputs.is_none() || py::isinstance<py::str>(inputs)) throw py::type_error(wanted);
+      const py::array a = py::array::ensure(inputs);
+      if (!a) throw py::type_error(wanted);
+      const char kind = a.dtype().kind();
+      if (kind != 'f' && kind != 'i' && kind != 'u')
+        throw py::type_error(wanted + "; got an array of dtype " + std::string(py::str(a.dtype())));
+      if (a.ndim() != 1)
+        throw py::value_error(wanted + "; got an array of " + std::to_string(a.ndim()) +
+                              " dimensions");
+      if (static_cast<std::size_t>(a.size()) != in_.size())
+        throw py::value_error("the model has " + std::to_string(in_.size()) +
+                              " input channels; got " + std::to_string(a.size()) + " values");
+      const Array x = a.cast<Array>();
+      std::copy(x.data(), x.data() + x.size(), v.begin());
     }
     for (std::size_t k = 0; k < v.size(); ++k) {
+      const ntn::InputSpec& spec = d().inputs[k];
       if (!std::isfinite(v[k]))
         throw std::invalid_argument("input '" + d().input_names[k] + "' is not finite");
+      if (v[k] < spec.min || v[k] > spec.max)
+        throw std::invalid_argument("input '" + d().input_names[k] + "' = " + ntn::cli::num(v[k]) +
+                                    " is outside its range [" + ntn::cli::num(spec.min) + ", " +
+                                    ntn::cli::num(spec.max) + "] (the model file's min, max)");
     }
     in_ = v;  // only a good set of inputs reaches the model
   }
@@ -433,9 +519,17 @@ class PyModel {
   std::unique_ptr<ntn::run::LoadedModel> m_;
   std::vector<double> in_;
   bool started_ = false;
+  std::atomic<bool> busy_{false};
+  std::uint64_t serial_ = ++g_model_serial;
 };
 
+// A path with a NUL in it names another file than the one given (the C library stops at it).
+void check_path(const std::string& path) {
+  if (path.find('\0') != std::string::npos) throw py::value_error("path: contains a NUL character");
+}
+
 std::unique_ptr<PyModel> load(const std::string& path) {
+  check_path(path);
   ntn::modelc::LoadResult r = ntn::modelc::load_model(path);
   if (!r.ok()) throw ModelError(trimmed(ntn::modelc::format_all(r.errors)));
   return std::make_unique<PyModel>(std::make_unique<ntn::run::LoadedModel>(
