@@ -226,6 +226,15 @@ const Expected kExpected[] = {
   {"HugeE", "numbers_beyond_double.toml", 15, 5, "materials[1].E", "E = 1e+308 Pa gives a non-finite bending stiffness 12 E Iz / (l^3 (1 + Phi)) of member M1"},
   {"SubnormalRho", "numbers_beyond_double.toml", 23, 7, "materials[2].rho", "rho = 1e-310 kg/m^3 is too small: it gives a zero or subnormal end mass rho A l / 2 of member M3"},
   {"HugeA", "numbers_beyond_double.toml", 34, 5, "sections[1].A", "A = 1e+308 m^2 gives a non-finite axial stiffness E A / l of member M2"},
+  // Hinge law values at or above the kernel's bound (ntn::kLawValueLimit), at their keys; a roll of more than a turn.
+  {"LawRigidPlasticHuge", "law_values_huge.toml", 56, 24, "hinges[0].ux.rigid_plastic", "must be below 1e+300 in magnitude (the kernel's bound on a hinge law's values; got 1e+308)"},
+  {"LawHardeningStiffnessHuge", "law_values_huge.toml", 57, 51, "hinges[0].uy.hardening_stiffness", "must be below 1e+300"},
+  {"LawYieldHuge", "law_values_huge.toml", 58, 31, "hinges[0].uz.yield", "must be below 1e+300 in magnitude (the kernel's bound on a hinge law's values; got 1e+301)"},
+  {"LawFailureHuge", "law_values_huge.toml", 59, 18, "hinges[0].rx.failure", "must be below 1e+300"},
+  {"LawFrictionHuge", "law_values_huge.toml", 60, 19, "hinges[0].ry.friction", "must be below 1e+300"},
+  {"LawCohesionHuge", "law_values_huge.toml", 61, 35, "hinges[0].rz.cohesion", "must be below 1e+300"},
+  {"LawCpHuge", "law_values_huge.toml", 67, 63, "hinges[1].ux.cp", "must be below 1e+300"},
+  {"RollHuge", "law_values_huge.toml", 68, 32, "hinges[1].axes.roll", "must be within [-360, 360] degrees, one turn either way (got 1e+308)"},
   {"HingeSpringHuge", "hinge_spring_huge.toml", 54, 6, "hinges[0].ry", "the stable step is zero (set by hinge H1, direction ry (the spring with the largest share of the governing node's bound) (k = 1e+308 N m/rad, dashpot c = 0 N m s/rad)): an intermediate result of the stable-step bound is beyond double there"},
 };
 // clang-format on

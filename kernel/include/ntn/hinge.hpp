@@ -8,6 +8,7 @@
 #include <span>
 #include <utility>
 
+#include "ntn/hysteresis.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
@@ -259,7 +260,7 @@ bool resolve_hinge(const HingeSpec& spec, const Settings& settings, std::size_t 
         break;
       case HingeBehaviour::kRigidPlastic:  // what the method makes of it (slip_direction)
         if (spec.hysteresis[k] < 0 || spec.dashpot[k] != 0 || !(spec.stiffness[k] >= 0) ||
-            !(spec.stiffness[k] < 1e300))
+            !law_value_ok(spec.stiffness[k]))
           return false;
         h.history[k] = spec.hysteresis[k];
         h.stiffness[k] = spec.stiffness[k];  // its hardening with the slip, if any

@@ -41,6 +41,14 @@ struct HysteresisData {
   int circle = -1;   // friction circle: the other direction of the pair, or -1 (slip.hpp)
 };
 
+// The bound on a hinge law's values (forces, moments, deformations, stiffnesses, mu, cohesion,
+// acceptance limits): each must be below it, so that the law's products (mu N + c, k d, H d_p)
+// stay finite. The model compiler refuses a value at or above it at its key.
+inline constexpr double kLawValueLimit = 1e300;
+constexpr bool law_value_ok(double v) {
+  return v < kLawValueLimit;
+}
+
 // A law the kernel takes for a direction of elastic stiffness k and dashpot c: acceptance limits
 // none or 0 < io <= ls <= cp (finite); bilinear: yields > 0 and finite, hardening in [0, 1);
 // backbone: both envelopes valid (backbone.hpp), yields equal to their B forces, no dashpot (its
@@ -51,19 +59,19 @@ struct HysteresisData {
 constexpr bool hysteresis_valid(const HysteresisSpec& s, double k, double c) {
   const auto& l = s.limits;
   const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
-  const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && l[2] < 1e300;
+  const bool ordered = l[0] > 0 && l[0] <= l[1] && l[1] <= l[2] && law_value_ok(l[2]);
   if (!(none || ordered)) return false;
   if (s.fixed_if != 0)  // held by the sign of another direction's force: no limits of its own
     return (s.fixed_if == 1 || s.fixed_if == -1) && s.rule == HysteresisRule::kBilinear &&
            s.normal >= 0 && s.normal < 6 && s.mu == 0 && s.cohesion == 0 && s.hardening == 0;
   if (s.normal >= 0)  // friction: the yields are not used
-    return s.rule == HysteresisRule::kBilinear && s.normal < 6 && s.mu >= 0 && s.mu < 1e300 &&
-           s.cohesion >= 0 && s.cohesion < 1e300 && s.hardening == 0 && s.circle >= -1 &&
+    return s.rule == HysteresisRule::kBilinear && s.normal < 6 && s.mu >= 0 && law_value_ok(s.mu) &&
+           s.cohesion >= 0 && law_value_ok(s.cohesion) && s.hardening == 0 && s.circle >= -1 &&
            s.circle < 6 && s.circle != s.normal;
   if (s.normal != -1 || s.circle != -1) return false;
   if (s.rule == HysteresisRule::kBilinear || s.rule == HysteresisRule::kBrittle)
-    return s.yield_pos > 0 && s.yield_pos < 1e300 && s.yield_neg > 0 && s.yield_neg < 1e300 &&
-           s.hardening >= 0 && s.hardening < 1 &&
+    return s.yield_pos > 0 && law_value_ok(s.yield_pos) && s.yield_neg > 0 &&
+           law_value_ok(s.yield_neg) && s.hardening >= 0 && s.hardening < 1 &&
            (s.rule == HysteresisRule::kBilinear || (s.hardening == 0 && c == 0));
   if (s.rule != HysteresisRule::kKinematic && s.rule != HysteresisRule::kPeakOriented) return false;
   if (!(k > 0) || c != 0 || s.hardening != 0 || !envelope_valid(s.backbone_pos, k) ||

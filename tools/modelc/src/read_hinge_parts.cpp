@@ -240,6 +240,22 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
             "ls",
             "cp"});
   tb.check_unknown();
+  // The kernel's bound on a law's values (ntn::kLawValueLimit), at the key that breaks it: a
+  // value the kernel would refuse far from its cause ("hinge with a bad node, frame, curve or
+  // stiffness") or overflow with.
+  for (const char* k : {"yield", "yield_negative", "rigid_plastic", "hardening_stiffness",
+                        "friction", "cohesion", "failure", "io", "ls", "cp"}) {
+    const toml::node* v = t->get(k);
+    if (v == nullptr || !(v->is_floating_point() || v->is_integer())) continue;
+    const double x = v->is_integer() ? static_cast<double>(v->as_integer()->get())
+                                     : v->as_floating_point()->get();
+    if (std::isfinite(x) && !ntn::law_value_ok(std::fabs(x))) {
+      L.error(tb.where(k), "must be below " + num(ntn::kLawValueLimit) +
+                               " in magnitude (the kernel's bound on a hinge law's values; got " +
+                               num(x) + ")");
+      return std::nullopt;
+    }
+  }
   const char* const kKinds[8] = {"linear",        "curve",    "plastic",  "backbone",
                                  "rigid_plastic", "friction", "fixed_if", "failure"};
   for (std::size_t i = 0; i < 8; ++i) {

@@ -14,12 +14,18 @@
 #include "ntn/time_step.hpp"
 #include "read_hinge_parts.hpp"
 #include "record.hpp"  // tools/io: the rule of a scale factor
+#include "roll.hpp"
 #include "toml_reader.hpp"
 
 namespace ntn::modelc::compile {
 namespace {
 
 constexpr double kStandardGravity = 9.80665;  // m/s^2 per g (CGPM 1901)
+
+std::string roll_message(double deg) {
+  return "must be within [-" + num(kMaxRollDegrees) + ", " + num(kMaxRollDegrees) +
+         "] degrees, one turn either way (got " + num(deg) + ")";
+}
 constexpr long long kMaxDivisions = 1000000;
 
 const std::vector<std::string_view> kDirections3 = {"x", "y", "z"};
@@ -463,6 +469,10 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
         m.orientation_at = t.where("orientation");
       } else if (t.has("roll")) {
         auto r = t.number("roll", Need::kRequired);
+        if (r && !roll_in_range(*r)) {
+          L.error(t.where("roll"), roll_message(*r));
+          r.reset();
+        }
         if (r) {
           m.roll_deg = *r;
         } else {
@@ -834,7 +844,11 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
         const toml::node* r = fr.get("roll", Need::kRequired,
                                      " (degrees about the member's local x; without a roll, "
                                      "give frame = { member = \"id\" })");
-        const auto roll = r != nullptr ? L.number(*r, fr.key("roll")) : std::nullopt;
+        auto roll = r != nullptr ? L.number(*r, fr.key("roll")) : std::nullopt;
+        if (roll && !roll_in_range(*roll)) {
+          L.error(fr.where("roll"), roll_message(*roll));
+          roll.reset();
+        }
         if (m && roll) {
           h.frame = FrameKind::kMember;
           h.frame_member = *m;

@@ -11,6 +11,13 @@
 
 namespace ntn::modelc::compile {
 
+// A roll is an angle of at most one turn either way: a larger one is a slip of units (radians
+// times 180/pi twice, or a bad exponent), and cos and sin of 1e308 degrees are noise.
+inline constexpr double kMaxRollDegrees = 360.0;
+inline bool roll_in_range(double deg) {
+  return std::fabs(deg) <= kMaxRollDegrees;
+}
+
 inline void roll_about_x(double deg, std::array<double, 3>& y, std::array<double, 3>& z) {
   if (deg == 0.0) return;
   const double th = deg * std::numbers::pi / 180.0;
