@@ -235,6 +235,10 @@ const Expected kExpected[] = {
   {"LawCohesionHuge", "law_values_huge.toml", 61, 35, "hinges[0].rz.cohesion", "must be below 1e+300"},
   {"LawCpHuge", "law_values_huge.toml", 67, 63, "hinges[1].ux.cp", "must be below 1e+300"},
   {"RollHuge", "law_values_huge.toml", 68, 32, "hinges[1].axes.roll", "must be within [-360, 360] degrees, one turn either way (got 1e+308)"},
+  // Friction and fixed_if directions whose normal cannot hold them.
+  {"FrictionNormalFree", "friction_normals.toml", 55, 33, "hinges[0].ux.normal", "the normal of a friction direction is uz, a free direction: it carries no force, so the limit would be the cohesion alone"},
+  {"FixedIfControlFree", "friction_normals.toml", 61, 41, "hinges[1].uy.control", "the control of a fixed_if direction is rx, a free direction: it carries no force, so the direction would never be held"},
+  {"FrictionNormalMoment", "friction_normals.toml", 67, 33, "hinges[2].uy.normal", "is ry, a rotation: a translation's friction limit mu N needs a force N, not a moment"},
   {"HingeSpringHuge", "hinge_spring_huge.toml", 54, 6, "hinges[0].ry", "the stable step is zero (set by hinge H1, direction ry (the spring with the largest share of the governing node's bound) (k = 1e+308 N m/rad, dashpot c = 0 N m s/rad)): an intermediate result of the stable-step bound is beyond double there"},
 };
 // clang-format on

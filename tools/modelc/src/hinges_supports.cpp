@@ -112,6 +112,24 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
         const auto n = static_cast<std::size_t>(b.law.normal);
         const char* role = b.law.fixed_if != 0 ? "the control of a fixed_if direction"
                                                : "the normal of a friction direction";
+        // A free normal carries no force: the limit would be the cohesion alone (friction) or
+        // the direction never held (fixed_if). A translation's friction takes a force as its
+        // normal, not a moment (mu x N m is not a force).
+        const bool free_normal = dirs[n].kind == HingeBehaviour::kFree;
+        const bool moment_normal = b.law.fixed_if == 0 && k < 3 && n >= 3;
+        if (free_normal || moment_normal) {
+          comp.L.error(b.normal_at,
+                       std::string(role) + " is " + std::string(kDofNames[n]) +
+                           (!free_normal ? ", a rotation: a translation's friction limit mu "
+                                           "N needs a force N, not a moment"
+                            : b.law.fixed_if != 0 ? ", a free direction: it carries no force, so "
+                                                    "the direction would never be held"
+                                                  : ", a free direction: it carries no force, so "
+                                                    "the limit would be the cohesion alone") +
+                           " (give normal = / control = a direction that carries the force)");
+          ok = false;
+          continue;
+        }
         if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic || is_stop(n)) {
           const bool by_default =
               b.normal_at.line == b.at.line && b.normal_at.column == b.at.column;
