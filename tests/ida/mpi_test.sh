@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ntn-ida on MPI (issue 19): the same small study (4 records, hunt and fill, the elasto-plastic
+# ntn-ida on MPI: the same small study (4 records, hunt and fill, the elasto-plastic
 # column) on 1 process without mpirun and on 2, 3 and 4 processes under mpirun (oversubscribed on
 # a 2-core machine) gives byte-identical results.csv, capacities.csv and fragility.csv; a study
 # whose process is killed (SIGKILL) mid-run is refused without --resume and, resumed on one
@@ -26,6 +26,13 @@ for n in 2 3 4; do
   for f in results.csv capacities.csv fragility.csv; do
     cmp "$out/n1/$f" "$out/n$n/$f" || fail "$f differs between 1 and $n processes"
   done
+  # The study's time is the last process's: at least every process's own time (0.1 s for the
+  # processes' start offsets and the one-decimal print).
+  awk '/^time / {
+         wall = $2; worst = 0
+         for (i = 1; i <= NF; ++i) if ($i == "runs" && $(i + 2) ~ /^s/ && $(i + 1) + 0 > worst) worst = $(i + 1) + 0
+         if (wall + 0.1 < worst) { print "time " wall " s < a process'"'"'s " worst " s"; exit 1 }
+       }' "$out/n$n.txt" || fail "-np $n: the study's time is not the slowest process's: $(grep '^time' "$out/n$n.txt")"
 done
 
 # Killed mid-run: one of two processes gets SIGKILL once 3 runs are in the journal.

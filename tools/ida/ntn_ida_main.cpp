@@ -227,8 +227,16 @@ int ida(int argc, char** argv, int rank, int size) {
                  "T1 [s] for sa_t1 (default: the model's first period "
                  "along the input's direction)")
       ->check(ntn::cli::Positive(1e4));
-  app.add_option("--damping", o.damping, "damping ratio of Sa")
-      ->check(ntn::cli::Number(0, 1, false))
+  app.add_option("--damping", o.damping, "damping ratio of Sa, in [0, 1)")
+      ->check(ntn::cli::Validator(
+          [](std::string& text) -> std::string {
+            const std::optional<double> v = ntn::cli::parse_double(text);
+            if (v && *v >= 0 && *v < 1) return {};
+            return "wants a damping ratio in [0, 1) (Sa is the peak of an underdamped "
+                   "oscillator), got '" +
+                   text + "'";
+          },
+          "[0, 1)"))
       ->capture_default_str();
   app.add_option("--scales", o.scales,
                  "stepping: the intensities [g], '0.1,0.2,0.4' or START:STEP:STOP (default: hunt "
@@ -415,7 +423,6 @@ int ida(int argc, char** argv, int rank, int size) {
     mine.insert(mine.end(), traced.begin(), traced.end());
   }
   std::fclose(journal);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Every process's rows to the first one, as text.
   std::string text;
@@ -445,6 +452,8 @@ int ida(int argc, char** argv, int rank, int size) {
     text = std::move(gathered);
   }
 #endif
+  // The study's time: after the gathers, so every process has finished its records.
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (rank != 0) return 0;
   std::stringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
