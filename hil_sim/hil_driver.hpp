@@ -210,6 +210,11 @@ struct Sink {
   ntn::hil::OutputHash* hash = nullptr;
   std::vector<double> peak;              // largest |value| per channel
   std::vector<std::int64_t> peak_frame;  // and its first frame
+  // The CSV and the log are handed to their files every flush_every frames (about a second),
+  // after the frame's output packet is sent: a run killed (SIGKILL, a power cut) loses at most
+  // the last second.
+  ntn::hil::Recorder* recorder = nullptr;
+  std::int64_t flush_every = 0;
   void after_step(const ntn::State<S>&, const ntn::Scratch<S>& w) {
     if (hash != nullptr) hash->add_step(w);
   }
@@ -222,6 +227,10 @@ struct Sink {
       const std::size_t n =
           ntn::hil::encode(ntn::hil::PacketKind::kOutput, sequence++, k, flags, v, packet);
       (void)socket->send_to(reply_port, std::span<const std::byte>(packet.data(), n));
+    }
+    if (flush_every > 0 && (k + 1) % flush_every == 0) {
+      if (csv != nullptr && csv->is_open()) csv->flush();
+      if (recorder != nullptr) recorder->flush();
     }
   }
 };
@@ -678,7 +687,9 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
       std::fprintf(stderr, "error: --record: %s\n", recorder.error().c_str());
       return 2;
     }
+    sink.recorder = &recorder;
   }
+  sink.flush_every = std::max<std::int64_t>(1, std::llround(1.0 / period));
 
   const bool virtual_clock = clock_name == "virtual";
   if (!virtual_clock) {

@@ -44,6 +44,13 @@ void CsvWriter::header(std::span<const std::string_view> names,
   }
   head += flags ? ",flags\n" : "\n";
   put(head.c_str());
+  flush();  // on disk at once: a run killed before its first flush still leaves the header
+}
+
+void CsvWriter::flush() {
+  if (file_ == nullptr || !error_.empty()) return;
+  errno = 0;
+  if (std::fflush(file_) != 0) fail(errno);
 }
 
 void CsvWriter::row(double time, std::span<const double> values) {

@@ -88,6 +88,7 @@ bool Recorder::open(const std::string& path, const LogHeader& header) {
   put(at, checksum(record_.data(), static_cast<std::size_t>(at - record_.data())));
   if (std::fwrite(record_.data(), 1, kLogHeaderBytes, file_) != kLogHeaderBytes)
     write_errno_ = errno != 0 ? errno : EIO;
+  flush();  // the header on disk before the first frame
   record_.resize(log_frame_bytes(header.inputs, header.outputs));
   return true;
 }
@@ -111,6 +112,12 @@ void Recorder::write_frame(std::int64_t frame, std::uint32_t input_flags,
     return;
   }
   ++frames_;
+}
+
+void Recorder::flush() {
+  if (file_ == nullptr || write_errno_ != 0) return;
+  errno = 0;
+  if (std::fflush(file_) != 0) write_errno_ = errno != 0 ? errno : EIO;
 }
 
 bool Recorder::close() {
@@ -162,6 +169,8 @@ bool LogReader::open(const std::string& path) {
     error_ = path + ": " + what;
     return false;
   };
+  if (got == 0)
+    return refuse("the log is empty (0 bytes): the run that wrote it ended before its header");
   if (got < kMagic.size() || std::memcmp(h.data(), kMagic.data(), kMagic.size()) != 0)
     return refuse("not an ntn-rt log (no NTNLOG1 magic at its start)");
   const std::byte* at = h.data() + kMagic.size();

@@ -27,6 +27,9 @@ class CsvWriter {
   // The header line; `flags` adds the flags column (then every row must give flags).
   void header(std::span<const std::string_view> names, std::span<const std::string_view> units,
               bool flags);
+  // Hands the buffered rows to the file (the header does so itself): a run killed later loses
+  // only what came after.
+  void flush();
   void row(double time, std::span<const double> values);
   void row(double time, std::span<const double> values, std::uint16_t flags);
   // Flushes and closes; false: a write or the close failed, error() says how (strerror). The

@@ -61,6 +61,9 @@ class Recorder {
   bool open(const std::string& path, const LogHeader& header);  // false: see error()
   void write_frame(std::int64_t frame, std::uint32_t input_flags, std::uint32_t output_flags,
                    std::span<const double> inputs, std::span<const double> outputs);
+  // Hands the buffered frames to the file (open() does so with the header): a run killed later
+  // leaves every frame before the last flush, which replays as a cut log.
+  void flush();
   bool close();  // writes the end record and flushes; false on a write error (see error())
   std::int64_t frames() const { return frames_; }
   const std::string& error() const { return error_; }
