@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -259,6 +261,47 @@ TEST(Plot, FailingGnuplotIsReported) {
   o.gnuplot = "/bin/false";
   EXPECT_EQ(kind_of(two_panels(), dir / "x", o, &m), pl::Error::Kind::kGnuplotFailed);
   EXPECT_NE(m.find("exited with status 1"), std::string::npos) << m;
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+// A gnuplot that writes part of the PNG and then fails (a full disk, a Cairo error) leaves no
+// partial plot behind: the failure removes both outputs.
+TEST(Plot, FailingGnuplotLeavesNoPartialPlot) {
+  TempDir dir;
+  const std::string fake = dir / "half-gnuplot";
+  {
+    std::ofstream f(fake);
+    f << "#!/bin/sh\n# writes the first bytes of a PNG where the script says, then fails\n"
+         "out=$(sed -n \"s/^set output '\\(.*\\.png\\)'$/\\1/p\" \"$2\" | head -n 1)\n"
+         "printf '\\211PNG' > \"$out\"\necho 'Cairo is unhappy' >&2\nexit 3\n";
+  }
+  fs::permissions(fake, fs::perms::owner_all);
+  std::string m;
+  pl::RenderOptions o;
+  o.gnuplot = fake;
+  EXPECT_EQ(kind_of(two_panels(), dir / "x", o, &m), pl::Error::Kind::kGnuplotFailed);
+  EXPECT_NE(m.find("Cairo is unhappy"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir / "x.png")) << "a partial PNG was left";
+  EXPECT_FALSE(fs::exists(dir / "x.svg"));
+}
+
+// Figures no axis or page can hold are refused before gnuplot runs: values beyond +-1e300
+// ("all points y value undefined!") and more panels than the 20000 px limit at 240 px each.
+TEST(Plot, UndrawableFiguresAreRefusedUpFront) {
+  TempDir dir;
+  std::string m;
+  pl::Figure huge = two_panels();
+  huge.panels[0].series[0].y[0] = 1e308;
+  EXPECT_EQ(kind_of(huge, dir / "h", {}, &m), pl::Error::Kind::kInput);
+  EXPECT_NE(m.find("beyond +-1e+300"), std::string::npos) << m;
+  pl::Figure tall = two_panels();
+  while (tall.panels.size() < 2000)
+    tall.panels.push_back(tall.panels[0]);
+  EXPECT_EQ(kind_of(tall, dir / "t", {}, &m), pl::Error::Kind::kInput);
+  EXPECT_NE(m.find("2000 panels in 600 px: a panel needs at least 40 px"), std::string::npos) << m;
+  tall.height = 0;  // the default: 240 px a panel
+  EXPECT_EQ(kind_of(tall, dir / "t", {}, &m), pl::Error::Kind::kInput);
+  EXPECT_NE(m.find("2000 panels need 480000 px"), std::string::npos) << m;
   EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 

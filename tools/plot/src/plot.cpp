@@ -73,12 +73,26 @@ void check_range(const Range& r, Scale scale, const std::string& what) {
                 "] is empty");
 }
 
+constexpr double kMaxPlotValue = 1e300;
+
 void check(const Figure& f) {
   if (f.panels.empty()) input_error("the figure has no panel");
   if (f.width < 100 || f.width > 10000)
     input_error("width " + std::to_string(f.width) + " px is outside 100 ... 10000");
   if (f.height != 0 && (f.height < 100 || f.height > 20000))
     input_error("height " + std::to_string(f.height) + " px is outside 100 ... 20000");
+  // The default height grows with the panels (240 px each): more than the limit is more
+  // panels than a figure can hold.
+  if (f.height == 0 && f.panels.size() > 20000 / 240)
+    input_error(std::to_string(f.panels.size()) + " panels need " +
+                std::to_string(240 * f.panels.size()) +
+                " px at 240 px each, more than the 20000 px a figure may have: plot fewer "
+                "channels (--channels), or give --size with a smaller height per panel");
+  constexpr std::size_t kMinPanelHeight = 40;  // px: an axis, its tics and a trace
+  if (f.height != 0 && f.panels.size() * kMinPanelHeight > static_cast<std::size_t>(f.height))
+    input_error(std::to_string(f.panels.size()) + " panels in " + std::to_string(f.height) +
+                " px: a panel needs at least " + std::to_string(kMinPanelHeight) +
+                " px (plot fewer channels, or give a taller --size)");
   for (std::size_t p = 0; p < f.panels.size(); ++p) {
     const Panel& panel = f.panels[p];
     const std::string w = where(p, panel);
@@ -102,6 +116,10 @@ void check(const Figure& f) {
           if (!std::isfinite(v))
             input_error(ws + ": " + axis + "[" + std::to_string(i) + "] is " +
                         (std::isnan(v) ? "NaN" : "infinite"));
+          // gnuplot's axis ranges and tics overflow near DBL_MAX ("all points undefined").
+          if (std::fabs(v) > kMaxPlotValue)
+            input_error(ws + ": " + axis + "[" + std::to_string(i) + "] = " + num(v, "%g") +
+                        " is beyond +-" + num(kMaxPlotValue, "%g") + ", which no axis can show");
         }
         if ((panel.x_scale == Scale::kLinear || s.x[i] > 0) &&
             (panel.y_scale == Scale::kLinear || s.y[i] > 0))
@@ -430,8 +448,14 @@ Rendered render(const Figure& f, const std::string& base, const RenderOptions& o
       fs::remove(r.data, ec);
     }
   };
+  // A failed run leaves no plot: gnuplot may have begun either file.
+  const auto remove_plots = [&] {
+    for (const std::string& p : {r.png, r.svg})
+      if (!p.empty()) fs::remove(p, ec);
+  };
   if (status != 0) {
     cleanup();
+    remove_plots();
     std::string hint;
     if (err.find("unknown or ambiguous terminal") != std::string::npos)
       hint = " (this gnuplot lacks the pngcairo or svg terminal; Debian's gnuplot-nox has both)";
@@ -441,9 +465,11 @@ Rendered render(const Figure& f, const std::string& base, const RenderOptions& o
   cleanup();
   for (const std::string& p : {r.png, r.svg}) {
     if (p.empty()) continue;
-    if (!fs::exists(p) || fs::file_size(p) == 0)
+    if (!fs::exists(p) || fs::file_size(p) == 0) {
+      remove_plots();
       throw Error(Error::Kind::kGnuplotFailed,
                   "'" + program + "' exited 0 but did not write " + p + ":\n" + err);
+    }
   }
   r.warnings = lines(err);
   for (std::size_t p = 0; p < f.panels.size(); ++p) {
