@@ -16,6 +16,7 @@
 #include "ntn/modelc/diagnostic.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/run/loaded_model.hpp"
+#include "text_model.hpp"
 
 namespace ntn_test::block {
 
@@ -133,13 +134,8 @@ mass = 1000.0
 
 // The model loaded as ntn-run loads it, init()ed and started with a_g(0) = ag0.
 inline std::unique_ptr<ntn::run::LoadedModel> load(const Block& b, double ag0 = 0.0) {
-  ntn::modelc::LoadResult r = ntn::modelc::load_model_from_string(block_model(b), "block.toml");
-  EXPECT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
-  if (!r.ok()) return nullptr;
-  auto rt = std::make_unique<ntn::run::LoadedModel>(std::move(*r.model), ntn::RunTimeOptions{});
-  const ntn::InitStatus st = rt->init();
-  EXPECT_TRUE(st.ok()) << ntn::to_string(st.error);
-  if (!st.ok()) return nullptr;
+  auto rt = load_text_model(block_model(b), "block.toml");
+  if (rt == nullptr) return nullptr;
   ntn::initial_state(rt->model(), rt->state());
   std::vector<double> in(rt->model().sizes.inputs, 0.0);
   if (!in.empty()) in[0] = ag0;

@@ -40,6 +40,7 @@
 #include "ntn/run/loaded_model.hpp"
 #include "sdof_model.hpp"
 #include "support/temp_files.hpp"
+#include "text_model.hpp"
 
 namespace sdof_test {
 
@@ -58,13 +59,7 @@ std::string undamped(const std::string& tables = "") {
 }
 
 std::unique_ptr<ntn::run::LoadedModel> load(const std::string& text) {
-  ntn::modelc::LoadResult r = ntn::modelc::load_model_from_string(text, "sdof.toml");
-  EXPECT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
-  if (!r.ok()) return nullptr;
-  auto rt = std::make_unique<ntn::run::LoadedModel>(std::move(*r.model), ntn::RunTimeOptions{});
-  const ntn::InitStatus st = rt->init();
-  EXPECT_TRUE(st.ok()) << ntn::to_string(st.error) << " at " << st.where;
-  return st.ok() ? std::move(rt) : nullptr;
+  return ntn_test::load_text_model(text, "sdof.toml");
 }
 
 // u at t_n (the channel "u", outputs[0]) for n = 0 .. steps - 1, from u_0 along x at rest, with
