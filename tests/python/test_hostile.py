@@ -117,3 +117,28 @@ def test_run_arguments_of_the_wrong_type(el_centro):
         model.run(inputs={"ag_x": el_centro}, duration="10")
     with pytest.raises(ValueError, match=r"duration: 1e\+20 s gives"):
         model.run(inputs={"ag_x": el_centro}, duration=1e20)
+
+
+def test_run_prints_a_value_outside_the_range_in_six_digits():
+    model = ntnrt.load(FRAME3D)
+    huge = ntnrt.Record(np.array([0.0, 1e300, 0.0]), 0.01)
+    with pytest.raises(ValueError, match=r"sample 1 = 1e\+300 g is outside") as e:
+        model.run(inputs={"ag_x": huge})
+    assert len(str(e.value)) < 200
+
+
+def test_check_modes_names_its_arguments_as_python_takes_them():
+    model = ntnrt.load(FRAME3D)
+    t = np.arange(4096) / 100.0
+    data = {"u": np.sin(2 * np.pi * 1.6 * t)}
+    for kwargs, words in [
+        ({"tolerance": float("nan")}, r"^tolerance is nan: it must be above 0 and at most 1$"),
+        ({"tolerance": 1.5}, r"^tolerance is 1\.5: it must be above 0 and at most 1$"),
+        ({"band": 0.0}, r"^band is 0: it must be above 0 and at most 1$"),
+        ({"min_mac": -1.0}, r"^min_mac is -1: it must be in \[0, 1\]$"),
+        ({"resolution": -1.0}, r"^resolution is -1 Hz: .*or 0: automatic$"),
+        ({"modes": 0}, r"^modes is 0: it must be at least 1$"),
+        ({"direction": 5}, r"^direction is 5: "),
+    ]:
+        with pytest.raises(ValueError, match=words):
+            ntnrt.check_modes(model, data, 100.0, **kwargs)

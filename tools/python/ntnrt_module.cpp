@@ -238,8 +238,8 @@ class PyModel {
                                       " is not finite");
         if (v < spec.min || v > spec.max)
           throw std::invalid_argument(
-              "input '" + name + "': sample " + std::to_string(s) + " = " + std::to_string(v) +
-              " " + unit.name +
+              "input '" + name + "': sample " + std::to_string(s) + " = " + ntn::cli::num(v) + " " +
+              unit.name +
               (factors[k] != 1 ? " (the record x " + ntn::cli::num(factors[k]) + ")" : "") +
               " is outside the input's range");
       }
@@ -582,6 +582,7 @@ py::dict check_modes(const PyModel& model, const py::dict& data, double fs, int 
   for (const auto& c : ch.data)
     if (c.size() != ch.samples()) throw std::invalid_argument("the channels differ in length");
   ntn::modecheck::Options o;
+  o.spelling = ntn::modecheck::Spelling::kLibrary;
   o.modes = modes, o.tolerance = tolerance, o.min_mac = min_mac, o.search_band = band;
   o.resolution_hz = resolution, o.channels = std::move(channels), o.direction = direction;
   ntn::modecheck::Report rep;

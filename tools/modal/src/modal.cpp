@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <numbers>
@@ -22,6 +23,13 @@
 
 namespace ntn::modal {
 namespace {
+
+// A number in a note or an error, to six significant digits.
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
@@ -501,8 +509,8 @@ ModalResult modal_analysis(const SpecView& spec, const ModalOptions& options) {
       r.notes.push_back("the stiffness is singular (rigid-body modes): shift -1 rad^2/s^2");
     }
     if (!op.ok()) {
-      r.error = "the sparse factorization of A - sigma I failed (sigma = " + std::to_string(sigma) +
-                " rad^2/s^2)";
+      r.error =
+          "the sparse factorization of A - sigma I failed (sigma = " + num(sigma) + " rad^2/s^2)";
       return r;
     }
     r.shift = sigma;
@@ -582,10 +590,10 @@ ModalResult modal_analysis(const SpecView& spec, const ModalOptions& options) {
     const double t = r.total_mass[static_cast<std::size_t>(d)];
     const double reach = r.reachable_mass[static_cast<std::size_t>(d)];
     if (t > 0 && std::abs(reach - t) > 1e-9 * t) {
-      r.notes.push_back(std::string("direction ") + "xyz"[d] + ": " + std::to_string(t - reach) +
+      r.notes.push_back(std::string("direction ") + "xyz"[d] + ": " + num(t - reach) +
                         " kg of the unsupported mass cannot translate rigidly (tied to supports "
                         "or the ground through hinges): the effective masses add up to " +
-                        std::to_string(reach) + " kg");
+                        num(reach) + " kg");
     }
   }
   lap(r.seconds.results);

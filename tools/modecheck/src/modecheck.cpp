@@ -63,10 +63,28 @@ std::string list_names(const std::vector<std::string>& names) {
   return s;
 }
 
-// Refuses one option: `shown` is the value as the ntn-check-modes option takes it (percent for
-// the fractions given in %).
-[[noreturn]] void bad_option(const char* option, double shown, const char* unit, const char* rule) {
-  throw InputError(std::string("option ") + option + " is " + num(shown) + unit + ": " + rule);
+// Refuses one option, worded as the caller spells it: ntn-check-modes ("option --tolerance is
+// 150 %: ...", the fractions it takes in %) or the library and the Python module ("tolerance is
+// 1.5: ...", fractions as fractions). `percent`: a fraction the command line takes in %.
+struct OptionName {
+  const char* cli;
+  const char* library;
+  bool percent;
+};
+
+[[noreturn]] void bad_option(const Options& o, OptionName name, double value, const char* unit,
+                             const char* rule) {
+  const bool cli = o.spelling == Spelling::kCli;
+  const bool pc = cli && name.percent;
+  std::string r = rule;
+  if (name.percent) {
+    // The rule's bounds: "100 %" on the command line, "1" as a fraction.
+    const std::string hundred = "100 %";
+    for (auto at = r.find(hundred); !pc && at != std::string::npos; at = r.find(hundred))
+      r.replace(at, hundred.size(), "1");
+  }
+  throw InputError((cli ? std::string("option ") + name.cli : std::string(name.library)) + " is " +
+                   num(pc ? 100 * value : value) + (pc ? " %" : unit) + ": " + r);
 }
 
 // Every sample of a selected channel finite, and not constant: a channel that does not move (a
@@ -101,30 +119,45 @@ void validate(const Options& o) {
   const auto in = [](double v, double lo, double hi) {
     return std::isfinite(v) && v >= lo && v <= hi;
   };
+  const bool cli = o.spelling == Spelling::kCli;
   if (o.modes < 1) {
-    throw InputError("option --modes is " + std::to_string(o.modes) + ": it must be at least 1");
+    throw InputError(std::string(cli ? "option --modes" : "modes") + " is " +
+                     std::to_string(o.modes) + ": it must be at least 1");
   }
   if (!in(o.tolerance, 0, 1) || o.tolerance == 0)
-    bad_option("--tolerance", 100 * o.tolerance, " %", "it must be above 0 and at most 100 %");
+    bad_option(o, {"--tolerance", "tolerance", true}, o.tolerance, "",
+               "it must be above 0 and at most 100 %");
   if (!in(o.search_band, 0, 1) || o.search_band == 0)
-    bad_option("--band", 100 * o.search_band, " %", "it must be above 0 and at most 100 %");
-  if (!in(o.min_mac, 0, 1)) bad_option("--min-mac", o.min_mac, "", "it must be in [0, 1]");
+    bad_option(o, {"--band", "band", true}, o.search_band, "",
+               "it must be above 0 and at most 100 %");
+  if (!in(o.min_mac, 0, 1))
+    bad_option(o, {"--min-mac", "min_mac", false}, o.min_mac, "", "it must be in [0, 1]");
   if (!std::isfinite(o.resolution_hz) || o.resolution_hz < 0) {
-    bad_option("--resolution", o.resolution_hz, " Hz",
-               "it must be a finite positive line spacing (0 in the library: automatic)");
+    bad_option(o, {"--resolution", "resolution", false}, o.resolution_hz, " Hz",
+               cli ? "it must be a finite positive line spacing"
+                   : "it must be a finite positive line spacing, or 0: automatic");
   }
-  if (!in(o.overlap, 0, 0.95)) bad_option("--overlap", o.overlap, "", "it must be in [0, 0.95]");
+  if (!in(o.overlap, 0, 0.95))
+    bad_option(o, {"--overlap", "overlap", false}, o.overlap, "", "it must be in [0, 0.95]");
   if (o.direction < -1 || o.direction > 2) {
-    throw InputError("the direction is " + std::to_string(o.direction) +
+    throw InputError(std::string(cli ? "the direction" : "direction") + " is " +
+                     std::to_string(o.direction) +
                      ": it must be x, y or z (0, 1, 2; -1: every mode)");
   }
-  if (!in(o.min_mass_fraction, 0, 1))
-    bad_option("--min-mass", 100 * o.min_mass_fraction, " %", "it must be in [0, 100] %");
-  if (!in(o.min_prominence, 1, std::numeric_limits<double>::max()))
-    bad_option("--min-prominence", o.min_prominence, "", "it must be a finite ratio of at least 1");
-  if (!in(o.min_level, 0, 1)) bad_option("--min-level", o.min_level, "", "it must be in [0, 1]");
-  if (!in(o.min_visibility, 0, 1))
-    bad_option("--min-visibility", 100 * o.min_visibility, " %", "it must be in [0, 100] %");
+  if (!in(o.min_mass_fraction, 0, 1)) {
+    bad_option(o, {"--min-mass", "min_mass", true}, o.min_mass_fraction, "",
+               "it must be in [0, 100 %]");
+  }
+  if (!in(o.min_prominence, 1, std::numeric_limits<double>::max())) {
+    bad_option(o, {"--min-prominence", "min_prominence", false}, o.min_prominence, "",
+               "it must be a finite ratio of at least 1");
+  }
+  if (!in(o.min_level, 0, 1))
+    bad_option(o, {"--min-level", "min_level", false}, o.min_level, "", "it must be in [0, 1]");
+  if (!in(o.min_visibility, 0, 1)) {
+    bad_option(o, {"--min-visibility", "min_visibility", true}, o.min_visibility, "",
+               "it must be in [0, 100 %]");
+  }
 }
 
 const char* to_string(Kind kind) {
@@ -306,7 +339,7 @@ double resolve_resolution(const spectral::Channels& data, double lowest_model_hz
   const std::size_t n = data.samples();
   if (options.resolution_hz > 0) {
     if (options.resolution_hz > fs / 8) {
-      bad_option("--resolution", options.resolution_hz, " Hz",
+      bad_option(options, {"--resolution", "resolution", false}, options.resolution_hz, " Hz",
                  ("a segment needs at least 8 samples: at most fs / 8 = " + num(fs / 8) +
                   " Hz for this record")
                      .c_str());
@@ -620,7 +653,7 @@ Report check_data(const modelc::ModelDescription& model, const spectral::Channel
   const double df = resolve_resolution(data, lowest, options, &notes);
   // The lowest mode's search band must hold a spectral line, or no peak can be found in it.
   if (2 * options.search_band * lowest < df) {
-    bad_option("--band", 100 * options.search_band, " %",
+    bad_option(options, {"--band", "band", true}, options.search_band, "",
                ("the search band around mode " +
                 std::to_string(modes.number[static_cast<std::size_t>(
                     std::min_element(modes.frequency.begin(), modes.frequency.end()) -

@@ -35,7 +35,12 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How option errors name an option: as ntn-check-modes takes it ("option --tolerance is 150 %"),
+// or as the library and the Python module take it ("tolerance is 1.5", fractions as fractions).
+enum class Spelling : std::uint8_t { kCli, kLibrary };
+
 struct Options {
+  Spelling spelling = Spelling::kCli;
   int modes = 3;              // N: the first N (selected) model modes are checked
   double tolerance = 0.01;    // |f_identified - f_model| / f_model allowed
   double min_mac = 0.9;       // where the channels give a shape
@@ -52,11 +57,11 @@ struct Options {
   double min_visibility = 0.05;  // a mode the channels see less of than this fails (below)
 };
 
-// Refuses options no check can run with (InputError naming the ntn-check-modes option, its value
-// and the allowed range): NaN or infinite values anywhere, tolerance and search band not in
-// (0, 1], min_mac, min_level, min_visibility, min_mass_fraction not in [0, 1], min_prominence
-// below 1, overlap not in [0, 1), resolution_hz negative, modes below 1, direction not -1..2.
-// check_files, identify and compare call it, so programmatic use is covered too.
+// Refuses options no check can run with (InputError naming the option as options.spelling
+// spells it, its value and the allowed range): NaN or infinite values anywhere, tolerance and
+// search band not in (0, 1], min_mac, min_level, min_visibility, min_mass_fraction not in [0, 1],
+// min_prominence below 1, overlap not in [0, 1), resolution_hz negative, modes below 1, direction
+// not -1..2. check_files, identify and compare call it, so programmatic use is covered too.
 void validate(const Options& options);
 
 // How a response channel maps to the model.
