@@ -283,6 +283,56 @@ TEST(Plot, FailingGnuplotLeavesNoPartialPlot) {
   EXPECT_NE(m.find("Cairo is unhappy"), std::string::npos) << m;
   EXPECT_FALSE(fs::exists(dir / "x.png")) << "a partial PNG was left";
   EXPECT_FALSE(fs::exists(dir / "x.svg"));
+  fs::remove(fake);
+  EXPECT_TRUE(fs::is_empty(dir.path())) << "a part file, script or data file was left";
+}
+
+// A full disk cuts the plot while gnuplot exits 0 (pngcairo and svg do not check their writes):
+// the cut file is found (no IEND chunk, no </svg>) and nothing is left, not even an earlier plot.
+TEST(Plot, APlotCutShortByTheDiskIsAnErrorAndLeavesNothing) {
+  for (const char* cut : {"png", "svg"}) {
+    TempDir dir;
+    const std::string fake = dir / "cut-gnuplot";
+    {
+      std::ofstream f(fake);
+      f << "#!/bin/sh\n# writes whole plots where the script says, one of them cut short, exit 0\n"
+           "png=$(sed -n \"s/^set output '\\(.*\\.png\\)'$/\\1/p\" \"$2\")\n"
+           "svg=$(sed -n \"s/^set output '\\(.*\\.svg\\)'$/\\1/p\" \"$2\")\n"
+           "printf '\\211PNG\\r\\n\\032\\n0123456789' > \"$png\"\n"
+           "printf '<svg>\\n</svg>\\n' > \"$svg\"\n";
+      if (std::string(cut) == "svg") {
+        f << "printf '\\0\\0\\0\\0IEND\\256B`\\202' >> \"$png\"\nprintf '<svg>\\n<g>' > \"$svg\"\n";
+      }
+    }
+    fs::permissions(fake, fs::perms::owner_all);
+    { std::ofstream(dir / "x.png") << "an earlier plot"; }
+    std::string m;
+    pl::RenderOptions o;
+    o.gnuplot = fake;
+    EXPECT_EQ(kind_of(two_panels(), dir / "x", o, &m), pl::Error::Kind::kIo) << cut;
+    EXPECT_NE(m.find(std::string("x.") + cut + ": gnuplot wrote only the first"), std::string::npos)
+        << m;
+    fs::remove(fake);
+    EXPECT_TRUE(fs::is_empty(dir.path())) << cut << ": a plot or part file was left";
+  }
+  // The same fake with both files whole: the plots are renamed into place.
+  TempDir dir;
+  const std::string fake = dir / "whole-gnuplot";
+  {
+    std::ofstream f(fake);
+    f << "#!/bin/sh\n"
+         "png=$(sed -n \"s/^set output '\\(.*\\.png\\)'$/\\1/p\" \"$2\")\n"
+         "svg=$(sed -n \"s/^set output '\\(.*\\.svg\\)'$/\\1/p\" \"$2\")\n"
+         "printf '\\211PNG\\r\\n\\032\\n\\0\\0\\0\\0IEND\\256B`\\202' > \"$png\"\n"
+         "printf '<svg>\\n</svg>\\n' > \"$svg\"\n";
+  }
+  fs::permissions(fake, fs::perms::owner_all);
+  pl::RenderOptions o;
+  o.gnuplot = fake;
+  const pl::Rendered r = pl::render(two_panels(), dir / "w", o);
+  EXPECT_EQ(fs::file_size(r.png), 20U);
+  EXPECT_TRUE(fs::exists(r.svg));
+  EXPECT_FALSE(fs::exists(dir / "w.part.png"));
 }
 
 // Figures no axis or page can hold are refused before gnuplot runs: values beyond +-1e300

@@ -198,14 +198,9 @@ int prepare_output(const Options& o, const Study& study, std::vector<std::string
       return 2;
     }
     notes.push_back("resuming the study in " + runs.string());
-  } else {
-    std::ofstream out(key_file);
-    out << key;
-    out.close();
-    if (!out) {
-      std::fprintf(stderr, "error: --out: cannot write %s\n", key_file.string().c_str());
-      return 2;
-    }
+  } else if (const auto e = ntn::cli::write_output_file(key_file.string(), key, "--out")) {
+    std::fprintf(stderr, "error: %s\n", e->c_str());
+    return 2;
   }
   return 0;
 }
@@ -397,6 +392,26 @@ int ida(int argc, char** argv, int rank, int size) {
     return next_local++;
   };
 
+  // A line that does not fit (a full disk) is cut back off, so the journal holds whole lines
+  // only, and the journal is given up: the runs after it are counted as lost to a resume.
+  long journal_good = std::ftell(journal);
+  std::string journal_error;
+  double journal_lost = 0;
+  const auto journal_append = [&](const std::string& line) {
+    if (!journal_error.empty()) {
+      ++journal_lost;
+      return;
+    }
+    errno = 0;
+    if (std::fputs(line.c_str(), journal) >= 0 && std::fflush(journal) == 0) {
+      journal_good += static_cast<long>(line.size());
+      return;
+    }
+    journal_error = std::strerror(errno != 0 ? errno : EIO);
+    ++journal_lost;
+    if (::ftruncate(::fileno(journal), journal_good) != 0) journal_error += "; a cut line is left";
+  };
+
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<RunRow> mine;
   double busy = 0;
@@ -405,9 +420,7 @@ int ida(int argc, char** argv, int rank, int size) {
        task = next_task()) {
     const std::size_t r = order[static_cast<std::size_t>(task)];
     const auto traced = study->trace(r, known, [&](const RunRow& row) {
-      const std::string line = journal_line(study->csv_row(row));
-      std::fputs(line.c_str(), journal);
-      std::fflush(journal);
+      journal_append(journal_line(study->csv_row(row)));
       busy += row.seconds;
       ++new_runs;
     });
@@ -422,7 +435,16 @@ int ida(int argc, char** argv, int rank, int size) {
     }
     mine.insert(mine.end(), traced.begin(), traced.end());
   }
-  std::fclose(journal);
+  if (std::fclose(journal) != 0 && journal_error.empty()) {
+    journal_error = std::strerror(errno != 0 ? errno : EIO);
+    journal_lost = static_cast<double>(new_runs);  // what the close could not write is unknown
+  }
+  if (!journal_error.empty()) {
+    std::fprintf(stderr,
+                 "error: %s: %.0f of this process's %zu runs are not in the journal (%s): "
+                 "--resume would make them again\n",
+                 journal_path.c_str(), journal_lost, new_runs, journal_error.c_str());
+  }
 
   // Every process's rows to the first one, as text.
   std::string text;
@@ -431,6 +453,7 @@ int ida(int argc, char** argv, int rank, int size) {
   std::vector<RunRow> all;
   std::vector<double> busy_of(static_cast<std::size_t>(size), busy);
   std::vector<double> runs_of(static_cast<std::size_t>(size), static_cast<double>(new_runs));
+  std::vector<double> lost_of(static_cast<std::size_t>(size), journal_lost);
 #ifdef NTN_IDA_MPI
   if (g_mpi) {
     const int length = static_cast<int>(text.size());
@@ -448,6 +471,7 @@ int ida(int argc, char** argv, int rank, int size) {
     MPI_Gather(&busy, 1, MPI_DOUBLE, busy_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     const double my_runs = static_cast<double>(new_runs);
     MPI_Gather(&my_runs, 1, MPI_DOUBLE, runs_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    MPI_Gather(&journal_lost, 1, MPI_DOUBLE, lost_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     MPI_Win_free(&window);
     text = std::move(gathered);
   }
@@ -461,14 +485,16 @@ int ida(int argc, char** argv, int rank, int size) {
   }
 
   std::vector<std::string> out_notes;
-  const auto problems = ntn::ida::write_results(*study, all, o.out, !o.no_plots, out_notes);
+  const ntn::ida::Written written =
+      ntn::ida::write_results(*study, all, o.out, !o.no_plots, out_notes);
   for (const std::string& n : out_notes)
     std::printf("note: %s\n", n.c_str());
   std::printf("%s", ntn::ida::summary_text(*study, all).c_str());
-  double total_runs = 0;
+  double total_runs = 0, total_lost = 0;
   std::string per_process;
   for (std::size_t k = 0; k < busy_of.size(); ++k) {
     total_runs += runs_of[k];
+    total_lost += lost_of[k];
     char part[64];
     std::snprintf(part, sizeof part, "%s p%zu %.0f runs %.1f s", k == 0 ? "" : ",", k, runs_of[k],
                   busy_of[k]);
@@ -478,11 +504,19 @@ int ida(int argc, char** argv, int rank, int size) {
       "time %.1f s, %.0f new runs, %.2f runs/s on %d process%s (runs and their time per "
       "process:%s)\n",
       wall, total_runs, total_runs / wall, size, size == 1 ? "" : "es", per_process.c_str());
-  std::printf("written: %s/results.csv, capacities.csv, fragility.csv%s\n", o.out.c_str(),
-              o.no_plots ? "" : ", ida.png/.svg, fragility.png/.svg");
-  for (const std::string& p : problems)
+  std::string files;
+  for (const std::string& f : written.files)
+    files += (files.empty() ? "" : ", ") + f;
+  std::printf("written: %s\n", files.empty() ? "nothing" : files.c_str());
+  for (const std::string& p : written.lost)
     std::fprintf(stderr, "error: %s\n", p.c_str());
-  return problems.empty() ? 0 : 2;
+  for (const std::string& p : written.plots_lost)
+    std::fprintf(stderr, "error: %s\n", p.c_str());
+  if (total_lost > 0 && size > 1)
+    std::fprintf(stderr, "error: %.0f runs are not in the journal (see above)\n", total_lost);
+  // 2: a result (a file or journal lines) is lost; 3: the results are whole, a plot is not.
+  if (!written.lost.empty() || total_lost > 0) return 2;
+  return written.plots_lost.empty() ? 0 : 3;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 
+#include "cli.hpp"
 #include "ntn/plot/plot.hpp"
 #include "numbers.hpp"
 
@@ -35,14 +36,6 @@ std::vector<const RunRow*> rows_of(const std::vector<RunRow>& rows, std::size_t 
 std::optional<std::size_t> level_column(const Study& study) {
   for (std::size_t k = 0; k < study.columns().size(); ++k)
     if (study.columns()[k].kind == EdpColumn::Kind::kHingeLevel) return k;
-  return std::nullopt;
-}
-
-std::optional<std::string> write_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) return "cannot write " + path;
   return std::nullopt;
 }
 
@@ -158,11 +151,22 @@ void sort_rows(std::vector<RunRow>& rows) {
   });
 }
 
-std::vector<std::string> write_results(const Study& study, const std::vector<RunRow>& rows,
-                                       const std::string& dir, bool plots,
-                                       std::vector<std::string>& notes) {
+Written write_results(const Study& study, const std::vector<RunRow>& rows, const std::string& dir,
+                      bool plots, std::vector<std::string>& notes) {
   namespace fs = std::filesystem;
-  std::vector<std::string> problems;
+  Written w;
+  const auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
+  std::error_code ec;
+  for (const char* name : {"results.csv", "capacities.csv", "fragility.csv", "ida.png", "ida.svg",
+                           "fragility.png", "fragility.svg"})
+    fs::remove(path(name), ec);
+  const auto write = [&](const char* name, const std::string& text) {
+    if (auto e = cli::write_output_file(path(name), text, "--out")) {
+      w.lost.push_back(*e);
+    } else {
+      w.files.push_back(path(name));
+    }
+  };
   const auto& records = study.records();
   std::vector<RunRow> sorted = rows;
   sort_rows(sorted);
@@ -170,7 +174,7 @@ std::vector<std::string> write_results(const Study& study, const std::vector<Run
   std::string text = study.csv_header() + "\n";
   for (const RunRow& row : sorted)
     text += study.csv_row(row) + "\n";
-  if (auto e = write_file((fs::path(dir) / "results.csv").string(), text)) problems.push_back(*e);
+  write("results.csv", text);
 
   const std::vector<RecordCapacities> caps = capacities(study, sorted);
   text = "record,im_record[g],pga[g],io[g],ls[g],cp[g],collapse[g],highest[g],traced\n";
@@ -183,8 +187,7 @@ std::vector<std::string> write_results(const Study& study, const std::vector<Run
     }
     text += "," + number(c.collapse.highest) + "," + (c.traced ? "1" : "0") + "\n";
   }
-  if (auto e = write_file((fs::path(dir) / "capacities.csv").string(), text))
-    problems.push_back(*e);
+  write("capacities.csv", text);
 
   const std::vector<Fragility> fr = fragilities(caps);
   text = "limit_state,median[g],beta,observed,censored,note\n";
@@ -200,9 +203,14 @@ std::vector<std::string> write_results(const Study& study, const std::vector<Run
   }
   for (char& c : text)
     if (c == '\r') c = ' ';
-  if (auto e = write_file((fs::path(dir) / "fragility.csv").string(), text)) problems.push_back(*e);
+  write("fragility.csv", text);
 
-  if (!plots || !problems.empty()) return problems;
+  if (!plots) return w;
+  if (!w.lost.empty()) {
+    w.plots_lost.push_back(
+        "plots not made: the result files they are drawn from are not all written");
+    return w;
+  }
   namespace pl = ntn::plot;
   double top = 0;
   for (const RunRow& row : sorted)
@@ -264,6 +272,7 @@ std::vector<std::string> write_results(const Study& study, const std::vector<Run
       const pl::Rendered out = pl::render(fig, (fs::path(dir) / "ida").string());
       for (const std::string& n : out.warnings)
         notes.push_back("ida plot: " + n);
+      w.files.push_back(out.png), w.files.push_back(out.svg);
     }
     pl::Figure fig;
     fig.title = "Fragility curves (lognormal, maximum likelihood)";
@@ -305,13 +314,14 @@ std::vector<std::string> write_results(const Study& study, const std::vector<Run
       const pl::Rendered out = pl::render(fig, (fs::path(dir) / "fragility").string());
       for (const std::string& n : out.warnings)
         notes.push_back("fragility plot: " + n);
+      w.files.push_back(out.png), w.files.push_back(out.svg);
     } else {
       notes.push_back("no fragility curve to plot: no limit state was fitted");
     }
   } catch (const pl::Error& e) {
-    notes.push_back(std::string("plots not made: ") + e.what());
+    w.plots_lost.push_back(std::string("plots not made: ") + e.what());
   }
-  return problems;
+  return w;
 }
 
 std::string summary_text(const Study& study, const std::vector<RunRow>& rows) {

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,8 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 extern char** environ;
 
@@ -398,6 +401,37 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
+// Why the plot file at `path` is not a whole plot, or "" when it is: a PNG ends with its IEND
+// chunk, an SVG with </svg>. A file cut by a full disk (gnuplot may still exit 0) fails.
+std::string incomplete(const std::string& path) {
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (ec) return "no file";
+  if (size == 0) return "an empty file";
+  std::ifstream in(path, std::ios::binary);
+  const bool png = path.size() > 4 && path.compare(path.size() - 4, 4, ".png") == 0;
+  const std::string cut = "only the first " + std::to_string(size) + " bytes";
+  if (png) {
+    static constexpr unsigned char kIend[12] = {0,   0,   0,    0,    'I',  'E',
+                                                'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+    if (size < 8 + sizeof kIend) return cut;
+    char tail[sizeof kIend];
+    in.seekg(-static_cast<std::streamoff>(sizeof kIend), std::ios::end);
+    if (!in.read(tail, sizeof tail) || std::memcmp(tail, kIend, sizeof kIend) != 0) return cut;
+    return "";
+  }
+  const std::streamoff n = std::min<std::streamoff>(static_cast<std::streamoff>(size), 64);
+  std::string tail(static_cast<std::size_t>(n), '\0');
+  in.seekg(-n, std::ios::end);
+  if (!in.read(tail.data(), n)) return cut;
+  while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back())))
+    tail.pop_back();
+  const std::string end = "</svg>";
+  if (tail.size() < end.size() || tail.compare(tail.size() - end.size(), end.size(), end) != 0)
+    return cut;
+  return "";
+}
+
 }  // namespace
 
 Rendered render(const Figure& f, const std::string& base, const RenderOptions& o) {
@@ -429,30 +463,50 @@ Rendered render(const Figure& f, const std::string& base, const RenderOptions& o
   r.data = base + ".dat";
   if (o.png) r.png = base + ".png";
   if (o.svg) r.svg = base + ".svg";
+  // gnuplot writes BASE.part.png and BASE.part.svg, which are checked whole and renamed: a plot
+  // at BASE.png is complete or absent, whatever gnuplot or the disk do.
+  const std::string part_base = base + ".part";
+  const std::string part_script = part_base + ".gp";
+  const std::vector<std::pair<std::string, std::string>> outputs = [&] {
+    std::vector<std::pair<std::string, std::string>> v;
+    if (o.png) v.emplace_back(part_base + ".png", r.png);
+    if (o.svg) v.emplace_back(part_base + ".svg", r.svg);
+    return v;
+  }();
   std::error_code ec;
-  for (const std::string& p : {r.png, r.svg})
-    if (!p.empty()) fs::remove(p, ec);  // a stale plot must not pass for a new one
-
-  write_data(f, r.data, o);
-  {
-    std::ofstream out(r.script, std::ios::binary);
-    out << script(f, absolute_base, absolute_base + ".dat", o);
-    if (!out.flush()) throw Error(Error::Kind::kIo, r.script + ": cannot write the script");
-  }
-  std::string err;
-  // --default-settings: no ~/.gnuplot or system init file changes what is drawn.
-  const int status = run(program, {"--default-settings", r.script}, err);
+  const auto remove_plots = [&] {
+    for (const auto& [part, final_path] : outputs) {
+      fs::remove(part, ec);
+      fs::remove(final_path, ec);
+    }
+  };
   const auto cleanup = [&] {
+    fs::remove(part_script, ec);
     if (!o.keep_script) {
       fs::remove(r.script, ec);
       fs::remove(r.data, ec);
     }
   };
-  // A failed run leaves no plot: gnuplot may have begun either file.
-  const auto remove_plots = [&] {
-    for (const std::string& p : {r.png, r.svg})
-      if (!p.empty()) fs::remove(p, ec);
+  remove_plots();  // a stale plot must not pass for a new one
+
+  const auto write_script = [&](const std::string& path, const std::string& out_base) {
+    std::ofstream out(path, std::ios::binary);
+    out << script(f, out_base, absolute_base + ".dat", o);
+    if (!out.flush()) {
+      cleanup();
+      throw Error(Error::Kind::kIo, path + ": cannot write the script");
+    }
   };
+  try {
+    write_data(f, r.data, o);
+  } catch (const Error&) {
+    cleanup();
+    throw;
+  }
+  write_script(part_script, fs::absolute(part_base).lexically_normal().string());
+  std::string err;
+  // --default-settings: no ~/.gnuplot or system init file changes what is drawn.
+  const int status = run(program, {"--default-settings", part_script}, err);
   if (status != 0) {
     cleanup();
     remove_plots();
@@ -462,15 +516,30 @@ Rendered render(const Figure& f, const std::string& base, const RenderOptions& o
     throw Error(Error::Kind::kGnuplotFailed, "'" + program + "' exited with status " +
                                                  std::to_string(status) + hint + ":\n" + err);
   }
-  cleanup();
-  for (const std::string& p : {r.png, r.svg}) {
-    if (p.empty()) continue;
-    if (!fs::exists(p) || fs::file_size(p) == 0) {
+  for (const auto& [part, final_path] : outputs) {
+    const std::string why = incomplete(part);
+    if (!why.empty()) {
+      cleanup();
       remove_plots();
-      throw Error(Error::Kind::kGnuplotFailed,
-                  "'" + program + "' exited 0 but did not write " + p + ":\n" + err);
+      const bool missing = why == "no file";
+      throw Error(missing ? Error::Kind::kGnuplotFailed : Error::Kind::kIo,
+                  missing
+                      ? "'" + program + "' exited 0 but did not write " + final_path + ":\n" + err
+                      : final_path + ": gnuplot wrote " + why +
+                            " (a full disk or a file size limit?); no plot is left");
     }
   }
+  for (const auto& [part, final_path] : outputs) {
+    fs::rename(part, final_path, ec);
+    if (ec) {
+      const std::string why = ec.message();
+      cleanup();
+      remove_plots();
+      throw Error(Error::Kind::kIo, final_path + ": cannot write: " + why);
+    }
+  }
+  if (o.keep_script) write_script(r.script, absolute_base);  // names the plots themselves
+  cleanup();
   r.warnings = lines(err);
   for (std::size_t p = 0; p < f.panels.size(); ++p) {
     const auto extent = x_extent(f.panels[p]);

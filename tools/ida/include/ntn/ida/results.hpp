@@ -49,12 +49,21 @@ std::vector<Fragility> fragilities(const std::vector<RecordCapacities>& caps);
 // The rows sorted by record (the study's order), then intensity: the order of results.csv.
 void sort_rows(std::vector<RunRow>& rows);
 
-// Writes DIR/results.csv, DIR/capacities.csv, DIR/fragility.csv and, when `plots`, the plots
-// DIR/ida.{png,svg} and DIR/fragility.{png,svg} (gnuplot). Returns the problems (a file that
-// could not be written; a plot that gnuplot could not make is a warning in `notes`).
-std::vector<std::string> write_results(const Study& study, const std::vector<RunRow>& rows,
-                                       const std::string& dir, bool plots,
-                                       std::vector<std::string>& notes);
+// What write_results wrote and lost. A file is written whole or not at all (written beside
+// itself and renamed; an earlier study's file of the same name is removed first, so nothing
+// stale passes for a result).
+struct Written {
+  std::vector<std::string> files;       // the files written, as DIR/NAME
+  std::vector<std::string> lost;        // a result file that could not be written: the message
+  std::vector<std::string> plots_lost;  // a plot that was not made (gnuplot missing, failed or
+                                        // cut short by the disk): the message
+};
+
+// Writes DIR/results.csv, DIR/capacities.csv, DIR/fragility.csv and, when `plots` and every
+// result file is written, the plots DIR/ida.{png,svg} and DIR/fragility.{png,svg} (gnuplot).
+// gnuplot's warnings and plots there is nothing to draw for go to `notes`.
+Written write_results(const Study& study, const std::vector<RunRow>& rows, const std::string& dir,
+                      bool plots, std::vector<std::string>& notes);
 
 // The summary printed after the runs: counts, fragility medians and dispersions.
 std::string summary_text(const Study& study, const std::vector<RunRow>& rows);

@@ -117,9 +117,11 @@ struct Rendered {
   std::vector<std::string> notes;     // markers left out (outside their panel's x extent)
 };
 
-// Checks the figure, writes BASE.dat and BASE.gp, runs gnuplot once for both terminals and checks
-// that each file asked for exists and is not empty. BASE may have a directory part, which must
-// exist. Throws Error.
+// Checks the figure, writes BASE.dat and a script, runs gnuplot once for both terminals into
+// BASE.part.png and BASE.part.svg, checks that each is whole (a PNG's IEND chunk, an SVG's
+// </svg>: a full disk can cut a file while gnuplot exits 0) and renames them to BASE.png and
+// BASE.svg. Whatever fails, no plot file is left at BASE (nor an earlier one). BASE may have a
+// directory part, which must exist. Throws Error (kIo for a file cut short).
 Rendered render(const Figure& figure, const std::string& base, const RenderOptions& options = {});
 
 // The gnuplot script render() would write (for tests and for a look at what is drawn).
