@@ -5,8 +5,6 @@
 // Real time: frame k is sent at t0 + k * period (clock_nanosleep, TIMER_ABSTIME,
 // CLOCK_MONOTONIC). --virtual: no sleeping; after frame k's packets a frame-end marker, then wait
 // for the loop's output of frame k before frame k+1 (lock-step, deterministic).
-#include <sched.h>
-#include <sys/mman.h>
 #include <time.h>
 
 #include <algorithm>
@@ -22,6 +20,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "ntn/hil/clock.hpp"
 #include "ntn/hil/faults.hpp"
 #include "ntn/hil/packet.hpp"
 #include "ntn/hil/udp.hpp"
@@ -165,11 +164,26 @@ int feeder_main(int argc, char** argv) {
   app.add_option("-o,--out", out_path, "CSV of the outputs received: time, channels, flags");
   app.add_option("--summary-json", json_path, "also write the summary as JSON");
   app.add_flag("-q,--quiet", quiet, "print only the fault line and errors");
-  int fifo = 0;
-  app.add_option("--fifo", fifo,
-                 "real time: run under SCHED_FIFO at this priority with memory locked (falls "
+  // Real time asks for what a real-time sender needs by default (ntn::hil::RealTimeOptions),
+  // one priority below the loop's 80.
+  ntn::hil::RealTimeOptions rt;
+  rt.priority = 70;
+  bool no_fifo = false;
+  app.add_option("--fifo", rt.priority,
+                 "real time: the SCHED_FIFO priority (default 70; 0: normal scheduling; falls "
                  "back with a warning where not permitted)")
       ->check(ntn::cli::Integer(0, 99));
+  app.add_flag("--no-fifo", no_fifo, "real time: normal scheduling (the same as --fifo 0)");
+  app.add_flag("--mlock,!--no-mlock", rt.lock_memory,
+               "real time: mlockall, every page locked (the default; falls back with a warning)");
+  app.add_option("--cpu-latency", rt.cpu_latency_us,
+                 "real time: the CPU wake-up latency to hold in us (PM QoS, "
+                 "/dev/cpu_dma_latency; default 0; -1: leave it)")
+      ->check(ntn::cli::Integer(-1, 10'000'000));
+  app.add_option("--timer-slack", rt.timer_slack_ns,
+                 "real time: the thread's timer slack in ns (default 1; 0: the system's default, "
+                 "50 us on Linux)")
+      ->check(ntn::cli::Integer(0, 1'000'000'000));
   if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
 
   // Output files first: an unwritable path ends here, not after the run.
@@ -274,16 +288,12 @@ int feeder_main(int argc, char** argv) {
   const auto dest = static_cast<std::uint16_t>(port);
   const auto nch = static_cast<std::size_t>(channels.size());
 
-  if (fifo > 0 && !lockstep) {
-    sched_param sp{};
-    sp.sched_priority = fifo;
-    if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0) {
-      std::fprintf(stderr, "warning: SCHED_FIFO %d not permitted (%s): normal scheduling\n", fifo,
-                   std::strerror(errno));
-    }
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-      std::fprintf(stderr, "warning: mlockall not permitted (%s)\n", std::strerror(errno));
-    }
+  ntn::hil::RealTimeState real_time;
+  if (!lockstep) {
+    rt.fifo = !no_fifo && rt.priority > 0;
+    real_time = ntn::hil::apply_real_time(rt);
+    for (const std::string& w : real_time.warnings)
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
 
   Outputs outputs;
@@ -460,6 +470,7 @@ int feeder_main(int argc, char** argv) {
                 static_cast<long long>(packets_sent), static_cast<long long>(k),
                 static_cast<long long>(send_errors), first_error.c_str());
     if (!lockstep) {
+      std::printf("  real time   %s\n", real_time.describe().c_str());
       std::printf("  wake-up     latency p50 %.1f us, p99 %.1f us, max %.1f us\n", wake.p50,
                   wake.p99, wake.max);
     }

@@ -394,7 +394,11 @@ struct HilOptions {
   double duration = -1, first_wait_s = 10;
   std::int64_t frames = -1;
   int listen_port = -1, reply_port = 0, cpu = -1, threads = 1;
-  bool interpolate = false, fifo = false, mlock = false, quiet = false;
+  bool interpolate = false, quiet = false;
+  bool fifo = true, mlock = true;  // real clock: ntn::hil::RealTimeOptions' defaults
+  int priority = 80;
+  std::int64_t timer_slack_ns = 1;
+  int cpu_latency_us = 0;
   bool replay = false;                       // the replay subcommand (else run)
   std::map<std::string, std::size_t> given;  // times each of some run options was given
   std::size_t count(const std::string& option) const {
@@ -467,8 +471,20 @@ inline std::optional<int> parse_args(int argc, char** argv, const std::string& t
   run->add_option("-o,--out", out_path, "CSV of the outputs, one row per frame, with flags");
   run->add_option("--record", log_path, "binary log of accepted inputs and outputs (replay)");
   run->add_option("--summary-json", json_path, "write the summary as JSON");
-  run->add_flag("--fifo", fifo, "SCHED_FIFO (falls back with a warning)");
-  run->add_flag("--mlock", mlock, "mlockall (falls back with a warning)");
+  run->add_flag("--fifo,!--no-fifo", fifo,
+                "real clock: SCHED_FIFO at --priority (the default; falls back with a warning)");
+  run->add_option("--priority", o.priority, "real clock: the SCHED_FIFO priority (default 80)")
+      ->check(ntn::cli::Integer(1, 99));
+  run->add_flag("--mlock,!--no-mlock", mlock,
+                "real clock: mlockall, every page locked (the default; falls back with a warning)");
+  run->add_option("--cpu-latency", o.cpu_latency_us,
+                  "real clock: the CPU wake-up latency to hold in us (PM QoS, "
+                  "/dev/cpu_dma_latency; default 0; -1: leave it)")
+      ->check(ntn::cli::Integer(-1, 10'000'000));
+  run->add_option("--timer-slack", o.timer_slack_ns,
+                  "real clock: the thread's timer slack in ns (default 1; 0: the system's "
+                  "default, 50 us on Linux)")
+      ->check(ntn::cli::Integer(0, 1'000'000'000));
   run->add_option("--cpu", cpu, "pin to this CPU (falls back with a warning)")
       ->check(ntn::cli::Integer(0, std::numeric_limits<int>::max()));
   run->add_option("--threads", threads,
@@ -692,8 +708,11 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
   sink.flush_every = std::max<std::int64_t>(1, std::llround(1.0 / period));
 
   const bool virtual_clock = clock_name == "virtual";
+  ntn::hil::RealTimeState real_time;
   if (!virtual_clock) {
-    for (const std::string& w : ntn::hil::apply_real_time({fifo, 80, mlock, cpu}))
+    real_time = ntn::hil::apply_real_time(
+        {fifo, o.priority, mlock, cpu, o.timer_slack_ns, o.cpu_latency_us});
+    for (const std::string& w : real_time.warnings)
       std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   // The multi-core step's workers, made (and pinned) before the loop, and its partition.
@@ -788,6 +807,7 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
         sampling == ntn::hil::InputSampling::kStep                ? " per kernel step"
         : sampling == ntn::hil::InputSampling::kFrameInterpolated ? " interpolated"
                                                                   : " held");
+    if (!virtual_clock) std::printf("  real time: %s\n", real_time.describe().c_str());
     std::printf("  wall %.3f s for %.3f s simulated (%.1fx real time)\n", wall,
                 static_cast<double>(result.frames) * period,
                 static_cast<double>(result.frames) * period / wall);
@@ -904,6 +924,15 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
        << "\",\n  \"frames\": " << result.frames << ",\n  \"frames_requested\": " << frames
        << ",\n  \"stopped_by\": "
        << (result.stopped ? "\"" + std::string(stop_signal) + "\"" : std::string("null"))
+       << ",\n  \"real_time\": "
+       << (virtual_clock
+               ? std::string("null")
+               : "{\"fifo\": " + std::string(real_time.fifo ? "true" : "false") +
+                     ", \"priority\": " + std::to_string(real_time.priority) +
+                     ", \"memory_locked\": " + (real_time.memory_locked ? "true" : "false") +
+                     ", \"timer_slack_ns\": " + std::to_string(real_time.timer_slack_ns) +
+                     ", \"cpu_latency_us\": " + std::to_string(real_time.cpu_latency_us) +
+                     ", \"cpu\": " + std::to_string(real_time.cpu) + "}")
        << ",\n  \"period_s\": " << period << ",\n  \"substeps\": " << config.substeps
        << ",\n  \"overruns\": " << times.overruns << ",\n  \"latency_us\": {\"p50\": " << us(lat50)
        << ", \"p99\": " << us(lat99) << ", \"p99.9\": " << us(lat999) << ", \"max\": " << us(latmax)

@@ -12,10 +12,11 @@ NTN_PACKAGES=(cmake ninja-build g++ make pkg-config libeigen3-dev libfftw3-dev l
 
 ntn_jobs() { nproc 2>/dev/null || echo 2; }
 
-# Installs missing packages when root; otherwise prints the exact command and stops.
+# Installs missing packages (NTN_PACKAGES and any named as arguments: a benchmark's own) when
+# root; otherwise prints the exact command and stops.
 ntn_install_missing() {
   local missing=()
-  for p in "${NTN_PACKAGES[@]}"; do
+  for p in "${NTN_PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0

@@ -228,7 +228,8 @@ int main(int argc, char** argv) {
   if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   o.fifo = !no_fifo, o.mlock = !no_mlock, o.screen = !no_screen;
 
-  for (const std::string& w : ntn::hil::apply_real_time({o.fifo, o.priority, o.mlock, o.cpu}))
+  for (const std::string& w :
+       ntn::hil::apply_real_time({o.fifo, o.priority, o.mlock, o.cpu, 1, 0}).warnings)
     std::fprintf(stderr, "warning: %s\n", w.c_str());
   // Made (and pinned after the loop's CPU) before any run: no thread is made in the loop.
   ntn::hil::WorkerTeam workers({o.threads, o.cpu, o.spin});
