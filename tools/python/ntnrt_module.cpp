@@ -532,8 +532,11 @@ std::unique_ptr<PyModel> load(const std::string& path) {
   check_path(path);
   ntn::modelc::LoadResult r = ntn::modelc::load_model(path);
   if (!r.ok()) throw ModelError(trimmed(ntn::modelc::format_all(r.errors)));
-  return std::make_unique<PyModel>(std::make_unique<ntn::run::LoadedModel>(
-      std::move(*r.model), ntn::RunTimeOptions{.team = true, .checkpoint = false}));
+  const ntn::RunTimeOptions options{.team = true, .checkpoint = false};
+  if (const auto refused = ntn::run::storage_memory_refusal(*r.model, options))
+    throw ModelError(path + ": error: " + *refused);
+  return std::make_unique<PyModel>(
+      std::make_unique<ntn::run::LoadedModel>(std::move(*r.model), options));
 }
 
 ntn::spectral::Window window_of(const std::string& name) {

@@ -244,6 +244,11 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
     return nullptr;
   }
 
+  if (const auto refused = run::storage_memory_refusal(*loaded.model, RunTimeOptions{})) {
+    errors.push_back(config.model_path + ": error: " + *refused);
+    exit_code = 1;
+    return nullptr;
+  }
   s->model_ = std::make_unique<run::LoadedModel>(std::move(*loaded.model), RunTimeOptions{});
   const InitStatus st = s->model_->init();
   if (!st.ok()) {

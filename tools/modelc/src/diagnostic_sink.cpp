@@ -34,6 +34,14 @@ void DiagnosticSink::note(const Where& w, std::string message) {
 void DiagnosticSink::add(Diagnostic d) {
   const bool is_error = d.severity == Severity::kError;
   if (is_error) ++error_count_;
+  if ((is_error ? errors_ : notes_).size() >= kShownInAll) {
+    Overflow& o = overflow_[is_error ? 0 : 1];
+    // The earliest in the file, whatever order the tables are read in.
+    if (o.count++ == 0 || d.line < o.first.line ||
+        (d.line == o.first.line && d.column < o.first.column))
+      o.first = std::move(d);
+    return;
+  }
   Kind& k = kinds_[std::string(is_error ? "e" : "n") + kind_key(d.key)];
   if (k.shown < kShownPerKind) {
     ++k.shown;
@@ -53,6 +61,14 @@ std::vector<Diagnostic> DiagnosticSink::take(std::vector<Diagnostic>& v, Severit
                      " of this kind (this key, any index), the first of them here: only the "
                      "first " +
                      std::to_string(kShownPerKind) + " of each kind are listed",
+                 Severity::kNote});
+  }
+  if (const Overflow& o = overflow_[severity == Severity::kError ? 0 : 1]; o.count > 0) {
+    const std::string what = severity == Severity::kError ? " error" : " note";
+    v.push_back({file_, o.first.line, o.first.column, o.first.key,
+                 "... and " + std::to_string(o.count) + " more" + what + (o.count == 1 ? "" : "s") +
+                     " not listed, the first of them here: only the first " +
+                     std::to_string(kShownInAll) + what + "s are listed",
                  Severity::kNote});
   }
   std::stable_sort(v.begin(), v.end(), [](const Diagnostic& a, const Diagnostic& b) {

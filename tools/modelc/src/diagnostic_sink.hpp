@@ -26,6 +26,9 @@ struct Where {
 // capped kind with one summary note. A million unconnected nodes give 50 errors and one line
 // "999950 more ...", not 238 MB.
 constexpr std::size_t kShownPerKind = 50;
+// At most this many errors (and notes) are kept in all, whatever their kinds: 300 000 unknown
+// keys are 300 000 kinds, and each kept message costs about 800 bytes. The rest are counted.
+constexpr std::size_t kShownInAll = 500;
 
 // "nodes[12].id" -> "nodes[].id": the kind of a key.
 std::string kind_key(const std::string& key);
@@ -59,6 +62,11 @@ class DiagnosticSink {
   std::vector<Diagnostic> notes_;
   std::map<std::string, Kind> kinds_;
   std::size_t error_count_ = 0;
+  struct Overflow {
+    std::size_t count = 0;
+    Diagnostic first;
+  };
+  Overflow overflow_[2];  // errors, notes past kShownInAll
 };
 
 }  // namespace ntn::modelc::compile

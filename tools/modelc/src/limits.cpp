@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "ntn/modelc/memory.hpp"
+
 namespace ntn::modelc {
 namespace {
 
@@ -43,6 +45,7 @@ class Scanner {
   }
   // Records a level at the current position; false once past the limit.
   bool level(int depth) {
+    ++result_.values;
     if (depth > result_.depth) result_.depth = depth;
     if (depth > limit_ && result_.line == 0) {
       result_.line = line_;
@@ -188,6 +191,7 @@ class Scanner {
         case '[':
         case '{':
           open.push_back({c, next});
+          if (c == '{') ++result_.values;
           ++i_;
           if (c == '[') {
             if (!level(++next)) return;
@@ -201,6 +205,7 @@ class Scanner {
           if (open.back().kind == '{') {
             expect_key = true;
           } else {
+            ++result_.values;
             next = open.back().depth + 1;
           }
           break;
@@ -243,7 +248,8 @@ std::optional<Diagnostic> check_model_text_limits(std::string_view text, const s
                       "the file has " + std::to_string(text.size()) +
                           " bytes; a model file may have at most " +
                           std::to_string(kMaxModelFileBytes) +
-                          " (64 MiB: the parser needs about 30 bytes of memory per byte of text)"};
+                          " (64 MiB: the parser needs up to 55 bytes of memory per byte of "
+                          "text)"};
   }
   const NestingScan s = scan_nesting(text, kMaxNesting);
   if (s.line > 0) {
@@ -253,6 +259,11 @@ std::optional<Diagnostic> check_model_text_limits(std::string_view text, const s
                           "part of a dotted key or table header is a table); a model needs at "
                           "most 5. Refused before parsing: the TOML parser recurses once per "
                           "level"};
+  }
+  if (auto refused = memory_refusal(
+          "reading the file", s.values * kParseBytesPerValue,
+          std::to_string(s.values) + " TOML values in " + format_bytes(text.size()))) {
+    return Diagnostic{file, 1, 1, "", std::move(*refused)};
   }
   return std::nullopt;
 }

@@ -9,25 +9,53 @@
 // file:line:column; a layer runs only when the ones before it found nothing.
 #include "ntn/modelc/load_model.hpp"
 
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <new>
+#include <optional>
 #include <utility>
 
 #include "compile.hpp"
 #include "diagnostic_sink.hpp"
 #include "ntn/modelc/limits.hpp"
+#include "ntn/modelc/memory.hpp"
 #include "read_model.hpp"
 
 namespace ntn::modelc {
 namespace {
 
+// The compile stages' memory (memory.hpp), from the members' divisions: refused before the
+// mesh is made. A member of 10^6 divisions is a few bytes of text.
+std::optional<std::string> compile_memory_refusal(const compile::SourceModel& source) {
+  std::uint64_t elements = 0;
+  for (const compile::Member& m : source.members)
+    elements += static_cast<std::uint64_t>(m.divisions);
+  const std::uint64_t nodes = source.nodes.size(), members = source.members.size();
+  const std::uint64_t needed = nodes * kCompileBytesPerNode + members * kCompileBytesPerMember +
+                               elements * kCompileBytesPerElement;
+  return memory_refusal("compiling the model", needed,
+                        std::to_string(nodes) + " nodes, " + std::to_string(members) +
+                            " members meshed into " + std::to_string(elements) + " elements");
+}
+
 LoadResult load_text(std::string_view text, const std::string& file) {
   compile::DiagnosticSink sink(file);
   LoadResult r;
   try {
-    if (const auto source = compile::read_model_text(sink, text, file))
-      r.model = compile::compile_model(sink, *source, file);
+    if (const auto source = compile::read_model_text(sink, text, file)) {
+      if (auto refused = compile_memory_refusal(*source)) {
+        sink.error_at_start("", std::move(*refused));
+      } else {
+        r.model = compile::compile_model(sink, *source, file);
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    r.model.reset();
+    sink.error_at_start("", "out of memory (" + format_bytes(available_memory().bytes) +
+                                " was available when it ran out): the model is too large for "
+                                "this machine or its memory limit");
   } catch (const std::exception& e) {
     r.model.reset();
     sink.error_at_start("", std::string("internal error: ") + e.what());

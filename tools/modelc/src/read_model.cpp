@@ -449,7 +449,8 @@ void read_tables(Reader& L, const toml::table& root, SourceModel& p) {
     for (std::size_t e = 0; e < 2; ++e) {
       const std::string_view k = e == 0 ? "release_start" : "release_end";
       if (const toml::node* r = t.get(k, Need::kOptional)) {
-        m.release[e] = read_release(L, *r, t.key(k));
+        if (auto release = read_release(L, *r, t.key(k)))
+          m.release[e] = std::make_shared<const Release>(std::move(*release));
       }
     }
     auto id = read_id(L, t, "id");

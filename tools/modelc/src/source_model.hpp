@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -84,7 +85,9 @@ struct Member {
   std::optional<std::array<double, 3>> orientation;
   Where orientation_at;
   double roll_deg = 0;
-  std::optional<Release> release[2];  // start, end
+  // start, end; held apart (a Release is six behaviours, over 2 KB): a member without
+  // releases, the common case, costs two pointers
+  std::array<std::shared_ptr<const Release>, 2> release;
 };
 
 struct Support {

@@ -1,5 +1,7 @@
 #include "ntn/run/loaded_model.hpp"
 
+#include "ntn/modelc/memory.hpp"
+
 #include <cstdio>
 #include <new>
 #include <string>
@@ -47,6 +49,15 @@ InitStatus LoadedModel::init() {
 
 LoadedModel::~LoadedModel() = default;
 
+std::optional<std::string> storage_memory_refusal(const modelc::ModelDescription& description,
+                                                  const RunTimeOptions& options) {
+  const Sizes z = description.sizes();
+  return modelc::memory_refusal("the run-time storage", runtime_block_bytes(z, options),
+                                std::to_string(z.elements) + " elements, " +
+                                    std::to_string(z.nodes) + " nodes, " +
+                                    std::to_string(z.hinges) + " hinges");
+}
+
 std::unique_ptr<LoadedModel> load_or_report(const std::string& path, const RunTimeOptions& options,
                                             const char* program, bool quiet, int& exit_code) {
   modelc::LoadResult r = modelc::load_model(path);
@@ -59,6 +70,11 @@ std::unique_ptr<LoadedModel> load_or_report(const std::string& path, const RunTi
     return nullptr;
   }
   if (!quiet) std::fputs(modelc::format_all(r.notes).c_str(), stderr);  // mechanisms
+  if (const auto refused = storage_memory_refusal(*r.model, options)) {
+    std::fprintf(stderr, "%s: error: %s\n", path.c_str(), refused->c_str());
+    exit_code = 1;
+    return nullptr;
+  }
   exit_code = 0;
   return std::make_unique<LoadedModel>(std::move(*r.model), options);
 }

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "ntn/hil/loop.hpp"
@@ -56,6 +57,12 @@ class LoadedModel {
   hil::LoopBuffers<kRunTime> buffers_;
   bool bound_ = false;
 };
+
+// The message refusing a run-time block larger than the memory available (ntn::modelc::
+// memory_refusal, with the block's exact size), or nullopt: asked before the constructor
+// allocates it.
+std::optional<std::string> storage_memory_refusal(const modelc::ModelDescription& description,
+                                                  const RunTimeOptions& options);
 
 // Loads a model file as ntn-run and ntn-hil do: its errors printed to stderr as
 // file:line:column (its notes too, unless `quiet`), then "PROGRAM: N errors in FILE". nullptr
