@@ -8,7 +8,8 @@ export NTN_ROOT
 NTN_PACKAGES=(cmake ninja-build g++ make pkg-config libeigen3-dev libfftw3-dev libtomlplusplus-dev
               libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libxxhash-dev clang-format
               libspectra-dev gnuplot-nox libexpat1-dev libhwy-dev pybind11-dev python3-dev
-              python3-numpy python3-pytest python3-matplotlib libopenmpi-dev openmpi-bin)
+              python3-numpy python3-pytest python3-matplotlib libopenmpi-dev openmpi-bin
+              libboost-dev)
 
 ntn_jobs() { nproc 2>/dev/null || echo 2; }
 

@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   std::string model_path, response_path, json_path, psd_path, plot_base, window = "hann", direction;
   mc::Options o;
   double tolerance_pct = 100 * o.tolerance, band_pct = 100 * o.search_band,
-         min_mass_pct = 100 * o.min_mass_fraction, min_visibility_pct = 100 * o.min_visibility;
+         min_mass_pct = 100 * o.min_mass_fraction, min_visibility_pct = 100 * o.min_visibility,
+         false_alarm_pct = 100 * o.false_alarm;
   app.add_option("model", model_path, "model file (.toml)")->required();
   app.add_option("response", response_path,
                  "response: the CSV of ntn-run / ntn-hil (time column, then channels), a plain "
@@ -60,6 +61,11 @@ int main(int argc, char** argv) {
                  "largest motion")
       ->check(ntn::cli::Number(0.0, 100.0))
       ->capture_default_str();
+  app.add_option("--false-alarm", false_alarm_pct,
+                 "a matched peak must stand out of the noise: the probability, %, that noise "
+                 "reaches it in the search band")
+      ->check(ntn::cli::Number(0.0, 100.0))
+      ->capture_default_str();
   app.add_option("--window", window, "hann, hamming, blackman, flattop, rectangular")
       ->capture_default_str();
   app.add_option("--overlap", o.overlap, "Welch segment overlap, fraction")
@@ -85,6 +91,7 @@ int main(int argc, char** argv) {
   o.search_band = band_pct / 100;
   o.min_mass_fraction = min_mass_pct / 100;
   o.min_visibility = min_visibility_pct / 100;
+  o.false_alarm = false_alarm_pct / 100;
   if (!direction.empty()) o.direction = direction[0] - 'x';
 
   try {

@@ -571,7 +571,7 @@ py::tuple psd(const Array& x, double fs, double resolution, double overlap,
 // ntn-check-modes on arrays: {name: samples} at fs Hz against the model's modes.
 py::dict check_modes(const PyModel& model, const py::dict& data, double fs, int modes,
                      double tolerance, double min_mac, double band, double resolution,
-                     std::vector<std::string> channels, int direction) {
+                     std::vector<std::string> channels, int direction, double false_alarm) {
   ntn::spectral::Channels ch;
   ch.source = "arrays";
   ch.fs = fs;
@@ -588,6 +588,7 @@ py::dict check_modes(const PyModel& model, const py::dict& data, double fs, int 
   o.spelling = ntn::modecheck::Spelling::kLibrary;
   o.modes = modes, o.tolerance = tolerance, o.min_mac = min_mac, o.search_band = band;
   o.resolution_hz = resolution, o.channels = std::move(channels), o.direction = direction;
+  o.false_alarm = false_alarm;
   ntn::modecheck::Report rep;
   try {
     rep = ntn::modecheck::check_data(model.d(), ch, o);
@@ -606,6 +607,8 @@ py::dict check_modes(const PyModel& model, const py::dict& data, double fs, int 
     e["identified_hz"] = m.identified_hz, e["error"] = m.error, e["pass"] = m.pass;
     e["verdict"] = m.verdict;
     if (m.mac) e["mac"] = *m.mac;
+    if (m.above_floor) e["above_floor"] = *m.above_floor;
+    if (m.noise_threshold) e["noise_threshold"] = *m.noise_threshold;
     if (m.damping) e["damping"] = *m.damping;
     list.append(e);
   }
@@ -670,6 +673,7 @@ PYBIND11_MODULE(_ntnrt, m) {
   m.def("check_modes", &check_modes, py::arg("model"), py::arg("data"), py::arg("fs"),
         py::arg("modes") = 3, py::arg("tolerance") = 0.01, py::arg("min_mac") = 0.9,
         py::arg("band") = 0.10, py::arg("resolution") = 0.0,
-        py::arg("channels") = std::vector<std::string>{}, py::arg("direction") = -1);
+        py::arg("channels") = std::vector<std::string>{}, py::arg("direction") = -1,
+        py::arg("false_alarm") = 0.01);
   m.attr("element_pass_target") = std::string(ntn::element_pass_target());
 }

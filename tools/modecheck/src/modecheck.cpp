@@ -16,6 +16,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/spectral/error.hpp"
 #include "ntn/spectral/fdd.hpp"
+#include "ntn/spectral/significance.hpp"
 #include "ntn/spectral/welch.hpp"
 
 namespace ntn::modecheck {
@@ -113,6 +114,17 @@ void check_channel(const spectral::Channels& data, const ChannelInfo& ci) {
   }
 }
 
+// The spectrum the noise test reads: the PSD (one channel), or the trace of the spectral matrix
+// (the channels' auto-spectra added up), whose lines are chi-square at any coherence.
+spectral::Spectrum noise_test_spectrum(const Identification& id) {
+  if (id.auto_psd.size() <= 1) return id.auto_psd.empty() ? id.spectrum : id.auto_psd.front();
+  spectral::Spectrum trace = id.auto_psd.front();
+  for (std::size_t c = 1; c < id.auto_psd.size(); ++c)
+    for (std::size_t k = 0; k < trace.values.size(); ++k)
+      trace.values[k] += id.auto_psd[c].values[k];
+  return trace;
+}
+
 }  // namespace
 
 void validate(const Options& o) {
@@ -154,6 +166,10 @@ void validate(const Options& o) {
   }
   if (!in(o.min_level, 0, 1))
     bad_option(o, {"--min-level", "min_level", false}, o.min_level, "", "it must be in [0, 1]");
+  if (!in(o.false_alarm, 0, 1) || o.false_alarm == 0 || o.false_alarm == 1) {
+    bad_option(o, {"--false-alarm", "false_alarm", true}, o.false_alarm, "",
+               "it must be above 0 and below 100 %");
+  }
   if (!in(o.min_visibility, 0, 1)) {
     bad_option(o, {"--min-visibility", "min_visibility", true}, o.min_visibility, "",
                "it must be in [0, 100 %]");
@@ -526,6 +542,7 @@ Report compare(const ModelModes& model, const Identification& identification,
       selection.shapes && model.shapes.cols() == static_cast<Eigen::Index>(model.frequency.size());
   std::string failed;
   int passed = 0;
+  const spectral::Spectrum test = noise_test_spectrum(identification);
   for (std::size_t k = 0; k < model.frequency.size(); ++k) {
     ModeCheck c;
     c.number = model.number[k];
@@ -555,6 +572,27 @@ Report compare(const ModelModes& model, const Identification& identification,
       if (!c.frequency_ok) {
         why.push_back("frequency error " + num(100 * c.error, "%+.2f") + " % exceeds " +
                       num(100 * options.tolerance, "%.3g") + " %");
+      }
+      const double df = identification.grid.df();
+      // Noise or a mode: the peak line over its local floor against the chi-square threshold.
+      const std::size_t line = p.peak.line;
+      const std::size_t exclude =
+          2 + (p.half_power ? static_cast<std::size_t>(
+                                  std::ceil((p.half_power->f_high - p.half_power->f_low) / df))
+                            : 1);
+      const double floor = spectral::local_floor(test, line, exclude);
+      const double lines = std::max(1.0, 2 * options.search_band * c.model_hz / df);
+      const double dof = spectral::welch_dof(identification.grid);
+      c.noise_threshold = spectral::noise_threshold(dof, lines, options.false_alarm);
+      c.above_floor = floor > 0 && line < test.values.size()
+                          ? test.values[line] / floor
+                          : std::numeric_limits<double>::infinity();
+      if (!(*c.above_floor >= *c.noise_threshold)) {
+        why.push_back("not above the noise: the peak is " + num(*c.above_floor, "%.3g") +
+                      " x its local floor, and noise reaches " + num(*c.noise_threshold, "%.3g") +
+                      " x in " + num(lines, "%.0f") + " lines with probability " +
+                      num(100 * options.false_alarm, "%.3g") + " % (" + num(dof, "%.3g") +
+                      " degrees of freedom)");
       }
       if (shapes && p.shape.size() == model.shapes.rows()) {
         c.mac = modal::mac(p.shape, model.shapes.col(static_cast<Eigen::Index>(k)));

@@ -67,8 +67,9 @@ std::string format_table(const Report& r) {
   s += "  rule      nearest peak within +-" + num(100 * o.search_band, "%.3g") +
        " % of the model frequency; pass: |error| <= " + num(100 * o.tolerance, "%.3g") + " %" +
        (r.selection.shapes ? ", MAC >= " + num(o.min_mac, "%.3g") : std::string(" (no shapes)")) +
-       "\n\n";
-  s += " mode   model Hz  ident. Hz   error %  damping %  model zeta %    MAC  mass %  verdict\n";
+       ", above noise at a false alarm of " + num(100 * o.false_alarm, "%.3g") + " %\n\n";
+  s += " mode   model Hz  ident. Hz   error %  damping %  model zeta %    MAC  mass %  x floor "
+       "(noise)  verdict\n";
   for (const ModeCheck& c : r.modes) {
     char line[256];
     std::snprintf(line, sizeof line, " %4d  %9.4f  %9s  %8s  %9s  %12.2f  %5s  %6.1f  ", c.number,
@@ -80,6 +81,12 @@ std::string format_table(const Report& r) {
                             : "-",
                   100 * c.model_damping, c.mac ? num(*c.mac, "%.3f").c_str() : "-", c.mass_percent);
     s += line;
+    char noise[48] = "                 ";
+    if (c.above_floor && c.noise_threshold) {
+      std::snprintf(noise, sizeof noise, "%7s (%5s)  ", num(*c.above_floor, "%.3g").c_str(),
+                    num(*c.noise_threshold, "%.3g").c_str());
+    }
+    s += noise;
     s += c.pass ? "ok" : "FAIL: " + c.verdict;
     s += "\n";
   }
@@ -112,6 +119,7 @@ std::string to_json(const Report& r) {
   s += "  \"tolerance_percent\": " + json_number(100 * o.tolerance) + ",\n";
   s += "  \"min_mac\": " + json_number(o.min_mac) + ",\n";
   s += "  \"search_band_percent\": " + json_number(100 * o.search_band) + ",\n";
+  s += "  \"false_alarm_percent\": " + json_number(100 * o.false_alarm) + ",\n";
   s += "  \"direction\": " +
        (o.direction >= 0 ? json_string(kAxes[o.direction]) : std::string("null")) + ",\n";
   s += "  \"modes\": [";
@@ -126,6 +134,8 @@ std::string to_json(const Report& r) {
          ", \"model_damping_percent\": " + json_number(100 * c.model_damping) +
          ", \"mac\": " + json_optional(c.mac) +
          ", \"mass_percent\": " + json_number(c.mass_percent) +
+         ", \"above_floor\": " + json_optional(c.above_floor) +
+         ", \"noise_threshold\": " + json_optional(c.noise_threshold) +
          ", \"pass\": " + (c.pass ? "true" : "false") + ", \"verdict\": " + json_string(c.verdict) +
          "}";
   }

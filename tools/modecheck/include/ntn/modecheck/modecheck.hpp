@@ -55,6 +55,9 @@ struct Options {
                                  // between close damped modes is shallow)
   double min_level = 1e-4;       // peaks: value / the largest value in the searched range
   double min_visibility = 0.05;  // a mode the channels see less of than this fails (below)
+  // A matched peak is a mode only when noise would reach it with at most this probability
+  // (compare(): its height over the local floor against the chi-square threshold).
+  double false_alarm = 0.01;
 };
 
 // Refuses options no check can run with (InputError naming the option as options.spelling
@@ -161,11 +164,22 @@ struct ModeCheck {
   bool frequency_ok = false;
   bool mac_ok = true;
   bool pass = false;
+  // The peak over its local floor (the PSD, or the trace of the spectral matrix for FDD) and
+  // the ratio noise reaches with probability options.false_alarm in the search band.
+  std::optional<double> above_floor, noise_threshold;
   std::string verdict;  // "ok" or what failed
 };
 
 // A mode whose visibility (ModelModes) is below options.min_visibility fails as "not seen by the
 // channels": a peak near its frequency would belong to something else, and its MAC is noise.
+//
+// A matched peak must stand out of noise: its line's value over the local floor (the median of
+// the lines within f / 1.5 .. 1.5 f outside the peak's half-power band, ntn::spectral::
+// local_floor) must reach the ratio that the largest of the search band's lines of noise
+// reaches with probability options.false_alarm (ntn::spectral::noise_threshold, with the
+// average's degrees of freedom, welch_dof). For FDD the test is on the trace of the spectral
+// matrix with one channel's degrees of freedom (conservative: correlated channels average no
+// further).
 //
 // Matching: every (mode, peak) pair with |f_peak - f_model| <= search_band f_model, taken in
 // order of increasing relative distance; a mode and a peak are matched once each. Returns, per
