@@ -236,7 +236,7 @@ ntn::plot::test::Run plot_loops(const TempDir& dir) {
              dir);
 }
 
-// A plastic hinge direction's loops (issue 15): the force over the deformation, the law's
+// A plastic hinge direction's loops: the force over the deformation, the law's
 // bilinear envelope and its IO, LS, CP limits marked, from a model with such a hinge (a column
 // whose base is a plastic hinge to the ground, ry).
 TEST(PlotCli, HysteresisLoopsWithEnvelopeAndLimits) {
@@ -267,9 +267,20 @@ TEST(PlotCli, HysteresisLoopsWithEnvelopeAndLimits) {
                            "envelope (bilinear, b = 0.05)", "IO", "LS", "CP"})
     EXPECT_TRUE(svg.has_text(text)) << "the SVG lacks '" << text << "'";
   ASSERT_TRUE(png_size(dir / "loops.png"));
-  // The envelope runs past the CP limit (8 mrad of plastic rotation, beyond the loops' +-6 mrad),
-  // so every limit is drawn: no note of a marker left out.
+  // The frame is the loops' (+-6 mrad, x 1.15): CP (8 mrad plastic, 9.42 mrad in all) lies
+  // beyond it and is marked at the edge with its value, not drawn by an axis widened for it; no
+  // marker is left out.
   EXPECT_EQ(r.err.find("not drawn"), std::string::npos) << r.err;
+  EXPECT_TRUE(svg.has_text("beyond: CP 0.00942")) << "CP is not marked at the edge";
+  const auto exact = [&svg](const std::string& s) {  // a tick label, blanks aside
+    for (std::string t : svg.texts) {
+      t.erase(0, t.find_first_not_of(' '));
+      if (t == s) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(exact("0.006")) << "no tick at the loops' extent";
+  EXPECT_FALSE(exact("0.01")) << "the axis reaches past the loops to the CP limit";
 
   expect_bad_input(dir,
                    "hysteresis " + (dir / "run.csv") + " -x base_ry -y base_My --model " +

@@ -335,6 +335,34 @@ TEST(Plot, APlotCutShortByTheDiskIsAnErrorAndLeavesNothing) {
   EXPECT_FALSE(fs::exists(dir / "w.part.png"));
 }
 
+// A spectrum down to its numerical floor (1e-45 under a 1e-3 peak) gets a log axis from 6 decades
+// under the peak; one within 6 decades, a linear axis or a minimum given are left alone.
+TEST(Plot, LogAxesStartAFewDecadesUnderThePeak) {
+  pl::Panel p;
+  p.y_scale = pl::Scale::kLog;
+  p.series.push_back({"psd", {1, 2, 3, 4}, {1e-45, 1e-3, 1e-9, 1e-31}});
+  pl::clip_log_floor(p);
+  ASSERT_TRUE(p.y_range.min);
+  EXPECT_DOUBLE_EQ(*p.y_range.min, 1e-3 * 1e-6);
+  p.x_range.max = 1.5;  // only the first line: nothing to clip
+  p.y_range.min.reset();
+  pl::clip_log_floor(p);
+  EXPECT_FALSE(p.y_range.min);
+  pl::Panel narrow = p, linear = p, given = p;
+  narrow.x_range.max.reset();
+  narrow.series[0].y = {1e-5, 1e-3, 1e-8, 1e-6};
+  pl::clip_log_floor(narrow);
+  EXPECT_FALSE(narrow.y_range.min);
+  linear.x_range.max.reset();
+  linear.y_scale = pl::Scale::kLinear;
+  pl::clip_log_floor(linear);
+  EXPECT_FALSE(linear.y_range.min);
+  given.x_range.max.reset();
+  given.y_range.min = 1e-40;
+  pl::clip_log_floor(given);
+  EXPECT_EQ(*given.y_range.min, 1e-40);
+}
+
 // Figures no axis or page can hold are refused before gnuplot runs: values beyond +-1e300
 // ("all points y value undefined!") and more panels than the 20000 px limit at 240 px each.
 TEST(Plot, UndrawableFiguresAreRefusedUpFront) {

@@ -86,6 +86,8 @@ std::vector<std::string> write_plot(const std::string& base, const Report& r) {
       low.series.push_back(series(id.channels[c], id.auto_psd[c], f_top));
     fig.height = 800;  // room for the channels' legend
   }
+  for (pl::Panel& panel : fig.panels)
+    pl::clip_log_floor(panel);
   try {
     const pl::Rendered out = pl::render(fig, base);
     return {out.png, out.svg};

@@ -285,6 +285,22 @@ std::string body(const Figure& f, const std::string& data) {
 
 }  // namespace
 
+void clip_log_floor(Panel& p, double decades) {
+  if (p.y_scale != Scale::kLog || p.y_range.min) return;
+  double top = 0, low = std::numeric_limits<double>::infinity();
+  for (const Series& s : p.series) {
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if ((p.x_range.min && s.x[i] < *p.x_range.min) || (p.x_range.max && s.x[i] > *p.x_range.max))
+        continue;
+      if (!(s.y[i] > 0)) continue;
+      top = std::max(top, s.y[i]);
+      low = std::min(low, s.y[i]);
+    }
+  }
+  const double floor = top * std::pow(10.0, -decades);
+  if (top > 0 && low < floor) p.y_range.min = floor;
+}
+
 int default_height(std::size_t panels) {
   return std::max(480, 240 * static_cast<int>(panels));
 }

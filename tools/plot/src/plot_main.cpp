@@ -209,7 +209,7 @@ struct HysteresisArgs {
   std::string from, to;  // s
 };
 
-// A plastic hinge direction's force-deformation loops (issue 15): the force channel over the
+// A plastic hinge direction's force-deformation loops: the force channel over the
 // deformation channel; with --model, --hinge and --direction, the law's monotonic envelope
 // (bilinear: k up to the yield, then b k; backbone: its points A-B-C-D-E, no strength past E)
 // and the acceptance limits IO, LS, CP marked at the deformations where the envelope reaches
@@ -256,6 +256,29 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
   const ntn::HysteresisSpec& law = m.hystereses[static_cast<std::size_t>(hs.hysteresis[k])];
   const double kel = hs.stiffness[k];
   static const char* const kLevel[3] = {"IO", "LS", "CP"};
+  // The frame is the loops' (and the yield's, so the envelope's knee shows): a limit beyond it
+  // is marked at the edge with its value, not drawn by an axis many times wider than the data.
+  const auto [lo, hi] = std::minmax_element(p.series[0].x.begin(), p.series[0].x.end());
+  const double span = std::max(std::abs(*lo), std::abs(*hi));
+  const auto frame = [&p, span](double yield_d) {
+    const double edge = 1.15 * std::max(span, 1.5 * yield_d);
+    p.x_range = {-edge, edge};
+    // The limits beyond each edge, as one mark there ("beyond: IO 0.0113, LS 0.0152, CP 0.019";
+    // the label is drawn right of its line, so the right one stands a little inside).
+    std::vector<pl::Marker> kept;
+    std::string beyond[2];
+    for (const pl::Marker& mk : p.markers) {
+      if (std::abs(mk.x) <= edge) {
+        kept.push_back(mk);
+      } else {
+        std::string& b = beyond[mk.x > 0 ? 1 : 0];
+        b += (b.empty() ? "beyond: " : ", ") + mk.label + " " + fmt("%.3g", mk.x);
+      }
+    }
+    for (int side = 0; side < 2; ++side)
+      if (!beyond[side].empty()) kept.push_back({(side ? 0.93 : -0.98) * edge, beyond[side]});
+    p.markers = std::move(kept);
+  };
   if (law.rule != ntn::HysteresisRule::kBilinear) {
     // The backbone A-B-C-D-E of each sense, then no strength past E; the limits where the
     // envelope's plastic deformation d - f / k reaches them (it grows along every segment).
@@ -290,21 +313,18 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
       }
     }
     p.series.push_back(env);
+    frame(std::min(law.backbone_pos[0].d, law.backbone_neg[0].d));
     return fig;
   }
   const double H = law.hardening * kel / (1.0 - law.hardening);
-  // The envelope d(d_p) = d_p + (F_y + H d_p) / k on each side, drawn over the loops' extent.
-  const auto [lo, hi] = std::minmax_element(p.series[0].x.begin(), p.series[0].x.end());
-  const double span = std::max(std::abs(*lo), std::abs(*hi));
+  // The envelope d(d_p) = d_p + (F_y + H d_p) / k on each side, drawn over the frame.
   pl::Series env{"envelope (bilinear, b = " + fmt("%g", law.hardening) + ")", {}, {}};
   for (int side : {-1, 1}) {
     const double fy = side > 0 ? law.yield_pos : law.yield_neg;
     const double dy = fy / kel;
     std::vector<double> xs{0.0, side * dy}, ys{0.0, side * fy};
-    // As far as the loops go, and past the CP limit, so that every limit is on the plot.
-    double far = std::max(span, 1.5 * dy);
-    if (law.limits[0] > 0)
-      far = std::max(far, 1.1 * (law.limits[2] + (fy + H * law.limits[2]) / kel));
+    // To the frame's edge (frame() below); the limits beyond it are marked there.
+    const double far = 1.15 * std::max(span, 1.5 * std::min(law.yield_pos, law.yield_neg) / kel);
     if (far > dy) {
       xs.push_back(side * far);
       ys.push_back(side * (fy + law.hardening * kel * (far - dy)));
@@ -325,6 +345,7 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
     }
   }
   p.series.push_back(env);
+  frame(std::min(law.yield_pos, law.yield_neg) / kel);
   return fig;
 }
 
@@ -388,6 +409,7 @@ pl::Figure psd(const Common& o, const PsdArgs& a) {
       p.markers.push_back({f, label.empty() ? hz : label + "  " + hz});
     }
   }
+  pl::clip_log_floor(p);  // once the frequency window is known
   return fig;
 }
 

@@ -1,4 +1,4 @@
-// Plots a person can look at (DESIGN §9, issue 5 item 4): a figure of one or more stacked panels,
+// Plots a person can look at (DESIGN §9): a figure of one or more stacked panels,
 // each with named series, log or linear axes and labelled vertical markers, rendered by gnuplot
 // (Debian gnuplot-nox) to BASE.png (pngcairo) and BASE.svg. The library writes a data file and a
 // gnuplot script, runs gnuplot without a shell (posix_spawn) and checks that both files appeared.
@@ -92,6 +92,12 @@ struct Figure {
 
 // 0 -> 480 px for one panel, then 240 px per panel (at least 480), about 1 200 px for five.
 int default_height(std::size_t panels);
+
+// A log-y panel whose data reach more than `decades` below their peak (a spectrum down to its
+// numerical floor, 1e-45, squeezes the peaks into the top of the plot): its y axis starts
+// `decades` below the largest value within its x range. Leaves a panel with a y minimum set,
+// a linear y axis or a narrower span as it is.
+void clip_log_floor(Panel& panel, double decades = 6);
 
 struct RenderOptions {
   // The gnuplot program: a name looked up in PATH (as execvp would) or a path with a '/'.
