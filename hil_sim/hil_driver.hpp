@@ -852,7 +852,7 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
                   std::string(info.output_units[c]).c_str(),
                   static_cast<double>(sink.peak_frame[c]) * period);
     }
-    // The plastic hinge directions that yielded (issue 15): from the state the run ended in
+    // The plastic hinge directions that yielded: from the state the run ended in
     // (after a divergence: the last good frame's).
     if (const int np = ntn::hil::plastic_directions(store.model); np > 0) {
       const auto yielded = ntn::hil::yielded_directions(store.model, store.state);

@@ -1,11 +1,11 @@
-// Real-time capacity (issue 4, "Speed"): the largest frame (elements, at its stable step) that
+// Real-time capacity: the largest frame (elements, at its stable step) that
 // holds a 1 kHz frame rate in the real-time loop (ntn::hil::run_loop on the RealClock) with zero
 // overruns over 60 s and compute time <= 50 % of the period at p99.9. Frames of ~1 000 to ~10 000
 // elements from frame_models.hpp, run one after the other, each with N = ceil(period / (0.9
 // dt_stable)) substeps per frame (dt = period / N) and a synthetic ground motion (or held inputs):
 // no UDP, since the criterion is about the loop's compute and deadlines. SCHED_FIFO and mlockall
 // where permitted. A plain program, not Google Benchmark: each size is one long real-time run on
-// absolute deadlines, not a repeated timed loop. README.md "Real-time capacity (issue 4)".
+// absolute deadlines, not a repeated timed loop. README.md "Real-time capacity".
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -208,7 +208,7 @@ constexpr Grid kG9900{8, 8, 11, 4, 4};
 int main(int argc, char** argv) {
   using namespace ntn::bench;
   Options o;
-  ntn::cli::App app{"Real-time capacity of the frame loop at 1 kHz (issue 4)"};
+  ntn::cli::App app{"Real-time capacity of the frame loop at 1 kHz"};
   app.add_option("--duration", o.duration, "real-time seconds per size")
       ->check(ntn::cli::Positive());
   app.add_option("--period", o.period, "frame period, s")->check(ntn::cli::Positive());

@@ -1,4 +1,4 @@
-// Hinge cost per step (issue 3, "Speed"): a ~1 000-element frame whose ~500 beam ends are pinned
+// Hinge cost per step: a ~1 000-element frame whose ~500 beam ends are pinned
 // to the columns through NTN hinges (rigid in ux, uy, uz, rx of the beam's axes, free in ry, rz),
 // stepped with ntn_exact, ntn_paper and penalty, against the same frame with merged nodes and no
 // hinges. Also the time to simulate 1 s with penalty (at a penalty stiffness that keeps the

@@ -1,8 +1,8 @@
-// Kernel step cost per beam element (issue 2): the kernel's on-the-fly local formulation
+// Kernel step cost per beam element: the kernel's on-the-fly local formulation
 // (ntn::step, beam_force: f = R^T K_L R u per element) against a stored-global-matrix
 // formulation written here (per element a stored 12x12 K_e = T^T K_L T, f = K_e u_e) with the
 // same load, acceleration, output and update stages. Frames of ~10 to ~30 000 elements.
-// The peer (issue 17, item 5): a plain central-difference program written here with Eigen's
+// The peer: a plain central-difference program written here with Eigen's
 // sparse K u (the global stiffness assembled from the same element matrices, with and without
 // its exact zeros pruned), lumped mass, mass-proportional damping and the same loads, on the
 // same frames and on the OpenSees frame_scaling grids (6 m bays, 3.5 m storeys, one element
@@ -641,7 +641,7 @@ inline constexpr Grid kFrame9900{.nx = 8, .ny = 8, .storeys = 11, .col_div = 4, 
 inline constexpr Grid kFrame30008{.nx = 10, .ny = 10, .storeys = 22, .col_div = 4, .beam_div = 4};
 // Beyond the last-level cache for both formulations (32 MiB L3 on the reference machine).
 inline constexpr Grid kFrame99960{.nx = 16, .ny = 16, .storeys = 30, .col_div = 4, .beam_div = 4};
-// The OpenSees frame_scaling grids (issue 17): one element per member, 6 x 6 bays x 8 storeys
+// The OpenSees frame_scaling grids: one element per member, 6 x 6 bays x 8 storeys
 // and 12 x 12 bays x 21 storeys; and the same geometry at ~100 000 elements (28 x 28 bays x 41
 // storeys), for the cost per element-step from 1k to 100k on one kind of frame.
 inline constexpr Grid kScaling1064{.nx = 6, .ny = 6, .storeys = 8, .col_div = 1, .beam_div = 1};

@@ -1,4 +1,4 @@
-// Modal analysis of large frames (issue 5, "Speed"): the first 20 modes of the benchmark frames
+// Modal analysis of large frames: the first 20 modes of the benchmark frames
 // of frame_models.hpp by ntn::modal (sparse path: Spectra shift-invert Lanczos with a sparse
 // LDL^T), with merged joints and with a pinned NTN hinge at every beam end. Figures:
 // README.md, "Modal analysis".

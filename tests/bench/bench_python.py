@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Python module's run() against the C++ loop it calls (issue 18, item 3, "Speed").
+"""The Python module's run() against the C++ loop it calls.
 
     PYTHONPATH=.build/release/python python3 tests/bench/bench_python.py [--repeats 7]
 

@@ -1,4 +1,4 @@
-// Spectral tools (issue 5, "Speed"): the Welch PSD of 16 channels x 10^6 samples with FFTW, one
+// Spectral tools: the Welch PSD of 16 channels x 10^6 samples with FFTW, one
 // plan per Welch object reused for every segment and channel; a direct DFT of a few of the same
 // segments as a sanity check of the FFTW path (same values to rounding, and how much slower);
 // the cross-spectral matrix of the 16 channels and its SVD per line (FDD); FFTW_ESTIMATE (the

@@ -58,9 +58,9 @@ enum class Joints : std::uint8_t {
                // `linear` spring with a dashpot: every hinge kind in one model
   kSemiRigid,  // as kPinned, but ry and rz are `linear` rotational springs kSemiRigidSpring
   kPlastic,    // as kSemiRigid, but ry and rz are `plastic` (same k, yield kPlasticYield): the
-               // beam ends yield under the benchmark load (issue 15, "Speed")
+               // beam ends yield under the benchmark load
   kRigidPlastic,  // as kPinned, but ry and rz are `rigid_plastic` (yield kPlasticYield): rigid
-                  // until they yield, then sliding (issue 16, "Speed")
+                  // until they yield, then sliding
 };
 
 constexpr int hinge_count(Grid g, Joints j) {

@@ -32,7 +32,7 @@ std::string_view text(const std::uint8_t* data, std::size_t size) {
 void check_record(const ntn::io::ReadResult& r) {
   require(r.record.has_value() != r.error.has_value());  // exactly one of the two
   if (r.record) {
-    // The sample-interval rule (issue 12 items 7, 8): every record's duration and step count
+    // The sample-interval rule: every record's duration and step count
     // are finite and bounded.
     require(r.record->dt >= ntn::io::kMinSampleInterval &&
             r.record->dt <= ntn::io::kMaxSampleInterval);
@@ -136,7 +136,7 @@ void packet_bytes(std::span<const std::byte> bytes) {
   // The sender schedule (schedule.hpp), as the real-time loop drives it: the packet as the first
   // one (the anchor), then K times as a resync candidate. Only a frame inside the run and the
   // window may fix the deadlines, and then the loop's frame 0 is due within the run's span of
-  // the arrival: no overflow, no deadline days away (issue 12 item 2: frame 18 445 744 073 710).
+  // the arrival: no overflow, no deadline days away (the regression: frame 18 445 744 073 710).
   ntn::hil::SenderSchedule schedule(kPeriod, kFrames);
   require(schedule.valid());
   using ntn::hil::OfferStatus;

@@ -1,4 +1,4 @@
-// Failure behaviour end to end (issue 6 item 6): a model whose dt is ~1.5 x its stable step
+// Failure behaviour end to end: a model whose dt is ~1.5 x its stable step
 // through the explicit override (tests/hil/unstable_cantilever.toml), run by `ntn-hil run
 // MODEL.toml` as a subprocess on the virtual clock under El Centro. The loop must catch it, say so
 // on screen and in the JSON (the diverged frame, the safe state), exit with code 3, and write a CSV
@@ -87,7 +87,7 @@ TEST(DivergeE2e, UnstableModelGoesToTheSafeState) {
   }
 }
 
-// Divergence in frame 0 (issue 12: the screen said "outputs held at frame -1's values"): there
+// Divergence in frame 0 (the screen used to say "outputs held at frame -1's values"): there
 // are no good outputs to hold yet; the screen says so, the outputs are 0 (no NaN), flagged, and
 // the JSON's last good frame is -1. Input: a constant 3 g (the input's full range) for 50 ms.
 TEST(DivergeE2e, DivergenceInFrameZeroSaysNoFrameWasGood) {

@@ -191,7 +191,7 @@ TEST(Gate, ExtremeFrameIndicesAreOutOfTheRun) {
   EXPECT_EQ(g.counters().late_for_missing, 0u);
 }
 
-// Issue 12 item 2: one valid packet for frame 18 445 744 073 710 (of a 1000-frame run) hung the
+// Regression: one valid packet for frame 18 445 744 073 710 (of a 1000-frame run) hung the
 // loop. The gate rejects a frame outside the run (out_of_run) or more than kFrameWindow frames
 // from the current one (out_of_window), before any sequence check: such a packet changes
 // nothing, not even the sequence window (its sequence 10^6 ahead would otherwise make every later
@@ -234,7 +234,7 @@ TEST(Gate, FramesOutsideTheRunOrTheWindowAreRejected) {
   EXPECT_EQ(n.late, 1u);
 }
 
-// Issue 12 item 15: a sender that restarts its sequence numbers while its frames go on. Before,
+// A sender that restarts its sequence numbers while its frames go on. Before,
 // a restart at 0 after 300 packets lost those 300 as duplicates; a restart after more than
 // kSequenceWindow packets marked every later packet reordered. Rule: a sequence not above the
 // newest, on a packet whose frame is newer than every frame seen, is a sender restart (counted

@@ -148,7 +148,7 @@ PairRun run_pair(const TempDir& dir, std::int64_t frames, const std::vector<std:
 // How many frames miss their packet depends on the machine (a stall of the loop or the feeder
 // beyond the jitter buffer's 8 frames costs that many frames; this shared 2-core VM shows
 // wake-up stalls of 3-19 ms under load, and `cyclictest` at 1 kHz the same), so that figure is
-// reported, not asserted (issue 13: no default test passes or fails with the machine's load).
+// reported, not asserted (no default test passes or fails with the machine's load).
 // Asserted is what holds whatever the machine does: every frame ran and is accounted for as
 // accepted or missing, each late packet's frame is among the missing, nothing is corrupt, and
 // the outputs equal a virtual-clock run on the inputs the gate accepted (the log replays bit for
@@ -546,9 +546,9 @@ TEST(HilE2E, ModelAlarmTriggersAndClearsWithHysteresis) {
 
 namespace {
 
-// Issue 12 item 2 and the --listen 0 message. `--listen 0` binds a port the OS chooses: the loop
-// prints it (startup line, summary, JSON), so a sender can be pointed at it. One valid packet for
-// frame 18 445 744 073 710 hung the loop (its arrival fixed the deadlines: frame 0 due in ~11
+// A far-off frame number and the --listen 0 message. `--listen 0` binds a port the OS chooses: the
+// loop prints it (startup line, summary, JSON), so a sender can be pointed at it. One valid packet
+// for frame 18 445 744 073 710 hung the loop (its arrival fixed the deadlines: frame 0 due in ~11
 // days); now it is out of the run, counted, and never fixes the deadlines: the loop waits its
 // --wait-first (0.5 s) for a plausible packet, runs its 50 frames on its own clock and ends.
 // Nothing here depends on timing: the packet is queued before the loop reads its socket, and

@@ -1,8 +1,8 @@
-// The log of the frame loop (hil_sim/include/ntn/hil/recorder.hpp, format 2), issue 12 items 5
-// and 6: what the Recorder writes is read back exactly; a log cut at any byte gives every
-// complete frame and says where it ends (never a clean end); any changed bit, trailing bytes,
-// a skipped frame number, inconsistent flags and a version-1 or unknown version are refused; a
-// write error is reported by close(). No timing, no tolerance: bytes and bits are compared.
+// The log of the frame loop (hil_sim/include/ntn/hil/recorder.hpp, format 2): what the Recorder
+// writes is read back exactly; a log cut at any byte gives every complete frame and says where it
+// ends (never a clean end); any changed bit, trailing bytes, a skipped frame number, inconsistent
+// flags and a version-1 or unknown version are refused; a write error is reported by close(). No
+// timing, no tolerance: bytes and bits are compared.
 #include <gtest/gtest.h>
 #include <xxhash.h>
 
@@ -111,7 +111,7 @@ TEST(LogFormat, RoundTripIsExact) {
   EXPECT_EQ(reader.header().dt, 0.25e-3);
 }
 
-// Issue item 5: a log cut at any byte after its header (a killed run) gives exactly its complete
+// A log cut at any byte after its header (a killed run) gives exactly its complete
 // frames and reports truncation, naming the frame it ends in; it is never a clean end.
 TEST(LogFormat, CutAtEveryByteGivesTheCompleteFrames) {
   const TempDir dir("record_cut");
@@ -140,7 +140,7 @@ TEST(LogFormat, CutAtEveryByteGivesTheCompleteFrames) {
   EXPECT_NE(reader.error().find("truncated header"), std::string::npos) << reader.error();
 }
 
-// Issue item 6: every single bit of the log changed in turn is refused (header, frames, end
+// Every single bit of the log changed in turn is refused (header, frames, end
 // record), or, where the change makes the log shorter in meaning (a frame number turned into
 // the end marker), still never read as the same complete log.
 TEST(LogFormat, EveryFlippedBitIsRefused) {
@@ -243,7 +243,7 @@ TEST(LogFormat, VersionsAreCheckedByNumber) {
   EXPECT_EQ(resealed.header().period, 2e-3);
 }
 
-// Issue item 14 (the log's part): a write error is not lost. /dev/full takes the open and fails
+// A write error (the log's part) is not lost. /dev/full takes the open and fails
 // every write.
 TEST(LogFormat, WriteErrorIsReportedByClose) {
   Recorder r;

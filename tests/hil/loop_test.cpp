@@ -359,7 +359,7 @@ TEST_F(Loop, NoFalseAlarmAtFullRangeResonance) {
       ntn::hil::kKineticLimitFactor);
 }
 
-// ---- The input schedule in real time, on synthetic time (issue 12 items 2 and 3) ----
+// ---- The input schedule in real time, on synthetic time ----
 // A real-time clock whose time moves only when the loop waits: to the deadline plus a fixed
 // 20 us wake-up latency, or not at all when the deadline is past (a frame that catches up does
 // not sleep). A simulated sender's packets carry
@@ -469,7 +469,7 @@ std::vector<Arrival> stream(std::int64_t e, std::int64_t from, std::int64_t to) 
   return a;
 }
 
-// Issue 12 item 2: one valid packet for frame 18 445 744 073 710 came first; the loop took its
+// Regression: one valid packet for frame 18 445 744 073 710 came first; the loop took its
 // deadlines from it (arrival - frame x period overflowed: frame 0 due in ~11 days) and hung. Now
 // it is out of the run, never the anchor: the deadlines follow the first plausible packet and the
 // run ends on time with every frame accepted.
@@ -488,7 +488,7 @@ TEST_F(Loop, HugeFrameIndexNeverSetsTheDeadlines) {
   EXPECT_EQ(r.end, r.epoch + 999 * 1'000'000 + 20'000);
 }
 
-// Issue 12 item 3: the sender's first 15 ms arrive as one burst. The first packet's arrival put
+// Regression: the sender's first 15 ms arrive as one burst. The first packet's arrival put
 // every deadline 15 ms late, so every later packet came more than the jitter buffer's 8 frames
 // early and was dropped: 9 of 1000 frames accepted (resync off reproduces that). With the
 // resync rule, K = 8 too-early packets at one lead re-anchor the schedule once;
@@ -500,7 +500,7 @@ TEST_F(Loop, LateFirstBurstResyncsOnce) {
   for (Arrival& x : a)
     if (x.frame < 15) x.t = e + 15'000'000;  // the burst
   const ScheduleRun off = run_schedule(1000, a, 0);
-  EXPECT_EQ(off.counters.accepted, 9u);  // the rule before issue 12
+  EXPECT_EQ(off.counters.accepted, 9u);  // the rule without resync
   EXPECT_EQ(off.counters.too_early, 991u);
   const ScheduleRun r = run_schedule(1000, a);
   EXPECT_EQ(r.resyncs, 1u);
@@ -594,7 +594,7 @@ TEST_F(Loop, RoguePacketsDoNotMoveTheSchedule) {
 
 // Soak: 10^6 frames on the virtual clock, no allocation after the start, and a second run gives
 // the same hash of every frame's outputs (label soak: about a minute in Release).
-// Input sampling (sampling.hpp, issue 13 item 5): with kStep every kernel step n gets the
+// Input sampling (sampling.hpp): with kStep every kernel step n gets the
 // source's step_inputs(n), in order, and a step count that is not whole frames cuts the last
 // frame short. The loop's state must equal, bit for bit, a plain start / step loop fed the same
 // values (the runner's semantics before it ran the loop); the held run must not (the option does

@@ -1,4 +1,4 @@
-// ntn-hil-frame3d's record, replay and stop end to end (issue 12 items 4-7): SIGTERM ends a run
+// ntn-hil-frame3d's record, replay and stop end to end: SIGTERM ends a run
 // after the frame in progress with the CSV, the log and the JSON complete (exit 4), also while
 // the loop waits for a sender; a log cut mid-frame replays its complete frames and says where it
 // ends (exit 4); a changed output bit, trailing bytes, altered header fields, a renumbered frame,
@@ -73,7 +73,7 @@ long long rss_kib(pid_t pid) {
   return -1;
 }
 
-// Issue items 5 and 7: a run of --duration 1e6 (10^9 frames; it aborted with bad_alloc, its CSV
+// Regression: a run of --duration 1e6 (10^9 frames; it aborted with bad_alloc, its CSV
 // buffer reserved for the whole run) runs with bounded memory and, on SIGTERM, stops after the
 // frame in progress with every file complete: the CSV has one row per frame the summary counts,
 // the JSON says how it stopped, the log replays bit-identical over those frames.
@@ -189,7 +189,7 @@ TEST_F(ReplayChecks, TheUntouchedLogIsBitIdentical) {
   EXPECT_NE(r.output.find("replay: bit-identical over 2000 frames"), std::string::npos) << r.output;
 }
 
-// Issue item 5: a log cut mid-frame (a killed run) replays every complete frame (it refused all
+// A log cut mid-frame (a killed run) replays every complete frame (it refused all
 // of them) and says where it ends; a log cut at a frame boundary lacks its end record: the same.
 TEST_F(ReplayChecks, ACutLogReplaysItsCompleteFrames) {
   Ran r = replay(log_.substr(0, frame_at(1234) + kFrame / 2));
@@ -206,7 +206,7 @@ TEST_F(ReplayChecks, ACutLogReplaysItsCompleteFrames) {
       << r.output;
 }
 
-// Issue item 4: a log with no frames segfaulted.
+// Regression: a log with no frames segfaulted.
 TEST_F(ReplayChecks, ALogWithNoFramesIsAnError) {
   for (const std::size_t n : {kHeader, kHeader + kFrame - 1}) {
     const Ran r = replay(log_.substr(0, n));
@@ -217,7 +217,7 @@ TEST_F(ReplayChecks, ALogWithNoFramesIsAnError) {
   }
 }
 
-// Issue item 6: a flipped bit in a recorded output is found: by the record's checksum, and, the
+// A flipped bit in a recorded output is found: by the record's checksum, and, the
 // checksum forged to match, by comparing the output with the replayed one (frame and channel).
 TEST_F(ReplayChecks, AFlippedOutputBitIsFound) {
   const std::size_t k = 700, c = 3;

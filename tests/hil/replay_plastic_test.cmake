@@ -1,4 +1,4 @@
-# Record and replay of a yielding run (issue 15): the demo portal (MODEL: config/portal_plastic.toml,
+# Record and replay of a yielding run: the demo portal (MODEL: config/portal_plastic.toml,
 # in `ntn-hil run MODEL`), whose column bases yield under El Centro, run on the virtual clock with
 # a log, replays bit-identical: the hinges' plastic history lives in the State the log's run rebuilds.
 file(MAKE_DIRECTORY ${OUT})

@@ -2,7 +2,7 @@ file(MAKE_DIRECTORY ${OUT})
 set(log ${OUT}/run.ntnlog)
 # FRAMES frames (Release: 40 000, 40 s: El Centro's 31.2 s, then the free decay with the ground at
 # rest; under the sanitizers 10 000, 10 s with the strong motion, each frame ~10x slower there)
-# on the virtual clock, recorded. (10^5 frames until issue 13: the 69 s at rest added nothing but
+# on the virtual clock, recorded. (It used to be 10^5 frames: the 69 s at rest added nothing but
 # 30 s of the check's time under ASan.)
 execute_process(COMMAND ${HIL} run --clock virtual --input ag_x=${RECORD} --frames ${FRAMES}
                         --record ${log} -q

@@ -22,7 +22,7 @@ OfferResult result(OfferStatus status, std::int64_t frame) {
   return r;
 }
 
-// Issue 12 item 2: the frame 18 445 744 073 710 made arrival - frame x period overflow and the
+// Regression: the frame 18 445 744 073 710 made arrival - frame x period overflow and the
 // loop wait ~11 days. Such a frame, or any outside the run or the window, never anchors; a
 // plausible one does, to exactly arrival - frame x period (+ period / 2 for the loop's frame 0).
 TEST(Schedule, OnlyAPlausibleFrameAnchors) {

@@ -1,4 +1,4 @@
-// Soak (issue 6 item 5): the default model config/frame3d.toml (pinned beam ends through
+// Soak: the default model config/frame3d.toml (pinned beam ends through
 // member-end releases, ntn_exact) in the frame loop on the virtual clock, fed El Centro over and
 // over through the input gate, for 10^7 kernel steps (label soak) or 10^5 (default check).
 // Checked over every step of the run:

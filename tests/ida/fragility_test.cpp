@@ -1,4 +1,4 @@
-// Lognormal fragility fits (issue 19): the closed form without censoring; with censored records,
+// Lognormal fragility fits: the closed form without censoring; with censored records,
 // the maximum of a log-likelihood written here independently (a grid search and its gradient),
 // and the recovery of a known lognormal from a censored sample; the errors; the fractiles against
 // numpy's definition.

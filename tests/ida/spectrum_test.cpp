@@ -1,4 +1,4 @@
-// Intensity measures (issue 19): the pseudo-spectral acceleration of the Nigam-Jennings recurrence
+// Intensity measures: the pseudo-spectral acceleration of the Nigam-Jennings recurrence
 // against an independent fine-step Newmark integration of the same oscillator under the shipped
 // records, and against the closed-form step response; the peak ground acceleration.
 #include <gtest/gtest.h>

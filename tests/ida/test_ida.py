@@ -1,4 +1,4 @@
-"""ntn-ida (issue 19) against computations made here with the Python module (ntnrt), run by CTest
+"""ntn-ida against computations made here with the Python module (ntnrt), run by CTest
 (tests/ida/CMakeLists.txt). Truth that no one here chose: linearity (a linear model's demands
 are proportional to the intensity), a run of ntn-ida equal bit for bit to the same run made alone,
 and each record's collapse intensity found here by plain bisection on the kernel, independent of

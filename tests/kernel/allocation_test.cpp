@@ -1,4 +1,4 @@
-// No heap in the kernel (DESIGN §2, issue 2): init, start and 1e5 steps of a model with every
+// No heap in the kernel (DESIGN §2): init, start and 1e5 steps of a model with every
 // load, input and output kind make zero heap allocations, counted by replacing malloc & co. and
 // every global operator new (tests/support/alloc_counter.cpp); Eigen's own no-malloc guard is on
 // around them too. The counter is first shown to count.

@@ -400,7 +400,7 @@ TEST(BeamStiffness, OneElementCantileverMatchesClosedForms) {
 // deflects P L^3 / 3EI + P L / (kappa G A); shear adds 12 % (uz, depth 200) or 3 % (uy). The
 // element with Phi = 12 EI / (kappa G A l^2) reproduces this exactly at any mesh, so the dense
 // static solve must agree to rounding and the kernel's dynamic relaxation to its convergence
-// tolerance; both are held to 0.5 % (issue 2), measured ~1e-10.
+// tolerance; both are held to 0.5 %, measured ~1e-10.
 template <int N>
 void check_timoshenko_cantilever(int load_dof) {
   constexpr ntn::Sizes S{.nodes = N + 1, .elements = N, .loads = 1};

@@ -1,4 +1,4 @@
-// Determinism (DESIGN §2, issue 2): the result of a run is a function of (model, dt, inputs)
+// Determinism (DESIGN §2): the result of a run is a function of (model, dt, inputs)
 // only. Two runs give bit-identical states; a checkpoint (a copy of the State) resumed gives
 // bit-identical results to the uninterrupted run, with or without the Scratch (which step()
 // recomputes and never reads across steps).
@@ -134,7 +134,7 @@ TEST_F(Determinism, TwoRunsWithStiffnessProportionalDampingAreBitIdentical) {
 // result (so the comparisons above are not comparing a state the inputs never reach). Not one
 // ulp: a one-ulp change of a ground acceleration moves u by dt^2 x 1e-16 relative, below the ulp
 // of u, so whether it shows depends on rounding luck (it stopped showing when dt moved by an ulp
-// with the cancellation-free stable-step formula of issue 12).
+// with the cancellation-free stable-step formula).
 TEST_F(Determinism, ATinyChangeOfOneInputChangesTheState) {
   ASSERT_TRUE(start(model_a, a, wa));
   ASSERT_TRUE(start(model_b, b, wb));

@@ -1,4 +1,4 @@
-// The fused DOF pass of models without hinges (dof_pass.hpp, issue 17 item 2): its SIMD path
+// The fused DOF pass of models without hinges (dof_pass.hpp): its SIMD path
 // gives the scalar reference's bits on every instruction set this CPU has, for any node range
 // (odd counts, odd starts), signed zeros and a non-finite velocity; and residual_update(), the
 // pass with the load slots, gives the bits of the unfused stages it replaced (residual(), then

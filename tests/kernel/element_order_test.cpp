@@ -1,4 +1,4 @@
-// The model's element order (element_order.hpp, issue 17 item 3): init() places the elements by
+// The model's element order (element_order.hpp): init() places the elements by
 // the rule (window of the higher node, AxisMap, nodes), each in one lane; Model::beam(e) is still
 // element e of the file; and the order does not depend on the file's: a model whose elements come
 // in another order (outputs and member loads renumbered with them) is the same model, byte for
@@ -47,7 +47,7 @@ std::vector<int> shuffled(std::size_t n, std::uint64_t seed) {
   return perm;
 }
 
-// The OpenSees frame_scaling grid of 1 064 elements (issue 17's benchmark frame).
+// The OpenSees frame_scaling grid of 1 064 elements (the step-speed benchmark's frame).
 constexpr ntn::bench::Grid kGrid{.nx = 6, .ny = 6, .storeys = 8, .col_div = 1, .beam_div = 1};
 constexpr ntn::Sizes kGridSizes = ntn::bench::sizes_of(kGrid);
 

@@ -1,4 +1,4 @@
-// The element pass's two paths (element_pass.hpp, issue 17): the SIMD path gives the scalar
+// The element pass's two paths (element_pass.hpp): the SIMD path gives the scalar
 // reference's bits on every instruction set this CPU has, for any element count (partial last
 // blocks), shared nodes (the sums' order), stiffness-proportional damping, and exact and negative
 // zeros (the sign of zero is part of the bits); and both give beam_force()'s forces element by

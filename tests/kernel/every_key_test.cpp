@@ -1,8 +1,8 @@
-// The kernel's rules on a model with every issue-14 key (every_key.toml: plane, Rayleigh damping,
-// member loads, points inside members, a point mass on a rigid offset, a rolled hinge frame, the
-// gravity preload and initial values): no allocation in init, initial_state, start and 2 x 10^4
-// steps; two runs give the same bits, and a run resumed from a checkpoint the same bits as the
-// uninterrupted one.
+// The kernel's rules on a model with every one of these model keys (every_key.toml: plane, Rayleigh
+// damping, member loads, points inside members, a point mass on a rigid offset, a rolled hinge
+// frame, the gravity preload and initial values): no allocation in init, initial_state, start and
+// 2 x 10^4 steps; two runs give the same bits, and a run resumed from a checkpoint the same bits as
+// the uninterrupted one.
 #include <gtest/gtest.h>
 
 #include <cmath>

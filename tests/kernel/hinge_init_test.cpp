@@ -1,8 +1,8 @@
-// Init errors with hinges (issue 3, "What must be shown" / model checks): a cycle of rigid
+// Init errors with hinges (model checks): a cycle of rigid
 // connections (two hinges between the same pair, a triangle, a tree reaching the ground twice)
 // is refused as kRigidCycle, and a hinge with a bad frame, curve, node or stiffness as kBadHinge,
 // each with `where` naming the offending hinge; the valid neighbours of each case are accepted.
-// A `plastic` direction's law (issue 15: yields > 0 and finite, hardening in [0, 1), one slot per
+// A `plastic` direction's law (yields > 0 and finite, hardening in [0, 1), one slot per
 // direction, in range) is checked the same way.
 #include <gtest/gtest.h>
 
@@ -226,7 +226,7 @@ TEST(HingeInit, OtherBadHingesAreRefused) {
   expect_error(ntn::InitError::kBadOutput, {0}, "hinge channel direction out of range");
 }
 
-// `plastic` directions (issue 15): hinge 2 (free, n4 to n2) gets rx in slot 0 and ry in slot 1,
+// `plastic` directions: hinge 2 (free, n4 to n2) gets rx in slot 0 and ry in slot 1,
 // laws valid at their edges (hardening 0 and just below 1, tiny and large yields), then one thing
 // made bad at a time: a yield not > 0 or not finite, a hardening outside [0, 1), a slot out of
 // range or negative, a slot taken by two directions (of one hinge, or of two: the second one

@@ -1,5 +1,5 @@
-// Kernel rules with hinges (issue 3, "Speed": "Zero heap allocations and bit-identical repeat
-// runs still hold with hinges of every kind"): a model with a rigid hinge in a skewed frame, a
+// Kernel rules with hinges (zero heap allocations and bit-identical repeat runs still hold with
+// hinges of every kind): a model with a rigid hinge in a skewed frame, a
 // pin (free direction), springs with dashpots, a gap (curve with rigid branches), an eccentric
 // rigid hinge and a hinge to the ground, driven by every input kind, under each hinge method:
 // init, start and 2e4 steps allocate nothing (malloc & co. and every operator new counted,

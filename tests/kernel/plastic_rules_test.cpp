@@ -1,4 +1,4 @@
-// Kernel rules with a yielding run (issue 15): `plastic` hinge directions keep their history in
+// Kernel rules with a yielding run: `plastic` hinge directions keep their history in
 // State (State::plastic, State::dissipated), so
 // - init, start and the steps of a run that yields allocate nothing (every malloc and operator
 //   new counted, tests/support/alloc_counter.cpp, with Eigen's no-malloc guard on);
@@ -11,7 +11,7 @@
 // ground acceleration and tip force (inputs), with Rayleigh damping. The same with `backbone`
 // directions (kinematic about y, peak_oriented about z, both degrading past C): their history
 // also holds the excursions and the reloading lines' anchors (State::excursion). And with
-// `rigid_plastic` directions (issue 16: held exactly until they yield, by the slip stage, which
+// `rigid_plastic` directions (held exactly until they yield, by the slip stage, which
 // solves the hinge's tree): their slip and its first time (State::plastic, first_slip); with
 // hardening with the slip (a parallel spring), and as a friction circle (one limit on the
 // resultant moment: the Gauss-Seidel pair step).

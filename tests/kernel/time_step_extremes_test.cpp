@@ -1,5 +1,5 @@
-// The stable step and the substep rule at the extremes of double (issue 12, items 9 and 10;
-// kernel/include/ntn/time_step.hpp): the damped formula without cancellation or overflow, hinge
+// The stable step and the substep rule at the extremes of double
+// (kernel/include/ntn/time_step.hpp): the damped formula without cancellation or overflow, hinge
 // springs and dashpots of 1e300 and more never dropped from the bound, elements beyond double
 // refused (step 0, issue kNonFinite, the element named), and frame_substeps, the one rule for N.
 #include <gtest/gtest.h>
@@ -160,7 +160,7 @@ TEST(FrameSubsteps, WholeDivisionsAreCounted) {
   EXPECT_EQ(ntn::frame_substeps(p * (1 + 1e-12), p).count, 1);
 }
 
-// Issue 12 item 10: dt = 1e-300 claimed "1 per 1 ms frame", nodes 1e-12 m apart gave 2.2e10
+// Regression: dt = 1e-300 claimed "1 per 1 ms frame", nodes 1e-12 m apart gave 2.2e10
 // substeps and `info` printed -9223372036854775808. Each is a named error now.
 TEST(FrameSubsteps, AbsurdStepsAndPeriodsAreRefused) {
   const double p = 1e-3;

@@ -1,4 +1,4 @@
-// Modal analysis of the 20-element cantilever (issue 5, "What must be shown" 2):
+// Modal analysis of the 20-element cantilever:
 // config/cantilever.toml through the model loader, the first three bending frequencies of each
 // plane against the Euler-Bernoulli closed form.
 //

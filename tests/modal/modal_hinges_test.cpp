@@ -1,4 +1,4 @@
-// Modal analysis with hinges (issue 5, "What must be shown" 2; DESIGN §7, §7.1): the library's
+// Modal analysis with hinges (DESIGN §7, §7.1): the library's
 // constraint transformation u = T q against an independent exact condensation, rigid hinges
 // against merged nodes, mechanisms and massless joints, curves linearized at the origin.
 //
@@ -6,7 +6,7 @@
 // element functions, the supports as removed DOFs, the rigid hinge rows of B = T [-I -E I 0;
 // 0 -I 0 I] written from DESIGN §7 in tests/support/assemble.hpp (not from the library or the
 // kernel), and the eigenproblem solved on the null space of those rows (an SVD):
-// ntn_test::constrained_modes, the condensation the hinge release tests of issue 3 use. The
+// ntn_test::constrained_modes, the condensation the hinge release tests use. The
 // library instead eliminates the rigid directions tree by tree. Both are exact; they differ by
 // rounding only.
 //

@@ -1,5 +1,5 @@
 // The two eigensolver paths, participation and effective masses, per-node shapes, MAC and the
-// mode table (issue 5, "What must be shown" 2; DESIGN §9).
+// mode table (DESIGN §9).
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>

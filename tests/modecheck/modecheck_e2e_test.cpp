@@ -1,4 +1,4 @@
-// End to end (issue 5, "What must be shown" 3 and 4): an impulse on the default frame, simulated by
+// End to end: an impulse on the default frame, simulated by
 // the kernel, then the modal check against the model's modal analysis; and a stiffened model
 // checked against the same response must fail.
 //
@@ -151,8 +151,8 @@ class ModeCheckEndToEnd : public ::testing::Test {
 };
 
 // Truth: ntn::modal's analysis of the same file (checked against closed forms and independent
-// condensations in tests/modal). Tolerance 1 % on frequency (issue 5) and MAC >= 0.95 on the ten
-// channels (issue 5; 0.95 leaves room for the neighbouring mode's tail in FDD's first vector).
+// condensations in tests/modal). Tolerance 1 % on frequency and MAC >= 0.95 on the ten
+// channels (0.95 leaves room for the neighbouring mode's tail in FDD's first vector).
 TEST_F(ModeCheckEndToEnd, LibraryFindsTheFirstThreeModesWithinOnePercent) {
   const auto loaded = ntn::modelc::load_model(model_path());
   ASSERT_TRUE(loaded.ok());

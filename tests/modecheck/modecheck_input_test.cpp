@@ -191,7 +191,7 @@ TEST_F(ModeCheckInput, BadOptions) {
   EXPECT_EQ(p.exit_code, 2);
 }
 
-// Issue 12 item 12: a dead sensor (0.01 m for 40 s) "identified" both modes from its rounding
+// Regression: a dead sensor (0.01 m for 40 s) "identified" both modes from its rounding
 // residue (PSD ~1e-63) and passed. A constant channel is bad input, named, with its value.
 TEST_F(ModeCheckInput, AConstantChannelIsADeadSensor) {
   const std::string path = channels("dead.csv", {{"roof_ux", [](double) { return 0.01; }}});

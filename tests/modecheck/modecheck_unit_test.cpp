@@ -113,7 +113,7 @@ TEST(ModeCheckMatch, NearestWithinTheBandOnePeakPerMode) {
 }
 
 // FDD on the synthetic decays: frequencies within 0.1 % of the damped frequencies (the
-// interpolation's accuracy, tools/spectral/README.md), damping within 10 % (issue 5), shapes MAC
+// interpolation's accuracy, tools/spectral/README.md), damping within 10 %, shapes MAC
 // >= 0.99 against the true ones (one mode dominates each peak line; 0.99 allows the neighbours'
 // tails, which the non-orthogonal shapes do not cancel).
 TEST(ModeCheckIdentify, FddFindsFrequenciesDampingAndShapes) {
@@ -388,7 +388,7 @@ TEST(ModeCheckIdentify, NonFiniteSamplesAreBadInput) {
   }
 }
 
-// Issue 12 item 12, in memory: a constant channel is bad input naming it and its value.
+// In memory: a constant channel is bad input naming it and its value.
 TEST(ModeCheckIdentify, AConstantChannelIsBadInput) {
   sp::Channels data = synthetic(2);
   data.data[0].assign(data.data[0].size(), 0.01);

@@ -1,4 +1,4 @@
-// Strings that try to get out of where the header generator puts them (issue 12 item 11): a
+// Strings that try to get out of where the header generator puts them: a
 // newline, CR or NUL ending a // comment early, a backslash at the end of a comment splicing
 // the next line into it, a trigraph (?? and /: a backslash where trigraphs are on), the end of a
 // block comment, a quote ending a string literal, non-ASCII and invalid UTF-8, control characters.

@@ -1,4 +1,4 @@
-// `ntn-model modes` (issue 13 item 8): the command's JSON parsed back and held against the
+// `ntn-model modes`: the command's JSON parsed back and held against the
 // 20-element cantilever's closed form, its effective masses against the model's total mass, the
 // JSON against the library's report bit for bit, the hinge directions against the model file,
 // a mechanism, rigid-body modes (null periods), a model error's position, and the strictness of

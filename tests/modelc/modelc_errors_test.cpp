@@ -217,8 +217,8 @@ const Expected kExpected[] = {
   {"RefusedFailureNamed", "refused_failure_outputs.toml", 45, 6, "hinges[1].ux", "a failure direction needs hinge_method = \"ntn_exact\" (exact stick and slip) or \"penalty\""},
   {"RefusedFrictionNamed", "refused_friction_outputs.toml", 38, 6, "hinges[0].ux", "a friction direction needs hinge_method = \"ntn_exact\": under \"penalty\" only a constant limit"},
   {"RefusedFixedIfNamed", "refused_fixed_if_outputs.toml", 38, 6, "hinges[0].ux", "a fixed_if direction with a control needs hinge_method = \"ntn_exact\": under \"penalty\" only a constant limit"},
-  // Issue 12: nesting refused before parsing (a dotted key 50 000 deep crashed the parser), the
-  // frame rule, and numbers beyond double named at their key.
+  // Hostile input: nesting refused before parsing (a dotted key 50 000 deep crashed the parser),
+  // the frame rule, and numbers beyond double named at their key.
   {"DeepNesting", "deep_nesting.toml", 6, 62, "", "nested deeper than 32 levels (tables, arrays and inline tables one inside another"},
   {"DtTiny", "dt_tiny.toml", 4, 6, "model.dt", "dt = 1e-300 s gives 1e+297 substeps in the frame period 0.001 s (frame_rate = 1000 Hz), more than the limit 1000000"},
   {"FrameRateRange", "frame_rate_range.toml", 4, 14, "model.frame_rate", "must be between 0.001 and 1e+06 Hz (got 1e-300 Hz)"},

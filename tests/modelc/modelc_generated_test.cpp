@@ -108,7 +108,7 @@ TEST(GeneratedHeader, BackbonePortalMatchesFileAndInitializes) {
         bp::kMemberNames, g_backbone);
 }
 
-// Issue 16's connections (friction circle, hardening with the slip, a spring that breaks,
+// The slip connections (friction circle, hardening with the slip, a spring that breaks,
 // fixed_if with a control and on its own force) in the header, bit for bit as the file reads.
 TEST(GeneratedHeader, SlipConnectionsMatchFileAndInitialize) {
   namespace sc = ntn::models::slip_connections;

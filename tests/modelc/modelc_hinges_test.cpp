@@ -416,7 +416,7 @@ TEST(Hinges, BearingMassOnlyPenaltyNeedsIt) {
 }
 
 // ntn-model info prints the stable step with the model's method and with penalty, and their
-// ratio (issue 3): the same numbers as the kernel's stable_time_step on the same model with
+// ratio: the same numbers as the kernel's stable_time_step on the same model with
 // hinge_method switched.
 TEST(Hinges, InfoPrintsPenaltyRatio) {
   const auto r = ntn::modelc::load_model(config("hinged_beam.toml"));

@@ -1,6 +1,6 @@
 // Headers generated from hostile strings (hostile_strings.hpp, made by make_hostile_headers at
 // build time) compile, carry every string back byte for byte, and their comment lines hold
-// printable ASCII only (issue 12 item 11: a title with a newline injected C++ into the header).
+// printable ASCII only (a title with a newline once injected C++ into the header).
 // That this file compiles is half the test: an escaped string that got out would have put
 // static_assert(false) or a stray declaration into the header.
 #include <gtest/gtest.h>

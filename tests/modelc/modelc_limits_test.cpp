@@ -1,4 +1,4 @@
-// Issue 12 on the model compiler: input refused before the TOML parser (size, nesting), the
+// Hostile input on the model compiler: input refused before the TOML parser (size, nesting), the
 // diagnostics cap, nodes connected to nothing, numbers beyond double named by their key, and the
 // frame rule (ntn::frame_substeps) applied to the model. Each case failed on 8679e50: a crash
 // (nesting), 1000 listed errors, no note, a misleading or no error, or "ok".

@@ -1,4 +1,4 @@
-// Issue 14, nodes and frames, against truth nobody here chose:
+// Nodes and frames, against truth nobody here chose:
 // - plane = "xz": good/portal_xz.toml and its 3D twin good/portal_xz_3d.toml (a user node at every
 //   mesh point, uy, rx, rz held by supports on every user node) are one structure; the compiler
 //   must make the same spec of both, so modal analysis (tools/modal) gives the same frequencies
@@ -246,7 +246,7 @@ TEST(ModelcPointMassOffsetPhysics, TipMassOnARigidArmVibratesAtTheBeamTheoryFreq
 
 // AFNOR SDLL15/89 b (good/sdll15b.toml): a 10 m cantilever tube with 1000 kg on a 1 m rigid
 // offset. Published: 1.636 Hz (bending + torsion) and 1.642 Hz (bending + tension), then 13.46,
-// 13.59, 28.90, 31.96 Hz. Tolerance 0.5 % on the first two (issue 14); 20 lumped-mass
+// 13.59, 28.90, 31.96 Hz. Tolerance 0.5 % on the first two; 20 lumped-mass
 // Euler-Bernoulli elements are within 0.1 % there (the tip mass dominates). The higher modes are
 // printed beside the reference: the beam's own lumped mass matters more there.
 TEST(ModelcPointMassOffsetPhysics, Sdll15bFirstFrequenciesAreThePublishedOnes) {

@@ -1,4 +1,4 @@
-// Issue 14, nodes and frames: [model] plane (stage hold_out_of_plane, plane.cpp), point masses on
+// Nodes and frames: [model] plane (stage hold_out_of_plane, plane.cpp), point masses on
 // an offset and hinge axes = { member, roll } (hinges_supports.cpp), with one test per new error
 // message. The physics of all three is in modelc_nodes_physics_test.cpp.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The model compiler on plastic hinge directions (issue 15): { plastic = k, yield = F,
+// The model compiler on plastic hinge directions: { plastic = k, yield = F,
 // yield_negative = F, hardening = b, dashpot = c } in releases and explicit hinges, each with a
 // history slot of its own (ntn::HysteresisSpec), the new output kinds, the modal analysis and
 // stable step at the elastic stiffness, and every error with its place.
@@ -172,7 +172,7 @@ TEST(ModelcPlastic, BackbonesGetTheirPointsRuleAndElasticStiffness) {
       << ntn::modelc::info_text(d);
 }
 
-// rigid_plastic (issue 16): a history slot with its yields; under ntn_exact rigid below yield
+// rigid_plastic: a history slot with its yields; under ntn_exact rigid below yield
 // (the stable step and the modes as a rigid direction's), refused under ntn_paper at the key.
 TEST(ModelcPlastic, RigidPlasticDirectionsGetTheirYieldsAndSlots) {
   const auto r = load_model_from_string(
@@ -204,7 +204,7 @@ TEST(ModelcPlastic, RigidPlasticDirectionsGetTheirYieldsAndSlots) {
             "against the limit\n");
 }
 
-// friction (issue 16): mu, cohesion and the normal direction into the law (default normal ux).
+// friction: mu, cohesion and the normal direction into the law (default normal ux).
 TEST(ModelcPlastic, FrictionDirectionsGetMuCohesionAndNormal) {
   const auto r = load_model_from_string(
       model("{ friction = 0.4, cohesion = 50, normal = \"uz\" }", "{ plastic = 5e8, yield = 1e5 }"),
@@ -218,7 +218,7 @@ TEST(ModelcPlastic, FrictionDirectionsGetMuCohesionAndNormal) {
   EXPECT_TRUE(ntn::hysteresis_valid(d.hystereses[0], 0.0, 0.0));
 }
 
-// failure (issue 16): a bolt's limit, rigid until then (a brittle law); under penalty the
+// failure: a bolt's limit, rigid until then (a brittle law); under penalty the
 // penalty spring breaks; { linear = k, failure = F } a spring that breaks, under every method.
 TEST(ModelcPlastic, FailureDirectionsGetTheirLimit) {
   const auto r = load_model_from_string(
@@ -254,7 +254,7 @@ TEST(ModelcPlastic, RigidPlasticHardeningIsTheDirectionsStiffness) {
   EXPECT_EQ(r.model->hystereses[0].hardening, 0.0);
 }
 
-// fixed_if (issue 16): on its own force a stop at d = 0 (the curve the compiler makes, rigid on
+// fixed_if: on its own force a stop at d = 0 (the curve the compiler makes, rigid on
 // the side of the sign); with another direction as its control a slip direction held while
 // that direction's force has the sign. The slip-state and hinge-velocity channels.
 TEST(ModelcPlastic, FixedIfIsAStopOnItsOwnForceAndASlipDirectionOnAnother) {
@@ -300,7 +300,7 @@ direction = "ry"
       << ntn::modelc::info_text(d);
 }
 
-// The friction circle (issue 16): the pair's laws name each other.
+// The friction circle: the pair's laws name each other.
 TEST(ModelcPlastic, FrictionCircleDirectionsNameEachOther) {
   const auto r = load_model_from_string(
       model("{ friction = 0.3, normal = \"uz\", circle = \"rx\" }\nrx = { friction = 0.3, "

@@ -1,4 +1,4 @@
-"""The Python module ntnrt (issue 18, item 3), run by CTest (tests/python/CMakeLists.txt).
+"""The Python module ntnrt, run by CTest (tests/python/CMakeLists.txt).
 
 Truth that no one here chose: the command-line tools' output hashes and CSV bytes (the module
 must equal them bit for bit), the El Centro reference hash, the Euler-Bernoulli cantilever's

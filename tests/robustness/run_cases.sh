@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Hostile command-line arguments (issue 12, "What must be shown"): runs the cases of one group of
-# cases.txt and checks, for each, the generic rules
+# Hostile command-line arguments: runs the cases of one group of cases.txt and checks, for each,
+# the generic rules
 #   - no signal (exit code < 128) and no hang (each case under `timeout`, CASE_TIMEOUT s);
 #   - no uncaught exception or sanitizer report on stderr ("terminate called", "what():",
 #     "AddressSanitizer", "runtime error:", ...), and no number of 40 or more digits (CLI11
-#     printing DBL_MAX in full, an issue-12 message to make clear);
+#     printing DBL_MAX in full, a message that had to be made clear);
 # and the case's own expectation: the exit code, and for a non-zero one a message on stderr that
 # contains the given text (the option's name or the argument; fragments joined by ' && ' must all
 # appear, a fragment '!X' must not).

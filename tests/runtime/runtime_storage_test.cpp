@@ -1,4 +1,4 @@
-// One kernel, two storages (issue 18, item 1): a model in run-time storage (ntn-run's
+// One kernel, two storages: a model in run-time storage (ntn-run's
 // LoadedModel: the model file loaded when the program runs, one block bound before init)
 // computes the same bits as the same model compiled (the model compiler's header, std::arrays),
 // step by step, over a real record (El Centro 1940, config/ground-motions): every output channel
@@ -7,7 +7,7 @@
 //
 // Both storages start from the model's initial state plus the same small velocity at every DOF
 // (so that a model without inputs moves too). The models: every model in config/, the model
-// compiler's hinged test models (a pinned joint, backbone hinges, issue 16's slip connections), the
+// compiler's hinged test models (a pinned joint, backbone hinges, the slip connections), the
 // every-key model, and benchmark frames (merged, pinned, mixed and plastic joints;
 // tests/bench/frame_models.hpp) given to both storages as the same spec. The run-time side is also
 // checked for zero heap allocations after init, in start() and step() (the allocation counter

@@ -1,4 +1,4 @@
-// Models with `plastic` hinge directions (HingeBehaviour::kPlastic, issue 15) shared by the
+// Models with `plastic` hinge directions (HingeBehaviour::kPlastic) shared by the
 // validation and the kernel tests. No heap, no exceptions.
 //
 // The oscillator: a point mass m on a `plastic` hinge to the ground, along global x. The kernel

@@ -1,4 +1,4 @@
-# One run driver (issue 13 item 5): ntn-run-<model> and `ntn-hil-<model> run --clock virtual`
+# One run driver: ntn-run-<model> and `ntn-hil-<model> run --clock virtual`
 # run the same loop library, so for the same --sampling they print the same output hash and
 # write the same CSV, byte for byte (the runner with --flags, which adds the loop's flags
 # column). Each sampling must also change the response (else the option would do nothing), and
@@ -56,7 +56,7 @@ foreach(pair "run_default|run_step" "hil_default|hil_hold"
   endif()
 endforeach()
 # Without --flags the runner's CSV is the loop's without the flags column (its format before
-# issue 13): the same header and rows up to the last comma.
+# the two shared one run driver): the same header and rows up to the last comma.
 file(STRINGS ${OUT}/hil_hold.csv with_flags)
 execute_process(COMMAND ${RUNNER} ${common} --sampling hold --out ${OUT}/run_hold_plain.csv
                 RESULT_VARIABLE rc OUTPUT_QUIET)

@@ -166,8 +166,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "not uniformly spaced"},
         BadFile{"back.csv", "t,a\n0,1\n-0.1,2\n", 3, 1, "time does not increase"},
         BadFile{"inf.csv", "t,a\n0,1\n0.1,inf\n", 3, 5, "not a finite number"},
-        // Issue 12 item 7: DT = 1e308 gave an infinite duration and std::length_error in the
-        // runner; item 8: DT = 1e-300 gave a run of 0 steps reported as success. Both are
+        // Regressions: DT = 1e308 gave an infinite duration and std::length_error in the
+        // runner; DT = 1e-300 gave a run of 0 steps reported as success. Both are
         // refused by the sample-interval rule, naming DT and its value.
         BadFile{"dt_huge.AT2", "a\nb\nUNITS OF G\nNPTS= 3, DT= 1e308 SEC\n1 2 3\n", 4, 1,
                 "DT = 1e+308 s is outside the accepted sample interval"},
@@ -177,7 +177,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "DT = 20 s is outside"},
         BadFile{"step_tiny.csv", "t,a\n0,1\n1e-300,2\n2e-300,3\n", 3, 1,
                 "the time step = 1e-300 s is outside the accepted sample interval"},
-        // Issue 12 "Messages": the first extra value of NPTS = 3 is value 4 (was: "value 3
+        // The first extra value of NPTS = 3 is value 4 (was: "value 3
         // onwards", the first value of the line that overflowed).
         BadFile{"extra.AT2", "a\nb\nc\nNPTS= 3, DT= 0.01 SEC\n 0.1  0.2\n 0.3  0.4\n", 6, 1,
                 "more values than NPTS = 3 (value 4 onwards)"},
@@ -186,7 +186,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "1 header line is missing"},
         BadFile{"no_npts.AT2", "title\nevent\nUNITS OF G\n 0.1 0.2 0.3 0.4\n 0.5\n", 4, 1,
                 "is a header line missing?"},
-        // Issue 12 item 13: times at its row, relative to the step (t ~ 1.7e9: the old 1e-8 |t|
+        // Times at its row, relative to the step (t ~ 1.7e9: the old 1e-8 |t|
         // allowance was 17 s). A row moved by half a step of 1 s; two rows swapped.
         BadFile{"epoch_jitter.csv",
                 "t,a\n1700000000,1\n1700000001,2\n1700000002,3\n1700000003.5,4\n1700000004,5\n", 5,
@@ -219,7 +219,7 @@ TEST(Records, MissingFileIsAnErrorNotACrash) {
   EXPECT_NE(r.error->message.find("cannot open"), std::string::npos);
 }
 
-// Issue 12 "Messages": a file that cannot be opened has no position ("FILE:0:0:" was printed)
+// A file that cannot be opened has no position ("FILE:0:0:" was printed)
 // and the reason is given; a directory is named as one (every reader, also the TableReader of
 // ntn::spectral and ntn::plot).
 TEST(Records, CannotOpenSaysWhyWithoutAPosition) {

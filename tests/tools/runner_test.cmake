@@ -38,7 +38,7 @@ endif()
 # at every kernel step) is the runner's input semantics before the loop library ran it, to the bit.
 # Since damping_velocity = "central" became the default (kernel/README, "Damping velocity"),
 # 6e2293debe9ca748; "lagged" keeps the hash before it, fe2a0f51b4edafe7 (damping_velocity.cmake in
-# tests/runtime). That one came with issue 17's element order (kernel/README, "The model's element
+# tests/runtime). That one came with the element order (kernel/README, "The model's element
 # order": the nodes sum their elements' forces and masses in another order); before it
 # b75556fff5aab1d0, and before the aligned elements (kernel/README, "Aligned elements pick")
 # fa89d903ee8d9aa5.
@@ -69,7 +69,7 @@ execute_process(COMMAND ${RUNNER} --input ag_x=${OUT}/missing.AT2 RESULT_VARIABL
 if(NOT rc EQUAL 2 OR NOT err MATCHES "cannot open")
   message(FATAL_ERROR "missing record: exit ${rc}, '${err}'")
 endif()
-# Units (issue 12 item 16): a record in gal and one in m/s2 feed the input in g converted, and the
+# Units: a record in gal and one in m/s2 feed the input in g converted, and the
 # summary says so (peaks: 3.719808 gal = 0.003793 g; 1 m/s2 = 0.102 g, %.4g as printed).
 foreach(case "at2/units_gal.AT2|peak 0.003793 g, converted from gal"
              "csv/units_m_s2.csv|peak 0.102 g, converted from m/s2")

@@ -1,4 +1,4 @@
-// `backbone` hinge directions (issue 15: HingeBehaviour::kPlastic with HysteresisRule::kKinematic
+// `backbone` hinge directions (HingeBehaviour::kPlastic with HysteresisRule::kKinematic
 // or kPeakOriented, ntn/backbone.hpp) against truth no one here chose:
 // 1. the peak_oriented rule along a deformation path worked out by hand, point by point: each
 //    reloading line starts at the zero-force point of the last unloading and aims at the

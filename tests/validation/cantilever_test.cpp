@@ -1,4 +1,4 @@
-// Cantilever validation (issue 2): static tip deflection by damped dynamic relaxation, the first
+// Cantilever validation: static tip deflection by damped dynamic relaxation, the first
 // three bending frequencies of the kernel's own mass and stiffness, the time-stepping response
 // at the first frequency, and the dynamic amplification of a suddenly applied load. All against
 // Euler-Bernoulli closed forms.
@@ -67,7 +67,7 @@ TEST(Cantilever, BetaRootsMatchTheIssue) {
 // Static tip deflection PL^3 / (3 E I) by dynamic relaxation in both bending planes. Cubic
 // Hermite elements reproduce the Euler-Bernoulli solution of a point-loaded beam exactly at the
 // nodes, so the only error is the relaxation's: converged to 1e-10 in residual and motion, the
-// deflection should be right to ~1e-9. Tolerance 0.5 % (issue 2).
+// deflection should be right to ~1e-9. Tolerance 0.5 %.
 TEST(Cantilever, StaticTipDeflectionByDynamicRelaxation) {
   struct Case {
     int dof, other;
@@ -223,7 +223,7 @@ TEST(Cantilever, TimeSteppingOscillatesAtTheFirstFrequency) {
 // 2 c_1 and 2 delta_static, and equals 2 x static only for a single mode. A heavy tip mass on a
 // light cantilever makes the first mode carry almost all of the static tip deflection; the test
 // computes that share c_1 / delta from the modal analysis and requires it above 0.99, which
-// bounds the peak within 1 % of 2 x static. Tolerance 2 % (issue 2). The static deflection is
+// bounds the peak within 1 % of 2 x static. Tolerance 2 %. The static deflection is
 // the closed form P L^3 / (3 E I) (cubic elements are exact for it).
 TEST(Cantilever, SuddenlyAppliedLoadPeaksAtTwiceTheStaticDeflection) {
   constexpr int kN = 10;

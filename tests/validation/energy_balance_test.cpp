@@ -1,4 +1,4 @@
-// The energy balance of a yielding frame under a real record (issue 15): the demo portal with
+// The energy balance of a yielding frame under a real record: the demo portal with
 // plastic hinges at its column bases and beam ends (config/portal_plastic.toml) under gravity
 // (static preload) and 15 s of El Centro 1940 N-S. The discrete work-energy identity of the scheme
 // (ntn::hil::EnergyBalance, hil_sim/include/ntn/hil/energy.hpp): kinetic energy now minus at the

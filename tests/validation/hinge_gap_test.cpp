@@ -1,4 +1,4 @@
-// Rigid branches of `curve` hinge directions (issue 3, "What must be shown" 6; seed S 32-33,
+// Rigid branches of `curve` hinge directions (seed S 32-33,
 // DESIGN §7.1): a gap hinge with 1 mm of play never opens further than 1 mm; the default,
 // momentum-conserving clamp keeps a free-flying pair's linear momentum; and the seed's own clamp
 // (clamp = "paper", S 33) gives the hand-computed numbers of equation 33.

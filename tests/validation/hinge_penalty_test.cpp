@@ -1,4 +1,4 @@
-// ntn_exact against the `penalty` method (issue 3, "What must be shown" 4) on the three shapes the
+// ntn_exact against the `penalty` method on the three shapes the
 // seed's algorithm cannot take: a star joint (four members, four different hinge frames on one
 // node), a chain of hinges (a tree two levels deep), and an eccentric rigid hinge.
 //

@@ -1,4 +1,4 @@
-// A hinge released about one bending axis (issue 3, "What must be shown" 2): the frequencies the
+// A hinge released about one bending axis: the frequencies the
 // kernel's time stepping oscillates at equal those of the same structure with the rotation
 // released exactly, computed independently here from the assembled matrices; and the time
 // history agrees with the `penalty` method run at a step small enough for it.
@@ -132,7 +132,7 @@ double release_effect(const ntn_test::Modes& hinged, const ntn_test::Modes& rigi
   return d;
 }
 
-// Tolerance 0.1 % (issue 3). A single mode advanced by central difference has the exact discrete
+// Tolerance 0.1 %. A single mode advanced by central difference has the exact discrete
 // phase, and the zero crossings resolve it to ~1e-8 over 30 periods (measured: at most 1.7e-8
 // off omega_h), so what the test sees is whether the kernel integrates the constrained system: a
 // wrong coupled mass (e.g. a diagonalized Schur complement) shifts the frequency and leaks energy

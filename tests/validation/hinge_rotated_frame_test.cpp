@@ -1,8 +1,8 @@
-// A hinge whose frame is turned 30 degrees about the member axis and 20 degrees about another
-// (issue 3, "What must be shown" 3): with ntn_exact the relative displacement in every rigid
-// direction stays below 1e-12 of the peak displacement over 10^6 steps. What ntn_paper gives on
-// the same model is measured and printed (it diagonalizes the hinge-frame mass, S 23 / S 26, so
-// its rigid directions are not held; the figure is recorded, not asserted).
+// A hinge whose frame is turned 30 degrees about the member axis and 20 degrees about another:
+// with ntn_exact the relative displacement in every rigid direction stays below 1e-12 of the peak
+// displacement over 10^6 steps. What ntn_paper gives on the same model is measured and printed
+// (it diagonalizes the hinge-frame mass, S 23 / S 26, so its rigid directions are not held; the
+// figure is recorded, not asserted).
 //
 // Why 1e-12: ntn_exact's accelerations satisfy the rigid constraints exactly (DESIGN §7.1), and
 // after every update the child's rigid components are re-projected onto the parent's, so the

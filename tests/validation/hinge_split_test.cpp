@@ -1,4 +1,4 @@
-// A hinge rigid in all six directions changes nothing (issue 3, "What must be shown" 1): a
+// A hinge rigid in all six directions changes nothing: a
 // clamped-clamped beam cut at midspan and joined again by such a hinge gives the response of the
 // uncut beam under a dynamic load, to 1e-12 relative, with ntn_exact and with ntn_paper.
 //

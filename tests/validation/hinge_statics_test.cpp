@@ -1,4 +1,4 @@
-// Hinge forces against statics (issue 3, "What must be shown" 7): the force and moment a hinge
+// Hinge forces against statics: the force and moment a hinge
 // transmits in a statically determinate structure follow from equilibrium alone, whatever the
 // stiffnesses, so a hand calculation is the truth. The structures are brought to rest under
 // constant loads by damped dynamic relaxation with the kernel itself, and the kernel's
@@ -6,7 +6,7 @@
 // ntn_paper's T (m1 a1 - R1), the spring force for penalty and for linear directions) are
 // compared with the hand values.
 //
-// Tolerance: 0.5 % (issue 3). The relaxation is run to 1e-10 in residual and motion, so the
+// Tolerance: 0.5 %. The relaxation is run to 1e-10 in residual and motion, so the
 // forces should be right to ~1e-8 of the largest; the test also holds them to 1e-6 of it (its
 // own, tighter bound), and every hand-zero component to 1e-6 of the largest.
 #include <gtest/gtest.h>

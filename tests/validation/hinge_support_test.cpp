@@ -1,4 +1,4 @@
-// Supported hinges (issue 3, "What must be shown" 5; seed S 27-31, DESIGN §7.1): the free
+// Supported hinges (seed S 27-31, DESIGN §7.1): the free
 // partner of a hinge follows the support exactly in the hinge's rigid directions. Supports do
 // not move relative to the ground (u is relative to the ground, §5), so "follows" means: its
 // relative displacement d_L = B u in every rigid direction stays zero, under a load pulse and a

@@ -1,4 +1,4 @@
-// The stable step with hinges (issue 3, "What must be shown" 8; DESIGN §6): rigid NTN directions
+// The stable step with hinges (DESIGN §6): rigid NTN directions
 // add no stiffness, so ntn_exact keeps the elements' step, while `penalty` must make its rigid
 // directions stiff enough to be rigid, and its step collapses. The same model under both: the
 // clamped-clamped beam of hinge_release_test, cut at midspan by a hinge released about y.

@@ -1,4 +1,4 @@
-// `plastic` hinge directions (issue 15, HingeBehaviour::kPlastic, ntn/hysteresis.hpp) run by the
+// `plastic` hinge directions (HingeBehaviour::kPlastic, ntn/hysteresis.hpp) run by the
 // kernel against closed forms of the bilinear elasto-plastic law and against equivalent models:
 // 1. an elastic-perfectly-plastic oscillator under a suddenly applied constant force: its peak
 //    displacement F_y^2 / (2 k (F_y - P0)) for F_y / 2 < P0 < F_y, and 2 P0 / k below F_y / 2;

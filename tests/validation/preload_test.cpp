@@ -1,4 +1,4 @@
-// The gravity preload (issue 14, [initial] gravity = "static"): the default frame under gravity,
+// The gravity preload ([initial] gravity = "static"): the default frame under gravity,
 // started from the model compiler's static solution of the kernel's own K, against truth that
 // needs no reference values:
 // - statics: a run from the preload with no other load stays at rest (the kernel's residual
@@ -63,7 +63,7 @@ double max_abs(const std::array<double, ntn::Model<kS>::kDofs>& x) {
 
 // At rest in equilibrium: 10 s of the preloaded frame with no input. The velocity scale of the
 // same frame when gravity is applied suddenly is its ringing, max |v| ~ omega_1 |u_static|; the
-// preloaded frame must stay below 1e-9 of it (issue 14). The residual P - F(u_0) is rounding
+// preloaded frame must stay below 1e-9 of it. The residual P - F(u_0) is rounding
 // (~1e-16 of the largest force), which moves the frame by ~1e-16 relative: far below 1e-9.
 TEST(GravityPreload, FrameStaysAtRestFor10Seconds) {
   Frame pre(preload::kSpec), sud(sudden::kSpec);

@@ -1,4 +1,4 @@
-// The rest of issue 16's connections, against closed forms:
+// The rest of the connections that stick, slip, stop and break, against closed forms:
 // 1. Hardening with the slip (rigid_plastic with a parallel spring H): under a suddenly applied
 //    force P (Y < P <= 3Y) the block slides as m x'' = P - Y - H x, reaches 2 (P - Y) / H at
 //    t = pi sqrt(m / H) and sticks there; the force while sliding is Y + H x.

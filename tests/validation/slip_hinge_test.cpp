@@ -1,4 +1,4 @@
-// `rigid_plastic` hinge directions (issue 16, HingeBehaviour::kRigidPlastic, ntn/slip.hpp) under
+// `rigid_plastic` hinge directions (HingeBehaviour::kRigidPlastic, ntn/slip.hpp) under
 // ntn_exact, against truth no one here chose:
 // 1. Newmark's sliding block (Newmark 1965): a rigid block on a rigid-plastic hinge to the ground
 //    (yield m N) under a rectangular base-acceleration pulse of amplitude A > N and length t0

@@ -1,4 +1,4 @@
-// The sliding portal (issue 16, config/portal_slip.toml) under 15 s of El Centro 1940 N-S: column
+// The sliding portal (config/portal_slip.toml) under 15 s of El Centro 1940 N-S: column
 // bases on Coulomb friction (mu = 0.2 on their rigid normal), beam ends slip-critical
 // (rigid_plastic at 35 kN m), gravity as a static preload. Truth no one here chose:
 // - Coulomb's law at every step: each base's friction force at t_n is within mu max(0, -N) of

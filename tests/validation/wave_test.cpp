@@ -1,4 +1,4 @@
-// Axial wave in a bar (issue 2): a smooth force pulse at the free end of a 1000-element bar
+// Axial wave in a bar: a smooth force pulse at the free end of a 1000-element bar
 // travels at c = sqrt(E / rho) with particle velocity F / (rho c A).
 #include <gtest/gtest.h>
 
@@ -49,8 +49,8 @@ Peak parabolic_peak(double ym, double y0, double yp, double t0, double dt) {
 // the long-wave speed, which the lumped bar reproduces to (k l)^2 (1 - C^2) / 24 ~ 1e-5 here
 // (C = c dt / l the Courant number), whereas a first-arrival threshold sees the dispersive
 // high-frequency precursor of the discrete model and the time-function sampling. Both stations
-// see the same pulse shape and output timing, so their difference gives c. Tolerance 1 %
-// (issue 2); expected error ~1e-4. The velocity amplitude of the travelling wave, F0 / (rho c A)
+// see the same pulse shape and output timing, so their difference gives c. Tolerance 1 %;
+// expected error ~1e-4. The velocity amplitude of the travelling wave, F0 / (rho c A)
 // (the bar's impedance), is held to the same 1 %.
 TEST(Wave, AxialPulseTravelsAtTheBarWaveSpeed) {
   const ntn_test::Material mat = ntn_test::kSteel;

@@ -1,4 +1,4 @@
-// ntn-ida MODEL.toml --records DIR|LIST --out DIR: incremental dynamic analysis (issue 19). Every
+// ntn-ida MODEL.toml --records DIR|LIST --out DIR: incremental dynamic analysis. Every
 // (record, intensity) pair is one run of the model (run-time storage, the run of ntn-run); each
 // record is traced by stepping or by hunt and fill (trace.hpp) from its own earlier runs only.
 // Under `mpirun -np N` the records are spread over the N processes as they become free (an

@@ -1,4 +1,4 @@
-// Brittle hinge directions (HysteresisRule::kBrittle, issue 16): a connection that carries its
+// Brittle hinge directions (HysteresisRule::kBrittle): a connection that carries its
 // force until that force first passes its limit, then breaks and carries nothing for the rest
 // of the run (a bolt, a weld, a tie). On a spring (a `linear` direction that fails, or a
 // `failure` direction under `penalty`, whose spring is the penalty stiffness) the force is

@@ -1,4 +1,4 @@
-// The model's element order (issue 17, item 3): the order in which both element passes take the
+// The model's element order: the order in which both element passes take the
 // elements (element_pass.hpp: block by block, lane by lane), and so the order in which every node
 // sums its elements' end forces. init() applies the rule below once; the model compiler reports it
 // (ntn-model's report); the scalar reference and the SIMD path both follow it, so they agree by

@@ -1,4 +1,4 @@
-// Rigid-plastic hinge directions under ntn_exact (HingeBehaviour::kRigidPlastic, issue 16): rigid
+// Rigid-plastic hinge directions under ntn_exact (HingeBehaviour::kRigidPlastic): rigid
 // while the force that holds them stays within their yield, sliding at the yield force when it
 // would not. No penalty spring: the direction is free in the constraint forest and held, after
 // the update, by the slip stage, a momentum-conserving move of the constrained system like the

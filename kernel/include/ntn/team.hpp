@@ -1,4 +1,4 @@
-// The multi-core step (issue 17, item 4): step(m, s, w, in, team, work) does what step(m, s, w, in)
+// The multi-core step: step(m, s, w, in, team, work) does what step(m, s, w, in)
 // does, with the element pass and (in models without hinges) the DOF pass spread over a team of
 // workers that the caller made before the run (hil_sim's WorkerTeam: threads, pinned where
 // permitted). The kernel creates no thread and takes no lock: it hands the team a job and a

@@ -1,4 +1,4 @@
-// Numbers beyond double (issue 12, item 9), checked as the kernel computes them: stages
+// Numbers beyond double, checked as the kernel computes them: stages
 // check_element_numbers (stiffness terms, end masses and highest frequency of every element),
 // assemble_mass (the lumped mass, finite and normal), check_force_numbers (gravity and loads as
 // forces) and check_hinge_spring_numbers (k / m and c / m of every hinge spring).

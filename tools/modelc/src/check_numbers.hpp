@@ -9,7 +9,7 @@
 
 namespace ntn::modelc::compile {
 
-// --- Numbers beyond double (issue 12, item 9) ---
+// --- Numbers beyond double ---
 //
 // Every input number is finite, but what the kernel derives from them (E A / l, 12 E I / l^3,
 // rho A l / 2, k / m, ...) can still overflow to inf or underflow to zero or a subnormal, and

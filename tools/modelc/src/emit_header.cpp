@@ -62,7 +62,7 @@ std::string lit(bool v) {
 }
 
 // Every string from the model file (or its path) reaches the header through str() or comment()
-// only: nothing of it is ever written raw (issue 12 item 11: a title with a newline went raw into
+// only: nothing of it is ever written raw (a title with a newline once went raw into
 // a // comment, and the next line of the title became C++).
 
 // A C++ string literal (a std::string_view initializer); bytes outside printable ASCII as

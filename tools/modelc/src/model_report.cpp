@@ -335,7 +335,7 @@ std::string info_text(const ModelDescription& m) {
   }
   if (bounded) line("", "set by " + m.describe_stable_step(st));
   if (z.hinges > 0) {
-    // The same model with each method (issue 3: the NTN / penalty ratio).
+    // The same model with each method (the NTN / penalty ratio).
     const StableStepReport exact = stable_step_with(m, HingeMethod::kNtnExact);
     const StableStepReport pen = stable_step_with(m, HingeMethod::kPenalty);
     line("ntn_exact dt", f("%.6g", exact.dt_stable) + " s (rigid directions add no stiffness)");

@@ -1,4 +1,4 @@
-// Divergence check of the frame loop (DESIGN §8, issue 6 item 6): a per-frame test on the
+// Divergence check of the frame loop (DESIGN §8): a per-frame test on the
 // kinetic energy, so that a model that went unstable (dt above the stable step) is caught a few
 // steps after its response leaves what any stable run could reach, long before its numbers
 // overflow to Inf / NaN. Everything here is outside step(); the per-frame part has no heap and

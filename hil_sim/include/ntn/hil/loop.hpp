@@ -2,7 +2,7 @@
 // (dt = period / N), inputs sampled per kernel step or per frame, held or linearly interpolated
 // within the frame (sampling.hpp), outputs and alarms per frame, per-frame wake-up latency,
 // compute time and overruns, and an optional log. ntn-hil-<model> runs it on either clock and
-// ntn-run-<model> on the virtual clock (the one run driver of both, issue 13).
+// ntn-run-<model> on the virtual clock (the one run driver of both).
 //
 // Overrun policy: catch up. Frames are processed strictly in index order, each with its own
 // accepted inputs; a late frame is followed at once by the next one, without sleeping, until

@@ -50,7 +50,7 @@ class SenderSchedule {
 
   // period_ns > 0, frames > 0 with frames x period_ns <= kMaxSpan, resync_after in
   // [1, kMaxResyncAfter] (0 turns resync off: the schedule is then the first packet's alone, as
-  // before issue 12).
+  // in the rule without resync).
   SenderSchedule(std::int64_t period_ns, std::int64_t frames, int resync_after = kResyncAfter);
   bool valid() const { return valid_; }
 

@@ -1,4 +1,4 @@
-// The plastic hinge directions that yielded in a run (issue 15), for the run and loop summaries:
+// The plastic hinge directions that yielded in a run, for the run and loop summaries:
 // from the final State (its history: plastic deformation now and at its peak, energy dissipated)
 // and the model's acceptance limits (the performance level, ntn::performance_level).
 #pragma once

@@ -1,4 +1,4 @@
-// Fragility functions from incremental dynamic analysis (issue 19): lognormal fits by maximum
+// Fragility functions from incremental dynamic analysis: lognormal fits by maximum
 // likelihood to the intensities at which each record reaches a limit state (its IM capacities),
 // with the records that never reached it within the intensities run as right-censored data;
 // and the empirical fractiles that summarise a set of IDA curves.

@@ -1,4 +1,4 @@
-// What an IDA gives once every record is traced (issue 19): the results table, each record's
+// What an IDA gives once every record is traced: the results table, each record's
 // capacities (the intensity at which it first exceeds each performance level and at which it
 // collapses), lognormal fragility curves fitted to them, and the plots (IDA curves with their
 // 16/50/84 % fractiles, fragility curves), as files in one output folder.

@@ -1,4 +1,4 @@
-// Intensity measures of a sampled ground-motion record (issue 19): the peak ground acceleration
+// Intensity measures of a sampled ground-motion record: the peak ground acceleration
 // and the pseudo-spectral acceleration of a damped linear oscillator, computed exactly for the
 // record as the kernel sees it (linear between samples: the piecewise-exact recurrence of Nigam
 // and Jennings, 1969).

@@ -1,4 +1,4 @@
-// One incremental dynamic analysis (issue 19): a model file, a suite of records and a tracing
+// One incremental dynamic analysis: a model file, a suite of records and a tracing
 // plan. Each (record, intensity) pair is one kernel run of the model in run-time storage
 // (ntn::run::LoadedModel, the run of ntn-run), the record scaled so that its intensity measure
 // (PGA or Sa(T1)) equals the intensity. A run gives the engineering demands (peak storey drift,

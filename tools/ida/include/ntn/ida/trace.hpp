@@ -1,4 +1,4 @@
-// How one record's IDA curve is traced (issue 19): which intensities to run, one after the other,
+// How one record's IDA curve is traced: which intensities to run, one after the other,
 // each chosen from the results of the record's earlier runs only, so that the runs of a record
 // are the same whatever process runs them and whenever.
 //

@@ -1,4 +1,4 @@
-// The modal check (DESIGN §9, issue 5 item 3): does a response's spectrum show the model's natural
+// The modal check (DESIGN §9): does a response's spectrum show the model's natural
 // frequencies (and, where the channels give a shape, its mode shapes)?
 //
 //   1. channels: the response file's channels that map to a node DOF of the model (outputs of

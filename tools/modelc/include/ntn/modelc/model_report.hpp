@@ -19,7 +19,7 @@ struct MassTotals {
 // From the kernel's own lumped mass (ntn::assemble_lumped_mass), summed in node order.
 MassTotals mass_totals(const ModelDescription& model);
 
-// The kernel's stable step report of the same model with another hinge method (issue 3: the
+// The kernel's stable step report of the same model with another hinge method (the
 // ntn_exact / penalty ratio).
 StableStepReport stable_step_with(const ModelDescription& model, HingeMethod method);
 
