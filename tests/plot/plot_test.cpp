@@ -287,24 +287,35 @@ TEST(Plot, FailingGnuplotLeavesNoPartialPlot) {
   EXPECT_TRUE(fs::is_empty(dir.path())) << "a part file, script or data file was left";
 }
 
+// A stand-in for gnuplot at dir/NAME: writes `png` and `svg` (printf formats) where the script's
+// `set output` lines say, and exits 0.
+std::string fake_gnuplot(const TempDir& dir, const std::string& name, const std::string& png,
+                         const std::string& svg) {
+  const std::string fake = dir / name;
+  {
+    std::ofstream f(fake);
+    f << "#!/bin/sh\n"
+         "png=$(sed -n \"s/^set output '\\(.*\\.png\\)'$/\\1/p\" \"$2\")\n"
+         "svg=$(sed -n \"s/^set output '\\(.*\\.svg\\)'$/\\1/p\" \"$2\")\n"
+         "printf '"
+      << png << "' > \"$png\"\nprintf '" << svg << "' > \"$svg\"\n";
+  }
+  fs::permissions(fake, fs::perms::owner_all);
+  return fake;
+}
+
+constexpr const char* kWholePng = "\\211PNG\\r\\n\\032\\n\\0\\0\\0\\0IEND\\256B`\\202";
+constexpr const char* kWholeSvg = "<svg>\\n</svg>\\n";
+
 // A full disk cuts the plot while gnuplot exits 0 (pngcairo and svg do not check their writes):
 // the cut file is found (no IEND chunk, no </svg>) and nothing is left, not even an earlier plot.
 TEST(Plot, APlotCutShortByTheDiskIsAnErrorAndLeavesNothing) {
   for (const char* cut : {"png", "svg"}) {
     TempDir dir;
-    const std::string fake = dir / "cut-gnuplot";
-    {
-      std::ofstream f(fake);
-      f << "#!/bin/sh\n# writes whole plots where the script says, one of them cut short, exit 0\n"
-           "png=$(sed -n \"s/^set output '\\(.*\\.png\\)'$/\\1/p\" \"$2\")\n"
-           "svg=$(sed -n \"s/^set output '\\(.*\\.svg\\)'$/\\1/p\" \"$2\")\n"
-           "printf '\\211PNG\\r\\n\\032\\n0123456789' > \"$png\"\n"
-           "printf '<svg>\\n</svg>\\n' > \"$svg\"\n";
-      if (std::string(cut) == "svg") {
-        f << "printf '\\0\\0\\0\\0IEND\\256B`\\202' >> \"$png\"\nprintf '<svg>\\n<g>' > \"$svg\"\n";
-      }
-    }
-    fs::permissions(fake, fs::perms::owner_all);
+    const bool png_cut = std::string(cut) == "png";
+    const std::string fake =
+        fake_gnuplot(dir, "cut-gnuplot", png_cut ? "\\211PNG\\r\\n\\032\\n0123456789" : kWholePng,
+                     png_cut ? kWholeSvg : "<svg>\\n<g>");
     { std::ofstream(dir / "x.png") << "an earlier plot"; }
     std::string m;
     pl::RenderOptions o;
@@ -317,18 +328,8 @@ TEST(Plot, APlotCutShortByTheDiskIsAnErrorAndLeavesNothing) {
   }
   // The same fake with both files whole: the plots are renamed into place.
   TempDir dir;
-  const std::string fake = dir / "whole-gnuplot";
-  {
-    std::ofstream f(fake);
-    f << "#!/bin/sh\n"
-         "png=$(sed -n \"s/^set output '\\(.*\\.png\\)'$/\\1/p\" \"$2\")\n"
-         "svg=$(sed -n \"s/^set output '\\(.*\\.svg\\)'$/\\1/p\" \"$2\")\n"
-         "printf '\\211PNG\\r\\n\\032\\n\\0\\0\\0\\0IEND\\256B`\\202' > \"$png\"\n"
-         "printf '<svg>\\n</svg>\\n' > \"$svg\"\n";
-  }
-  fs::permissions(fake, fs::perms::owner_all);
   pl::RenderOptions o;
-  o.gnuplot = fake;
+  o.gnuplot = fake_gnuplot(dir, "whole-gnuplot", kWholePng, kWholeSvg);
   const pl::Rendered r = pl::render(two_panels(), dir / "w", o);
   EXPECT_EQ(fs::file_size(r.png), 20U);
   EXPECT_TRUE(fs::exists(r.svg));
