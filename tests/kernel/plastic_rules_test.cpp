@@ -126,7 +126,7 @@ void expect_identical(const ntn::State<kS>& x, const ntn::State<kS>& y) {
   EXPECT_EQ(std::memcmp(x.v.data(), y.v.data(), sizeof(x.v)), 0);
   EXPECT_EQ(std::memcmp(x.plastic.data(), y.plastic.data(), sizeof(x.plastic)), 0);
   EXPECT_EQ(std::memcmp(x.dissipated.data(), y.dissipated.data(), sizeof(x.dissipated)), 0);
-  EXPECT_EQ(std::memcmp(x.excursion.data(), y.excursion.data(), sizeof(x.excursion)), 0);
+  EXPECT_EQ(std::memcmp(x.law_state.data(), y.law_state.data(), sizeof(x.law_state)), 0);
   EXPECT_EQ(x.first_slip, y.first_slip);
   EXPECT_EQ(x.slip_state, y.slip_state);
   EXPECT_EQ(x.tick, y.tick);
@@ -154,8 +154,8 @@ void no_heap_in_a_yielding_run(Law laws) {
   EXPECT_GT(a.dissipated[0], 0.0) << "ry yields";
   EXPECT_GT(a.dissipated[1], 0.0) << "rz yields";
   if (backbones) {  // both went past their capping points: the run degrades
-    EXPECT_GT(std::max(a.excursion[0][0], a.excursion[0][1]), 0.012);
-    EXPECT_GT(std::max(a.excursion[1][0], a.excursion[1][1]), 0.005);
+    EXPECT_GT(std::max(a.law_state[0][0], a.law_state[0][1]), 0.012);
+    EXPECT_GT(std::max(a.law_state[1][0], a.law_state[1][1]), 0.005);
   }
   EXPECT_EQ(c.allocations, 0U);
   EXPECT_EQ(c.deallocations, 0U);

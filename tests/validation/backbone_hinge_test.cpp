@@ -1,5 +1,5 @@
 // `backbone` hinge directions (HingeBehaviour::kPlastic with HysteresisRule::kKinematic
-// or kPeakOriented, ntn/backbone.hpp) against truth no one here chose:
+// or kPeakOriented, ntn/laws/backbone.hpp) against truth no one here chose:
 // 1. the peak_oriented rule along a deformation path worked out by hand, point by point: each
 //    reloading line starts at the zero-force point of the last unloading and aims at the
 //    envelope at the largest excursion so far in its sense (B before any), and past the capping
@@ -55,7 +55,7 @@ TEST(BackboneLaw, PeakOrientedFollowsTheHandComputedPath) {
   ASSERT_TRUE(ntn::hysteresis_valid(spec, k, 0.0));
   const ntn::HysteresisData h = ntn::make_hysteresis(spec, k);
   double dp = 0, w = 0, peak = 0;
-  std::array<double, 4> x{};
+  ntn::LawState x{};
   struct Point {
     double d, f;
   };
@@ -107,7 +107,7 @@ TEST(BackboneLaw, PlasticWorkAlongAStraightBoundIsExact) {
     const ntn::HysteresisData h =
         ntn::make_hysteresis(backbone(rule, {{{1, 100}, {5, 120}, {5, 20}, {10, 20}}}), k);
     double dp = 0, w = 0, peak = 0;
-    std::array<double, 4> x{};
+    ntn::LawState x{};
     ntn::hysteresis_update(h, 3, dp, w, peak, x);
     EXPECT_NEAR(dp, 1.9, 1e-15);
     EXPECT_NEAR(w, 199.5, 1e-12);
@@ -299,7 +299,7 @@ TEST(BackboneCycles, ACheckpointInTheMiddleResumesToTheSameBits) {
     }();
     EXPECT_EQ(std::memcmp(second.f.data(), whole.f.data() + half, rest.size() * sizeof(double)), 0);
     EXPECT_EQ(second.dissipated.back(), whole.dissipated.back());
-    EXPECT_EQ(std::memcmp(&b.state.excursion, &a.state.excursion, sizeof(a.state.excursion)), 0);
+    EXPECT_EQ(std::memcmp(&b.state.law_state, &a.state.law_state, sizeof(a.state.law_state)), 0);
   }
 }
 

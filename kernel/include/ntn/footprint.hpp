@@ -115,7 +115,7 @@ constexpr void state_members(const Sizes& s, V&& v) {
   v(&M::plastic, s.hystereses);
   v(&M::dissipated, s.hystereses);
   v(&M::plastic_peak, s.hystereses);
-  v(&M::excursion, s.hystereses);
+  v(&M::law_state, s.hystereses);
   v(&M::first_slip, s.hystereses);
   v(&M::slip_state, s.hystereses);
 }

@@ -149,8 +149,8 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
           if (!((h.plastic >> k) & 1U)) continue;
           const auto slot = static_cast<std::size_t>(h.history[k]);
           if (hysteresis_update(m.hystereses[slot], d[k], s.plastic[slot], s.dissipated[slot],
-                                s.plastic_peak[slot], s.excursion[slot]))
-            s.first_slip[slot] = s.tick + 1;  // a brittle direction broke (brittle.hpp)
+                                s.plastic_peak[slot], s.law_state[slot]))
+            s.first_slip[slot] = s.tick + 1;  // it broke (a law with kBreaks)
         }
       }
       hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
@@ -571,7 +571,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.plastic.fill(0.0);  // no plastic history at the start of a run
   s.dissipated.fill(0.0);
   s.plastic_peak.fill(0.0);
-  for (auto& x : s.excursion)
+  for (auto& x : s.law_state)
     x.fill(0.0);
   s.first_slip.fill(0);
   s.slip_state.fill(0);

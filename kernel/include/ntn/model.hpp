@@ -265,8 +265,7 @@ template <Sizes S>
       // t_n is known before the slip stage; a stop's comes after it).
       const HysteresisSpec& law = spec.hystereses[slot];
       if (h.behaviour[k] == HingeBehaviour::kRigidPlastic &&
-          ((law.rule != HysteresisRule::kBilinear && law.rule != HysteresisRule::kBrittle) ||
-           law.hardening != 0 ||
+          (!law_slips(law.rule) || law.hardening != 0 ||
            (spec.hinges[i].stiffness[k] != 0 &&
             (law.rule != HysteresisRule::kBilinear || law.normal >= 0))))
         return {InitError::kBadHinge, static_cast<int>(i)};

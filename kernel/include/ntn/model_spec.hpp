@@ -168,8 +168,13 @@ enum class HysteresisRule : std::uint8_t {
                   // largest excursion so far in that sense (concrete, timber)
   kBrittle,       // linear (kPlastic: its stiffness; kRigidPlastic: rigid) until its force first
                   // passes yield_pos or -yield_neg, then no force for the rest of the run (a
-                  // bolt that breaks; State::first_slip says when): brittle.hpp
+                  // bolt that breaks; State::first_slip says when): laws/brittle.hpp
 };
+
+// A law's own values beyond the shared ones (HysteresisSpec::parameters, HysteresisData::p),
+// by the names its header gives them.
+inline constexpr std::size_t kLawParameters = 18;
+using LawParameters = std::array<double, kLawParameters>;
 
 // A hysteretic hinge direction's law (kPlastic). Each entry belongs to one direction; its index
 // is the direction's slot in State::plastic, State::dissipated, State::plastic_peak and
@@ -208,6 +213,7 @@ struct HysteresisSpec {
   // the force at t_n of direction `normal` of the same hinge is negative (positive) and free
   // otherwise (RFEM's "fixed if N-"); mu, cohesion and the yields are not used.
   int fixed_if = 0;
+  LawParameters parameters{};  // a law's own values, named by its header (0: unused)
 };
 
 // A distributed load on one element (a member load's part on it, the model compiler's

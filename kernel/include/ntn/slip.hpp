@@ -72,7 +72,7 @@ void slip_limits(const HysteresisData& law, const State<S>& s, const Scratch<S>&
   } else if (law.normal >= 0) {
     up = down = friction_limit(law, w.slip_normal[slot]);
   }
-  if (law.rule == HysteresisRule::kBrittle && s.first_slip[slot] != 0) up = down = 0.0;
+  if (law_breaks(law.rule) && s.first_slip[slot] != 0) up = down = 0.0;
 }
 
 namespace detail {

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "ntn/dof_pass.hpp"
+#include "ntn/laws/law.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
@@ -46,10 +47,9 @@ struct State : SizesOf<S> {
   Array<double, S, S.hystereses> plastic{};
   Array<double, S, S.hystereses> dissipated{};
   Array<double, S, S.hystereses> plastic_peak{};  // the largest |d_p| so far
-  // Backbone rules only (backbone.hpp): the largest deformation reached in the positive and in
-  // the negative sense (magnitudes), and where the reloading lines of the positive and the
-  // negative sense start (peak_oriented: the zero-force points of the last unloading lines).
-  Array<std::array<double, 4>, S, S.hystereses> excursion{};
+  // Each law's own history values (laws/law.hpp; the law's header names them: the backbone's
+  // excursions and reloading anchors, the brittle direction's broken flag, ...).
+  Array<LawState, S, S.hystereses> law_state{};
   // Rigid-plastic and brittle directions (slip.hpp, brittle.hpp): 1 + the tick of the step in
   // which the direction first slid or broke (0: never); a `failure` direction has broken from
   // then on.

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "ntn/laws/table.hpp"
+
 namespace ntn::modelc {
 namespace {
 
@@ -225,18 +227,10 @@ const char* hinge_method(HingeMethod m) {
   throw std::invalid_argument("emit_header: unknown hinge method");
 }
 
-const char* hysteresis_rule(HysteresisRule r) {
-  switch (r) {
-    case HysteresisRule::kBilinear:
-      return "ntn::HysteresisRule::kBilinear";
-    case HysteresisRule::kKinematic:
-      return "ntn::HysteresisRule::kKinematic";
-    case HysteresisRule::kPeakOriented:
-      return "ntn::HysteresisRule::kPeakOriented";
-    case HysteresisRule::kBrittle:
-      return "ntn::HysteresisRule::kBrittle";
-  }
-  throw std::invalid_argument("emit_header: unknown hysteresis rule");
+std::string hysteresis_rule(HysteresisRule r) {
+  const std::string name = law_enum(r);  // the law table's (ntn/laws/table.hpp)
+  if (name.empty()) throw std::invalid_argument("emit_header: unknown hysteresis rule");
+  return "ntn::HysteresisRule::" + name;
 }
 
 const char* clamp_rule(ClampRule c) {
@@ -363,13 +357,13 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
   array_init(o, "hystereses", m.hystereses, [](const HysteresisSpec& h) {
     std::string s = "{.yield_pos = " + lit(h.yield_pos) + ", .yield_neg = " + lit(h.yield_neg) +
                     ", .hardening = " + lit(h.hardening) + ", .limits = " + lits(h.limits);
-    if (h.rule == HysteresisRule::kBrittle) return s + ", .rule = " + hysteresis_rule(h.rule) + "}";
     if (h.fixed_if != 0)
       return s + ", .normal = " + lit(h.normal) + ", .fixed_if = " + lit(h.fixed_if) + "}";
     if (h.normal >= 0)
       return s + ", .normal = " + lit(h.normal) + ", .mu = " + lit(h.mu) +
              ", .cohesion = " + lit(h.cohesion) + ", .circle = " + lit(h.circle) + "}";
-    if (h.rule == HysteresisRule::kBilinear) return s + "}";
+    // The fields the law uses beyond the default law's: its rule, its envelope, its parameters.
+    if (h.rule != HysteresisSpec{}.rule) s += ", .rule = " + hysteresis_rule(h.rule);
     const auto points = [](const std::array<CurvePoint, 4>& p) {
       std::string t = "{{";
       for (std::size_t i = 0; i < p.size(); ++i)
@@ -377,9 +371,11 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
              ", .force = " + lit(p[i].force) + "}";
       return t + "}}";
     };
-    return s + ", .rule = " + hysteresis_rule(h.rule) +
-           ",\n       .backbone_pos = " + points(h.backbone_pos) +
-           ",\n       .backbone_neg = " + points(h.backbone_neg) + "}";
+    if (law_has_envelope(h.rule))
+      s += ",\n       .backbone_pos = " + points(h.backbone_pos) +
+           ",\n       .backbone_neg = " + points(h.backbone_neg);
+    if (h.parameters != LawParameters{}) s += ",\n       .parameters = " + lits(h.parameters);
+    return s + "}";
   });
   const Settings& s = m.settings;
   o += "    .settings = {.dt = " + lit(s.dt) + ", .frame_period = " + lit(s.frame_period) +

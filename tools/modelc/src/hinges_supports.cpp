@@ -89,7 +89,7 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
       comp.d.hystereses.push_back(b.law);
     }
     if (b.kind == HingeBehaviour::kRigidPlastic) {  // a history slot: its slip, its work
-      const bool brittle = b.law.rule == HysteresisRule::kBrittle;
+      const bool brittle = law_breaks(b.law.rule);
       const char* what = brittle               ? "a failure direction"
                          : b.law.fixed_if != 0 ? "a fixed_if direction with a control"
                          : b.law.normal >= 0   ? "a friction direction"

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "ntn/beam.hpp"
@@ -258,15 +259,14 @@ std::string info_text(const ModelDescription& m) {
       }
       double lo = 1e300, hi = 0;
       int limits = 0;
-      std::array<int, 8> count{};  // in the order of kKindNames
-      static const char* const kKindNames[8] = {"plastic (bilinear, kinematic hardening)",
-                                                "backbone kinematic",
-                                                "backbone peak_oriented",
-                                                "springs that break",
-                                                "rigid_plastic",
-                                                "friction",
-                                                "fixed_if",
-                                                "rigid failure"};
+      // The kinds: the laws of spring directions in the law table's order, then the
+      // rigid-plastic ones.
+      std::vector<std::string> kind_names;
+      each_law([&kind_names](auto l) { kind_names.emplace_back(decltype(l)::kSummary); });
+      const std::size_t laws = kind_names.size();
+      for (const char* n : {"rigid_plastic", "friction", "fixed_if", "rigid failure"})
+        kind_names.emplace_back(n);
+      std::vector<int> count(kind_names.size(), 0);
       for (std::size_t i = 0; i < m.hystereses.size(); ++i) {
         const HysteresisSpec& h = m.hystereses[i];
         if (h.yield_pos > 0) {
@@ -274,21 +274,17 @@ std::string info_text(const ModelDescription& m) {
           hi = std::max({hi, h.yield_pos, h.yield_neg});
         }
         limits += h.limits[0] > 0 ? 1 : 0;
-        const bool brittle = h.rule == HysteresisRule::kBrittle;
-        const std::size_t kind = !rigid[i]         ? (h.rule == HysteresisRule::kKinematic      ? 1
-                                                      : h.rule == HysteresisRule::kPeakOriented ? 2
-                                                      : brittle                                 ? 3
-                                                                                                : 0)
-                                 : brittle         ? 7
-                                 : h.fixed_if != 0 ? 6
-                                 : h.normal >= 0   ? 5
-                                                   : 4;
+        const std::size_t kind = !rigid[i]            ? static_cast<std::size_t>(law_index(h.rule))
+                                 : law_breaks(h.rule) ? laws + 3
+                                 : h.fixed_if != 0    ? laws + 2
+                                 : h.normal >= 0      ? laws + 1
+                                                      : laws;
         ++count[kind];
       }
       std::string kinds;
       for (std::size_t k = 0; k < count.size(); ++k) {
         if (count[k] > 0)
-          kinds += (kinds.empty() ? "" : ", ") + std::to_string(count[k]) + " " + kKindNames[k];
+          kinds += (kinds.empty() ? "" : ", ") + std::to_string(count[k]) + " " + kind_names[k];
       }
       line("plastic",
            std::to_string(m.hystereses.size()) + " hysteretic directions (" + kinds + ")" +

@@ -52,7 +52,7 @@ bool read_limits(Reader& L, Table& tb, const toml::table& t, std::array<double, 
 
 constexpr const char* kPointName[4] = {"B (yield)", "C (capping)", "D (residual)", "E (ultimate)"};
 
-// The kernel's envelope rule (ntn/backbone.hpp envelope_check) in words.
+// The kernel's envelope rule (ntn/laws/backbone.hpp envelope_check) in words.
 std::string envelope_fault(const std::array<CurvePoint, 4>& p, double k, EnvelopeCheck c) {
   const auto i = static_cast<std::size_t>(c.point);
   const std::string name = kPointName[i];
@@ -355,7 +355,7 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
   }
   if (tb.has("failure")) {
     // Rigid (or a linear spring) until its force first passes the limit, free from then on
-    // (ntn/brittle.hpp; rigid under ntn_exact: ntn/slip.hpp).
+    // (ntn/laws/brittle.hpp; rigid under ntn_exact: ntn/slip.hpp).
     const auto fy = tb.positive("failure", Need::kRequired);
     const auto k = tb.has("linear") ? tb.positive("linear", Need::kRequired) : std::nullopt;
     if (tb.has("dashpot")) {

@@ -4,6 +4,7 @@
 // Exit 0 ok; 2 bad input or usage (unreadable file, unknown channel, NaN, an output directory
 // that does not exist, ...); 3 gnuplot missing or failed. README.md has the details.
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "cli.hpp"  // tools/io: validators that print numbers with %g and refuse NaN and inf
+#include "ntn/laws/table.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/plot/plot.hpp"
 #include "ntn/plot/table.hpp"
@@ -279,16 +281,14 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
       if (!beyond[side].empty()) kept.push_back({(side ? 0.93 : -0.98) * edge, beyond[side]});
     p.markers = std::move(kept);
   };
-  if (law.rule != ntn::HysteresisRule::kBilinear) {
+  if (ntn::law_has_envelope(law.rule)) {
     // The backbone A-B-C-D-E of each sense, then no strength past E; the limits where the
     // envelope's plastic deformation d - f / k reaches them (it grows along every segment).
-    pl::Series env{
-        std::string("backbone (") +
-            (law.rule == ntn::HysteresisRule::kKinematic ? "kinematic" : "peak_oriented") + ")",
-        {},
-        {}};
+    pl::Series env{std::string("backbone (") + ntn::law_name(law.rule) + ")", {}, {}};
+    const std::array<ntn::CurvePoint, 4> envelope[2] = {ntn::law_envelope(law, kel, -1),
+                                                        ntn::law_envelope(law, kel, 1)};
     for (int side : {-1, 1}) {
-      const auto& pts = side > 0 ? law.backbone_pos : law.backbone_neg;
+      const auto& pts = envelope[side > 0 ? 1 : 0];
       std::vector<double> xs{0.0}, ys{0.0};
       for (const ntn::CurvePoint& q : pts)
         xs.push_back(side * q.d), ys.push_back(side * q.force);
@@ -313,7 +313,7 @@ pl::Figure hysteresis(const Common& o, const HysteresisArgs& a) {
       }
     }
     p.series.push_back(env);
-    frame(std::min(law.backbone_pos[0].d, law.backbone_neg[0].d));
+    frame(std::min(envelope[1][0].d, envelope[0][0].d));
     return fig;
   }
   const double H = law.hardening * kel / (1.0 - law.hardening);

@@ -216,8 +216,8 @@ class EnergyBalance : public EnergyTotals {
         const double work = (f[k] - dash) * bd[k];
         if (!((h.plastic >> k) & 1U)) {
           springs_ += work;
-        } else if (m.hystereses[static_cast<std::size_t>(h.history[k])].rule ==
-                   HysteresisRule::kBrittle) {
+        } else if (law_account(m.hystereses[static_cast<std::size_t>(h.history[k])].rule) ==
+                   LawAccount::kBreaking) {
           breaking_ += work;
         } else {
           plastic_ += work;
@@ -235,7 +235,7 @@ class EnergyBalance : public EnergyTotals {
           if (!((h.slip >> k) & 1U)) continue;
           const auto slot = static_cast<std::size_t>(h.history[k]);
           const double work = w.slip_force[slot] * bd[k];
-          if (m.hystereses[slot].rule == HysteresisRule::kBrittle) {
+          if (law_account(m.hystereses[slot].rule) == LawAccount::kBreaking) {
             fracture_slip_ += work;
           } else {
             friction_ += work;
@@ -277,7 +277,7 @@ class EnergyBalance : public EnergyTotals {
         const auto slot = static_cast<std::size_t>(h.history[k]);
         const double dp = s.plastic[slot];
         const double e = 0.5 * h.stiffness[k] * (before[k] - dp) * (now[k] - dp);
-        if (m.hystereses[slot].rule == HysteresisRule::kBrittle) {
+        if (law_account(m.hystereses[slot].rule) == LawAccount::kBreaking) {
           breaking += s.first_slip[slot] != 0 ? 0.0 : e;
         } else {
           plastic += e;

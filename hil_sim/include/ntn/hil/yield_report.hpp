@@ -49,7 +49,7 @@ std::vector<YieldedDirection> yielded_directions(const Model<S>& m, const State<
                        performance_level(m.hystereses[slot].limits, s.plastic_peak[slot]),
                        m.hystereses[slot].limits[0] > 0,
                        first > 0 ? static_cast<double>(first - 1) * m.dt : -1.0,
-                       first > 0 && m.hystereses[slot].rule == HysteresisRule::kBrittle});
+                       first > 0 && law_breaks(m.hystereses[slot].rule)});
       }
     }
   }

@@ -10,7 +10,7 @@
 //     far); past C the strength at the largest excursion so far caps the bound (degradation
 //     along the envelope never comes back).
 //   peak_oriented (concrete, timber): the bound of a sense is the line from the zero-force point
-//     of the last unloading from the other sense (State::excursion anchor) to the envelope at
+//     of the last unloading from the other sense (State::law_state anchor) to the envelope at
 //     the largest excursion so far in this sense (B before any), then the envelope past it.
 // Past E in either sense the direction has no strength left: it transmits no force for the
 // rest of the run (d_p follows d), and the elastic energy it held counts as dissipated.
@@ -20,17 +20,10 @@
 #include <array>
 #include <cstdint>
 
+#include "ntn/laws/law.hpp"
 #include "ntn/model_spec.hpp"
 
 namespace ntn {
-
-// One sense's envelope as magnitudes: points B, C, D, E and the slope after each (B-C, C-D,
-// D-E; 0 past E, unused).
-struct Envelope {
-  std::array<double, 4> d{};
-  std::array<double, 4> f{};
-  std::array<double, 4> slope{};
-};
 
 // A point of a bound and its slope there (N/m or N m/rad).
 struct BoundLine {
@@ -97,7 +90,7 @@ inline Envelope make_envelope(const std::array<CurvePoint, 4>& p) {
   return e;
 }
 
-// Indices into State::excursion.
+// Indices into State::law_state.
 inline constexpr std::size_t kPeakPos = 0, kPeakNeg = 1, kAnchorPos = 2, kAnchorNeg = 3;
 
 // kinematic: the bound of the sense whose envelope is `e`, at deformation magnitude x (negative
@@ -127,8 +120,7 @@ inline BoundLine peak_oriented_bound(const Envelope& e, double x, double peak, d
 // the plastic work integral f dd_p (exact along a straight bound: the force on a bound of slope
 // s is linear in d_p with slope k s / (k - s)), `peak` the largest |d_p|, `x` its excursions.
 inline void backbone_update(HysteresisRule rule, double k, const Envelope& pos, const Envelope& neg,
-                            double d, double& dp, double& dissipated, double& peak,
-                            std::array<double, 4>& x) {
+                            double d, double& dp, double& dissipated, double& peak, LawState& x) {
   const bool was_broken = x[kPeakPos] > pos.d[3] || x[kPeakNeg] > neg.d[3];
   if (d > x[kPeakPos]) x[kPeakPos] = d;
   if (-d > x[kPeakNeg]) x[kPeakNeg] = -d;
@@ -186,5 +178,64 @@ inline void backbone_update(HysteresisRule rule, double k, const Envelope& pos, 
   const double size = dp_new < 0 ? -dp_new : dp_new;
   if (size > peak) peak = size;
 }
+
+// The plastic deformation at a backbone's point E, d_E - f_E / k: how far the acceptance limits
+// may reach.
+constexpr double backbone_last_plastic(const std::array<CurvePoint, 4>& p, double k) {
+  return p[3].d - p[3].force / k;
+}
+
+// The rule both backbone laws share: both envelopes valid, yields equal to their B forces, no
+// dashpot (its force must be able to drop to zero), cp within the plastic deformation at E in
+// both senses.
+constexpr bool backbone_valid(const HysteresisSpec& s, double k, double c) {
+  const auto& l = s.limits;
+  const bool none = l[0] == 0 && l[1] == 0 && l[2] == 0;
+  if (!(k > 0) || c != 0 || s.hardening != 0 || !envelope_valid(s.backbone_pos, k) ||
+      !envelope_valid(s.backbone_neg, k) || s.yield_pos != s.backbone_pos[0].force ||
+      s.yield_neg != s.backbone_neg[0].force)
+    return false;
+  const double last_pos = backbone_last_plastic(s.backbone_pos, k);
+  const double last_neg = backbone_last_plastic(s.backbone_neg, k);
+  return none || (l[2] <= last_pos && l[2] <= last_neg);
+}
+
+// The two backbone laws, the same but for their rule.
+template <HysteresisRule R>
+struct BackboneLaw {
+  static constexpr HysteresisRule kRule = R;
+  static constexpr LawAccount kAccount = LawAccount::kHysteretic;
+  static constexpr bool kSlip = false;
+  static constexpr bool kBreaks = false;
+  static constexpr bool kEnvelope = true;
+  static constexpr bool check(const HysteresisSpec& s, double k, double c) {
+    return backbone_valid(s, k, c);
+  }
+  static void make(const HysteresisSpec& s, double, HysteresisData& h) {
+    h.pos = make_envelope(s.backbone_pos);
+    h.neg = make_envelope(s.backbone_neg);
+  }
+  static bool update(const HysteresisData& h, double d, double& dp, double& dissipated,
+                     double& peak, LawState& x) {
+    backbone_update(R, h.k, h.pos, h.neg, d, dp, dissipated, peak, x);
+    return false;
+  }
+  // The envelope of one sense (+1, -1) as magnitudes B, C, D, E (A at the origin).
+  static std::array<CurvePoint, 4> envelope(const HysteresisSpec& s, double, int sense) {
+    return sense > 0 ? s.backbone_pos : s.backbone_neg;
+  }
+};
+
+struct Kinematic : BackboneLaw<HysteresisRule::kKinematic> {
+  static constexpr const char* kName = "kinematic";
+  static constexpr const char* kEnum = "kKinematic";
+  static constexpr const char* kSummary = "backbone kinematic";
+};
+
+struct PeakOriented : BackboneLaw<HysteresisRule::kPeakOriented> {
+  static constexpr const char* kName = "peak_oriented";
+  static constexpr const char* kEnum = "kPeakOriented";
+  static constexpr const char* kSummary = "backbone peak_oriented";
+};
 
 }  // namespace ntn
