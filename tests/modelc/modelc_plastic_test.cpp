@@ -410,7 +410,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "46:48: error: key 'hinges[0].ry.hardening': must be at least 0 and less than 1: "
                 "the tangent after yield is hardening x k (got 1)"},
         BadCase{"YieldWithoutPlastic", "{ linear = 1e9, yield = 2e5 }", kOk, "",
-                "46:30: error: key 'hinges[0].ry.yield': only applies with 'plastic'"},
+                "46:30: error: key 'hinges[0].ry.yield': only applies with 'plastic' or 'imk'"},
         BadCase{"LinearAndPlastic", "{ linear = 1e9, plastic = 1e9, yield = 2e5 }", kOk, "",
                 "46:32: error: key 'hinges[0].ry.plastic': cannot be given together with "
                 "'linear'"},

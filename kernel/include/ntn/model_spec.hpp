@@ -169,6 +169,9 @@ enum class HysteresisRule : std::uint8_t {
   kBrittle,       // linear (kPlastic: its stiffness; kRigidPlastic: rigid) until its force first
                   // passes yield_pos or -yield_neg, then no force for the rest of the run (a
                   // bolt that breaks; State::first_slip says when): laws/brittle.hpp
+  kImk,           // modified Ibarra-Medina-Krawinkler, bilinear: a backbone with capping,
+                  // post-capping and residual strength that deteriorates with the energy it
+                  // dissipates (laws/imk.hpp; its values in `parameters`)
 };
 
 // A law's own values beyond the shared ones (HysteresisSpec::parameters, HysteresisData::p),

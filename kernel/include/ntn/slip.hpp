@@ -31,13 +31,13 @@
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 
 #include "ntn/clamp.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hysteresis.hpp"
+#include "ntn/root.hpp"
 #include "ntn/state.hpp"
 
 namespace ntn {
@@ -118,19 +118,6 @@ inline void ldl_solve(const double* A, int n, double* x) {
 }
 
 inline constexpr int kCircleIterations = 32;  // the sliding direction's fixed point, at most
-
-// sqrt(x) for finite x >= 0 without libm (the step calls none): Newton's iteration from half
-// the exponent, arithmetic only, so the same bits on every build (within an ulp of the rounded
-// root).
-inline double root(double x) {
-  if (!(x > 0)) return 0.0;
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const auto exponent = static_cast<std::int64_t>((bits >> 52) & 0x7ff) - 1023;
-  double y = std::bit_cast<double>(static_cast<std::uint64_t>(exponent / 2 + 1023) << 52);
-  for (int i = 0; i < 8; ++i)
-    y = 0.5 * (y + x / y);
-  return y;
-}
 
 // One Gauss-Seidel step of the friction circle of hinge h's directions k and p = the circle of k
 // (k < p): one limit R on the resultant of their forces f = (f_k, f_p). With W the pair's 2 x 2

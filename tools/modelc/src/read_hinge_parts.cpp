@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "laws/law_reader.hpp"
 #include "messages.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hysteresis.hpp"
@@ -13,194 +14,41 @@ namespace ntn::modelc::compile {
 
 namespace {
 
-// Acceptance criteria io, ls, cp on the peak plastic deformation: all three or none,
-// io <= ls <= cp. False (reported) when they are not.
-bool read_limits(Reader& L, Table& tb, const toml::table& t, std::array<double, 3>& limits) {
-  const char* const kLimit[3] = {"io", "ls", "cp"};
-  const int given = static_cast<int>(tb.has("io")) + static_cast<int>(tb.has("ls")) +
-                    static_cast<int>(tb.has("cp"));
-  limits = {};
-  bool ok = true;
-  if (given > 0 && given < 3) {
-    for (const char* l : kLimit) {
-      if (!tb.has(l)) {
-        L.error(t.source(), tb.key(l),
-                "missing: give all three acceptance limits io, ls and cp, or none");
-        ok = false;
-      }
-    }
-  } else if (given == 3) {
-    for (std::size_t i = 0; i < 3; ++i) {
-      const auto v = tb.positive(kLimit[i], Need::kRequired);
-      if (!v) {
-        ok = false;
-      } else {
-        limits[i] = *v;
-      }
-    }
-    for (std::size_t i = 1; i < 3 && ok; ++i) {
-      if (limits[i] < limits[i - 1]) {
-        L.error(tb.where(kLimit[i]), std::string(kLimit[i]) + " = " + num(limits[i]) +
-                                         " is below " + kLimit[i - 1] + " = " + num(limits[i - 1]) +
-                                         ": the limits must not decrease (io <= ls <= cp)");
-        ok = false;
-      }
-    }
+// Whether a law reader that shares key k (yield, ...) selects this table.
+bool taken_by_law(const Table& tb, std::string_view k) {
+  for (const LawReader& r : law_readers()) {
+    if (!tb.has(r.key)) continue;
+    for (std::string_view s : r.shared)
+      if (s == k) return true;
   }
-  return ok;
+  return false;
 }
 
-constexpr const char* kPointName[4] = {"B (yield)", "C (capping)", "D (residual)", "E (ultimate)"};
-
-// The kernel's envelope rule (ntn/laws/backbone.hpp envelope_check) in words.
-std::string envelope_fault(const std::array<CurvePoint, 4>& p, double k, EnvelopeCheck c) {
-  const auto i = static_cast<std::size_t>(c.point);
-  const std::string name = kPointName[i];
-  switch (c.fault) {
-    case EnvelopeFault::kNone:
-      break;
-    case EnvelopeFault::kYield:
-      return "point " + name + " needs a positive deformation and force (got [" + num(p[0].d) +
-             ", " + num(p[0].force) + "]); the elastic stiffness is its force over its deformation";
-    case EnvelopeFault::kOffElastic:
-      return "point " + name + " [" + num(p[0].d) + ", " + num(p[0].force) +
-             "] is not on the elastic line of the positive sense (k = " + num(k) +
-             "): both senses unload at the same k; give its deformation as force / k = " +
-             num(p[0].force / k);
-    case EnvelopeFault::kOrder:
-      return "points out of order: " + name + " at deformation " + num(p[i].d) +
-             (i == 1 ? " must lie beyond " : " must not lie before ") + kPointName[i - 1] + " at " +
-             num(p[i - 1].d) + (i == 1 ? "" : " (equal deformations: a vertical drop)");
-    case EnvelopeFault::kCappingBelow:
-      return "point " + name + " has force " + num(p[1].force) + ", below the yield force " +
-             num(p[0].force) + " at B: the capping strength is the envelope's largest";
-    case EnvelopeFault::kResidualAbove:
-      return "point " + name + " has force " + num(p[2].force) +
-             ": the residual strength must lie between 0 and the capping strength " +
-             num(p[1].force) + " at C";
-    case EnvelopeFault::kNegativeForce:
-      return "point " + name + " has force " + num(p[3].force) + ": strengths are magnitudes, >= 0";
-    case EnvelopeFault::kSteeperThanK: {
-      const std::size_t a = i == 1 ? 0 : 2;
-      return "the segment from " + std::string(kPointName[a]) + " to " + name + " rises at " +
-             num((p[i].force - p[a].force) / (p[i].d - p[a].d)) +
-             ", not below the elastic stiffness k = " + num(k) +
-             ": a backbone hardens less steeply than it loads elastically";
-    }
+// " or 'imk'" for the readers that share key k.
+std::string also_with(std::string_view k) {
+  std::string s;
+  for (const LawReader& r : law_readers()) {
+    for (std::string_view x : r.shared)
+      if (x == k) s += " or '" + std::string(r.key) + "'";
   }
-  return {};
-}
-
-// A backbone's four points B, C, D, E as [deformation, force] pairs (magnitudes; A is the
-// origin). Each pair is read here; their order is the kernel's rule (envelope_check).
-std::optional<std::array<CurvePoint, 4>> read_backbone_points(Reader& L, Table& tb,
-                                                              std::string_view k) {
-  const toml::node* n = tb.get(k, Need::kRequired);
-  if (n == nullptr) return std::nullopt;
-  const std::string key = tb.key(k);
-  const auto* a = n->as_array();
-  if (a == nullptr || a->size() != 4) {
-    L.error(n->source(), key,
-            "expected the 4 points B, C, D, E of an ASCE 41 backbone as [deformation, force] "
-            "pairs (A is the origin), got " +
-                (a != nullptr ? std::to_string(a->size()) + " points" : type_name(*n)));
-    return std::nullopt;
-  }
-  std::array<CurvePoint, 4> p{};
-  bool ok = true;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const auto v = L.array_of<double>(
-        (*a)[i], key + "[" + std::to_string(i) + "]", 2,
-        [&L](const toml::node& e, const std::string& ek) { return L.non_negative(e, ek); });
-    if (v) {
-      p[i] = {(*v)[0], (*v)[1]};
-    } else {
-      ok = false;
-    }
-  }
-  if (!ok) return std::nullopt;
-  return p;
-}
-
-// The place of point i of backbone key k (for the envelope rule's message).
-Where point_place(Table& tb, std::string_view k, int i) {
-  const toml::node* n = tb.raw().get(k);
-  const auto* a = n != nullptr ? n->as_array() : nullptr;
-  if (a == nullptr || i < 0 || static_cast<std::size_t>(i) >= a->size()) return tb.where(k);
-  return place((*a)[static_cast<std::size_t>(i)].source(),
-               tb.key(k) + "[" + std::to_string(i) + "]");
-}
-
-// { backbone = [B, C, D, E], backbone_negative = [...], rule = "kinematic" | "peak_oriented",
-// io, ls, cp }: the elastic stiffness is B's force over its deformation.
-std::optional<BehaviourIn> read_backbone(Reader& L, Table& tb, const toml::table& t,
-                                         BehaviourIn b) {
-  const auto pos = read_backbone_points(L, tb, "backbone");
-  std::optional<std::array<CurvePoint, 4>> neg;
-  if (tb.has("backbone_negative")) neg = read_backbone_points(L, tb, "backbone_negative");
-  const auto rule = tb.choice("rule", Need::kRequired, {"kinematic", "peak_oriented"});
-  std::array<double, 3> limits{};
-  bool ok = read_limits(L, tb, t, limits) && pos && rule && (neg || !tb.has("backbone_negative"));
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"),
-            "a backbone direction takes no dashpot: its force must be able to drop to zero "
-            "(damp the frame with [model.damping])");
-    ok = false;
-  }
-  if (!pos) return std::nullopt;
-  const double k = (*pos)[0].d > 0 ? (*pos)[0].force / (*pos)[0].d : 0.0;
-  std::array<CurvePoint, 4> neg_points = neg.value_or(*pos);
-  // Within 1e-6 of the elastic line counts as on it (a yield point typed from a table); the
-  // kernel then gets B's deformation as force / k.
-  if (neg && k > 0 && (*neg)[0].d > 0 && std::fabs((*neg)[0].force / (*neg)[0].d - k) <= 1e-6 * k)
-    neg_points[0].d = neg_points[0].force / k;
-  for (const auto& [key, p] :
-       {std::pair<std::string_view, const std::array<CurvePoint, 4>*>{"backbone", &*pos},
-        {"backbone_negative", &neg_points}}) {
-    if (key == "backbone_negative" && !neg) continue;
-    const EnvelopeCheck c = envelope_check(*p, k);
-    if (c.fault != EnvelopeFault::kNone) {
-      L.error(point_place(tb, key, c.point), envelope_fault(*p, k, c));
-      ok = false;
-    }
-  }
-  if (!ok) return std::nullopt;
-  for (const auto& [sense, p] :
-       {std::pair<const char*, const std::array<CurvePoint, 4>*>{"positive", &*pos},
-        {"negative", &neg_points}}) {
-    const double last = backbone_last_plastic(*p, k);
-    if (limits[2] > last) {
-      L.error(tb.where("cp"), "cp = " + num(limits[2]) +
-                                  " lies beyond the backbone's last point: "
-                                  "the plastic deformation at E in the " +
-                                  sense + " sense is d_E - f_E / k = " + num(last));
-      return std::nullopt;
-    }
-  }
-  b.kind = HingeBehaviour::kPlastic;
-  b.k = k;
-  b.c = 0;
-  b.law.rule = *rule == 0 ? HysteresisRule::kKinematic : HysteresisRule::kPeakOriented;
-  b.law.backbone_pos = *pos;
-  b.law.backbone_neg = neg_points;
-  b.law.yield_pos = (*pos)[0].force;
-  b.law.yield_neg = neg_points[0].force;
-  b.law.hardening = 0;
-  b.law.limits = limits;
-  return b;
+  return s;
 }
 
 }  // namespace
 
 // One hinge direction: "rigid", "free", { linear = k, dashpot = c }, { curve = "id" },
-// { plastic = k, yield = F, yield_negative = F, hardening = b, dashpot = c, io, ls, cp } or
-// { backbone = [B, C, D, E], backbone_negative = [...], rule = "...", io, ls, cp }.
+// { plastic = k, yield = F, yield_negative = F, hardening = b, dashpot = c, io, ls, cp }, a law
+// of the law readers' table (laws/law_readers.cpp: backbone, imk), { rigid_plastic = F },
+// { friction = mu, ... }, { fixed_if = "..." } or { failure = F }.
 std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const std::string& key) {
   BehaviourIn b;
   b.at = place(n.source(), key);
-  const std::string what =
+  std::string what =
       "must be \"rigid\", \"free\", { linear = k, dashpot = c }, { curve = \"id\" }, "
-      "{ plastic = k, yield = F }, { backbone = [B, C, D, E], rule = \"kinematic\" }, "
+      "{ plastic = k, yield = F }, ";
+  for (const LawReader& r : law_readers())
+    what += std::string(r.form) + ", ";
+  what +=
       "{ rigid_plastic = F }, { friction = mu, normal = \"ux\" }, { fixed_if = \"negative\" } "
       "or { failure = F }";
   if (const auto* s = n.as_string()) {
@@ -216,29 +64,22 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     L.error(n.source(), key, what + ", got " + type_name(n));
     return std::nullopt;
   }
-  Table tb(L, *t, key,
-           {"linear",
-            "dashpot",
-            "curve",
-            "plastic",
-            "yield",
-            "yield_negative",
-            "hardening",
-            "backbone",
-            "backbone_negative",
-            "rule",
-            "rigid_plastic",
-            "hardening_stiffness",
-            "friction",
-            "cohesion",
-            "normal",
-            "circle",
-            "fixed_if",
-            "control",
-            "failure",
-            "io",
-            "ls",
-            "cp"});
+  // The keys: plastic's, each law reader's (its key and its own keys), the slip laws'.
+  std::vector<std::string_view> keys = {"linear", "dashpot",        "curve",    "plastic",
+                                        "yield",  "yield_negative", "hardening"};
+  std::vector<std::string_view> kinds = {"linear", "curve", "plastic"};
+  for (const LawReader& r : law_readers()) {
+    keys.push_back(r.key);
+    keys.insert(keys.end(), r.own.begin(), r.own.end());
+    kinds.push_back(r.key);
+  }
+  for (std::string_view k :
+       {"rigid_plastic", "hardening_stiffness", "friction", "cohesion", "normal", "circle",
+        "fixed_if", "control", "failure", "io", "ls", "cp"})
+    keys.push_back(k);
+  for (std::string_view k : {"rigid_plastic", "friction", "fixed_if", "failure"})
+    kinds.push_back(k);
+  Table tb(L, *t, key, keys);
   tb.check_unknown();
   // The kernel's bound on a law's values (ntn::kLawValueLimit), at the key that breaks it: a
   // value the kernel would refuse far from its cause ("hinge with a bad node, frame, curve or
@@ -256,12 +97,10 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
       return std::nullopt;
     }
   }
-  const char* const kKinds[8] = {"linear",        "curve",    "plastic",  "backbone",
-                                 "rigid_plastic", "friction", "fixed_if", "failure"};
-  for (std::size_t i = 0; i < 8; ++i) {
-    for (std::size_t j = i + 1; j < 8; ++j) {
-      if (i == 0 && j == 7) continue;  // { linear = k, failure = F }: a spring that breaks
-      if (tb.conflict(kKinds[i], kKinds[j])) return std::nullopt;
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    for (std::size_t j = i + 1; j < kinds.size(); ++j) {
+      if (kinds[i] == "linear" && kinds[j] == "failure") continue;  // a spring that breaks
+      if (tb.conflict(kinds[i], kinds[j])) return std::nullopt;
     }
   }
   const std::pair<std::string_view, std::string_view> kOnlyWith[] = {
@@ -273,8 +112,8 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     }
   }
   for (std::string_view k : {"yield", "hardening"}) {
-    if (tb.has(k) && !tb.has("plastic")) {
-      L.error(tb.where(k), "only applies with 'plastic'");
+    if (tb.has(k) && !tb.has("plastic") && !taken_by_law(tb, k)) {
+      L.error(tb.where(k), "only applies with 'plastic'" + also_with(k));
       return std::nullopt;
     }
   }
@@ -284,25 +123,35 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
       return std::nullopt;
     }
   }
-  if (tb.has("yield_negative") && !tb.has("plastic") && !tb.has("rigid_plastic")) {
-    L.error(tb.where("yield_negative"), "only applies with 'plastic' or 'rigid_plastic'");
+  if (tb.has("yield_negative") && !tb.has("plastic") && !tb.has("rigid_plastic") &&
+      !taken_by_law(tb, "yield_negative")) {
+    L.error(tb.where("yield_negative"),
+            "only applies with 'plastic' or 'rigid_plastic'" + also_with("yield_negative"));
     return std::nullopt;
   }
-  for (std::string_view k : {"backbone_negative", "rule"}) {
-    if (tb.has(k) && !tb.has("backbone")) {
-      L.error(tb.where(k), "only applies with 'backbone'");
-      return std::nullopt;
+  for (const LawReader& r : law_readers()) {
+    for (std::string_view k : r.own) {
+      if (tb.has(k) && !tb.has(r.key)) {
+        L.error(tb.where(k), "only applies with '" + std::string(r.key) + "'");
+        return std::nullopt;
+      }
     }
+  }
+  bool limits_apply = tb.has("plastic") || tb.has("rigid_plastic") || tb.has("friction");
+  std::string laws;
+  for (const LawReader& r : law_readers()) {
+    limits_apply = limits_apply || tb.has(r.key);
+    laws += ", '" + std::string(r.key) + "'";
   }
   for (std::string_view k : {"io", "ls", "cp"}) {
-    if (tb.has(k) && !tb.has("plastic") && !tb.has("backbone") && !tb.has("rigid_plastic") &&
-        !tb.has("friction")) {
+    if (tb.has(k) && !limits_apply) {
       L.error(tb.where(k),
-              "only applies with 'plastic', 'backbone', 'rigid_plastic' or 'friction'");
+              "only applies with 'plastic'" + laws + ", 'rigid_plastic' or 'friction'");
       return std::nullopt;
     }
   }
-  if (tb.has("backbone")) return read_backbone(L, tb, *t, b);
+  for (const LawReader& r : law_readers())
+    if (tb.has(r.key)) return r.read(L, tb, *t, b);
   if (tb.has("friction")) {
     // Coulomb friction: rigid while |f| < mu max(0, -N) + cohesion, N the force of direction
     // `normal` of the same hinge (ntn/slip.hpp).

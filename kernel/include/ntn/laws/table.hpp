@@ -9,6 +9,7 @@
 #include "ntn/laws/backbone.hpp"
 #include "ntn/laws/bilinear.hpp"
 #include "ntn/laws/brittle.hpp"
+#include "ntn/laws/imk.hpp"
 #include "ntn/laws/law.hpp"
 #include "ntn/model_spec.hpp"
 
@@ -19,7 +20,7 @@ struct LawList {
   static constexpr std::size_t size = sizeof...(L);
 };
 
-using HysteresisLaws = LawList<Bilinear, Kinematic, PeakOriented, Brittle>;
+using HysteresisLaws = LawList<Bilinear, Kinematic, PeakOriented, Brittle, Imk>;
 
 namespace detail {
 template <class R, class F, class... L>

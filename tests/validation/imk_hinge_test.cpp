@@ -1,0 +1,310 @@
+// The IMK law (HysteresisRule::kImk, ntn/laws/imk.hpp: the modified Ibarra-Medina-Krawinkler
+// model, bilinear) against truth no one here chose:
+// 1. the monotonic backbone of Ibarra et al. (2005) / Lignos and Krawinkler (2011), point by
+//    point from its parameters: yield, hardening to the capping point, the post-capping slope
+//    -F_c / theta_pc, the residual plateau, no strength past theta_u (exact to rounding);
+// 2. under a symmetric cyclic protocol of constant amplitude the strength after each excursion
+//    follows the energy rule beta_i = (E_i / (E_t - sum E_j))^c, F_y,i = (1 - beta_s) F_y,i-1,
+//    K_s,i = (1 - beta_s) K_s,i-1, K_u,i = (1 - beta_k) K_u,i-1, computed here with std::pow from
+//    the energies the direction reports at each excursion's end (to rounding, 1e-12), and the
+//    direction breaks in the excursion where the test's own sum of E_j spends E_t;
+// 3. the energy it reports equals the work of its force, the trapezoid of f dd over the path, at
+//    every zero force (where no elastic energy is held; the step's path has one kink, so 1e-3);
+// 4. an SDOF of config/sdof.toml on an IMK spring under El Centro 1940 x 1.5 collapses (drifts past
+//    theta_u and breaks) where the same SDOF with the bilinear law of the same k, F_y and
+//    hardening (no capping, no deterioration) stays well inside theta_u;
+// 5. the model compiler words the kernel's rule at the key (imk_check: one rule, two layers).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ntn/hysteresis.hpp"
+#include "ntn/kernel.hpp"
+#include "ntn/modelc/load_model.hpp"
+#include "record.hpp"
+#include "support/temp_files.hpp"
+#include "text_model.hpp"
+
+namespace imk_hinge_test {
+
+namespace P = ntn::imk;
+
+// k = 1000, F_y = 100 (yield at 0.1), theta_p = 0.2 (capping at 0.3, F_c = 120: K_s = 100),
+// theta_pc = 0.6 (K_c = 200: the residual 40 is reached at 0.7), theta_u = 1.0.
+constexpr double kK = 1000, kFy = 100;
+
+ntn::HysteresisSpec law(double lambda, double c = 1.0, double lambda_k = -1) {
+  ntn::HysteresisSpec s;
+  s.rule = ntn::HysteresisRule::kImk;
+  s.yield_pos = s.yield_neg = kFy;
+  auto& v = s.parameters;
+  for (std::size_t i = 0; i < 2; ++i) {
+    v[P::kPreCapping + i] = 0.2;
+    v[P::kPostCapping + i] = 0.6;
+    v[P::kUltimate + i] = 1.0;
+    v[P::kCappingRatio + i] = 1.2;
+    v[P::kResidualRatio + i] = 0.4;
+    v[P::kRate + i] = 1.0;
+  }
+  for (std::size_t j = 0; j < 3; ++j) {
+    v[P::kLambda + j] = lambda;
+    v[P::kExponent + j] = c;
+  }
+  if (lambda_k >= 0) v[P::kLambda + 2] = lambda_k;
+  return s;
+}
+
+// The backbone by its definition (Ibarra et al. 2005, Fig. 1): force at deformation x >= 0.
+double backbone(double x) {
+  if (x > 1.0) return 0.0;
+  if (x <= 0.1) return kK * x;
+  if (x <= 0.3) return kFy + 100 * (x - 0.1);
+  return std::max(120 - 200 * (x - 0.3), 40.0);
+}
+
+struct Direction {
+  ntn::HysteresisData h;
+  double dp = 0, w = 0, peak = 0;
+  ntn::LawState x{};
+  bool broke = false;
+  double force(double d) {
+    broke = ntn::hysteresis_update(h, d, dp, w, peak, x) || broke;
+    return kK * (d - dp);
+  }
+};
+
+TEST(ImkLaw, MonotonicBackboneIsExact) {
+  const ntn::HysteresisSpec s = law(0.0);
+  ASSERT_TRUE(ntn::hysteresis_valid(s, kK, 0.0));
+  for (const int sense : {1, -1}) {
+    Direction dir{ntn::make_hysteresis(s, kK)};
+    int breaks = 0;
+    for (int n = 1; n <= 1050; ++n) {
+      const double x = n * 1e-3;
+      const bool before = dir.broke;
+      const double f = dir.force(sense * x);
+      breaks += dir.broke && !before ? 1 : 0;
+      EXPECT_NEAR(sense * f, backbone(x), 1e-12 * 120) << "at x = " << x;
+    }
+    EXPECT_EQ(breaks, 1);
+    // The envelope the plots draw: B, C, D (the residual reached), E.
+    const auto e = ntn::law_envelope(s, kK, sense);
+    const double want[4][2] = {{0.1, 100}, {0.3, 120}, {0.7, 40}, {1.0, 40}};
+    for (std::size_t i = 0; i < 4; ++i) {
+      EXPECT_NEAR(e[i].d, want[i][0], 1e-15);
+      EXPECT_NEAR(e[i].force, want[i][1], 1e-12);
+    }
+  }
+}
+
+// A triangular protocol of amplitude a, `cycles` full cycles, in steps of 1e-3 (exact at the
+// vertices, where n is a multiple of the quarter cycle).
+std::vector<double> protocol(double a, int cycles) {
+  const int quarter = static_cast<int>(std::lround(a / 1e-3));
+  std::vector<double> d;
+  for (int n = 0; n <= 4 * quarter * cycles; ++n) {
+    const int m = n % (4 * quarter);
+    const int along = m <= quarter ? m : m <= 3 * quarter ? 2 * quarter - m : m - 4 * quarter;
+    d.push_back(along * 1e-3);
+  }
+  return d;
+}
+
+void follows_the_energy_rule(double c) {
+  // Amplitude 0.2: beyond yield (0.1), short of capping (0.3): every vertex is on the bound of
+  // its sense, first the hardening line, later the post-capping line as its deterioration pulls
+  // it in, then the residual. Lambda = 4: E_t = 400 J, cycles of 40 J or less.
+  // The unloading stiffness deteriorates ten times slower (Lambda_k = 40): with Lambda_k =
+  // Lambda_s the loops shrink toward elastic ones and the capacity is approached, not spent.
+  const double lambda = 4.0, et = lambda * kFy, et_k = 10 * et;
+  Direction dir{ntn::make_hysteresis(law(lambda, c, 10 * lambda), kK)};
+  const std::vector<double> d = protocol(0.2, 80);
+  double keep_s = 1, keep_c = 1, keep_k = 1, sign = 0, e_at = 0, work = 0, f_last = 0;
+  int excursions = 0, vertices = 0;
+  bool spent = false;
+  for (std::size_t n = 1; n < d.size(); ++n) {
+    const double f = dir.force(d[n]);
+    work += 0.5 * (f + f_last) * (d[n] - d[n - 1]);
+    if (dir.broke) {
+      // It broke at an excursion's end (well inside theta_u): the energy so far (this step's
+      // release of f^2 / 2k, a few mJ, included) spends E_t - E_i.
+      const double e = dir.w - e_at;
+      spent = et - dir.w <= e + 1e-2;
+      EXPECT_TRUE(spent) << "broke at step " << n << " with " << et - dir.w << " J left";
+      EXPECT_LT(std::abs(d[n]), 0.5);
+      break;
+    }
+    if (f != 0 && (f > 0 ? 1.0 : -1.0) != sign) {  // an excursion ends: the rule, by hand
+      if (sign != 0) {
+        const double e = dir.w - e_at;
+        e_at = dir.w;
+        ++excursions;
+        ASSERT_GT(et - dir.w, e) << "its capacity is spent, yet it holds";
+        const double beta = std::pow(e / (et - dir.w), c);
+        keep_s *= 1 - beta;
+        keep_c *= 1 - beta;
+        keep_k *= 1 - std::pow(e / (et_k - dir.w), c);
+        // The ledger against the trapezoid of f dd at (nearly) zero force: what is left is the
+        // elastic energy of the small force reached, f^2 / 2 K_u, and the kink in the step.
+        EXPECT_NEAR(dir.w, work, 1e-3 * dir.w + f * f / (2 * kK * keep_k) + 1e-9);
+      }
+      sign = f > 0 ? 1.0 : -1.0;
+    }
+    if (std::abs(d[n]) == d[200]) {  // a vertex: on the deteriorated bound
+      // the hardening line through (F_y,i / k, F_y,i) of slope K_s,i; the post-capping line,
+      // through the capping point (0.3, 120) at first, of slope -200, its intercept at d = 0
+      // deteriorated; the residual 40 under it
+      const double fy = kFy * keep_s, ks = 100 * keep_s;
+      const double hardening = fy + ks * (0.2 - fy / kK);
+      const double post = (120 + 200 * 0.3) * keep_c - 200 * 0.2;
+      const double bound = hardening <= post ? hardening : std::max(post, 40.0);
+      EXPECT_NEAR(std::abs(f), bound, 1e-12 * kFy) << "vertex at step " << n;
+      ++vertices;
+      // and it unloads at K_u
+      Direction probe = dir;
+      const double step = d[n] > 0 ? -1e-4 : 1e-4;
+      const double slope = (probe.force(d[n] + step) - f) / step;
+      EXPECT_NEAR(slope, kK * keep_k, 1e-9 * kK) << "unloading at step " << n;
+    }
+    f_last = f;
+  }
+  std::printf(
+      "  c = %.2f: %d excursions, %d vertices checked, strength left %.4f of F_y, "
+      "broke: %s\n",
+      c, excursions, vertices, keep_s, dir.broke ? "yes" : "no");
+  EXPECT_TRUE(dir.broke);
+  EXPECT_TRUE(spent);
+  EXPECT_GE(vertices, 8);
+  EXPECT_GE(excursions, 8);
+  EXPECT_LT(keep_s, 0.9);  // it deteriorated before it broke
+}
+
+TEST(ImkLaw, CyclicStrengthFollowsTheEnergyRule) {
+  follows_the_energy_rule(1.0);
+}
+
+TEST(ImkLaw, CyclicStrengthFollowsTheEnergyRuleWithAFractionalExponent) {
+  follows_the_energy_rule(1.5);  // the step's r^1.5 without libm against std::pow
+}
+
+TEST(ImkLaw, NoDeteriorationWithoutLambdaIsTheBilinearLawInsideTheCap) {
+  // Lambda = 0 and amplitudes short of capping: the bilinear law with b = K_s / k = 0.1, the
+  // same forces to rounding.
+  Direction imk{ntn::make_hysteresis(law(0.0), kK)};
+  ntn::HysteresisSpec b;
+  b.yield_pos = b.yield_neg = kFy;
+  b.hardening = 0.1;
+  const ntn::HysteresisData bh = ntn::make_hysteresis(b, kK);
+  double dp = 0, w = 0, peak = 0;
+  ntn::LawState x{};
+  for (const double d : protocol(0.25, 4)) {
+    ntn::hysteresis_update(bh, d, dp, w, peak, x);
+    EXPECT_NEAR(imk.force(d), kK * (d - dp), 1e-11 * kFy) << "at d = " << d;
+  }
+  EXPECT_NEAR(imk.w, w, 1e-9 * w);
+}
+
+// ---- 4. An SDOF that collapses: config/sdof.toml (1 t; k = 4e5 N/m, T = 0.314 s) with its
+// spring an IMK direction of F_y = 2.5 kN (0.25 g of its weight), theta_p = 0.02 m, F_c / F_y =
+// 1.1, theta_pc = 0.05 m, no residual, theta_u = 0.1 m, Lambda = 0.5 m, against the bilinear
+// law of the same k, F_y and hardening (K_s / k = 0.03125).
+std::string sdof_with(const std::string& spring) {
+  std::string t = ntn_test::read_file(NTN_CONFIG_DIR "/sdof.toml");
+  const std::string damped = "ux = { linear = 4.0e5, dashpot = 2.0e3 }";
+  const std::size_t at = t.find(damped);
+  if (at == std::string::npos) return "";
+  t.replace(at, damped.size(), "ux = " + spring);
+  return t;
+}
+
+struct Drift {
+  double peak = 0;
+  bool broke = false;
+};
+
+Drift run_el_centro(const std::string& spring, double scale) {
+  const auto rt = ntn_test::load_text_model(sdof_with(spring), "sdof.toml");
+  if (rt == nullptr) return {};
+  const ntn::io::ReadResult rec =
+      ntn::io::read_at2(std::string(NTN_CONFIG_DIR) + "/ground-motions/elCentro.AT2");
+  EXPECT_TRUE(rec.record.has_value());
+  if (!rec.record) return {};
+  ntn::Model<ntn::kRunTime>& m = rt->model();
+  ntn::State<ntn::kRunTime>& s = rt->state();
+  ntn::Scratch<ntn::kRunTime>& w = rt->scratch();
+  ntn::initial_state(m, s);
+  std::vector<double> in = {scale * rec.record->at(0.0)};
+  EXPECT_EQ(ntn::start(m, s, w, std::span<const double>(in)), ntn::StepStatus::kOk);
+  Drift out;
+  const long steps = static_cast<long>(30.0 / m.dt);
+  for (long n = 1; n <= steps; ++n) {
+    in[0] = scale * rec.record->at(static_cast<double>(n) * m.dt);
+    EXPECT_EQ(ntn::step(m, s, w, std::span<const double>(in)), ntn::StepStatus::kOk);
+    out.peak = std::max(out.peak, std::abs(w.outputs[0]));
+  }
+  out.broke = s.first_slip[0] != 0;
+  return out;
+}
+
+TEST(ImkSdof, DeterioratingSdofCollapsesWhereTheBilinearOneDoesNot) {
+  const std::string imk =
+      "{ imk = 4.0e5, yield = 2500.0, pre_capping = 0.02, capping_ratio = 1.1, "
+      "post_capping = 0.05, residual_ratio = 0.0, ultimate = 0.1, lambda = 0.5 }";
+  const std::string bilinear = "{ plastic = 4.0e5, yield = 2500.0, hardening = 0.03125 }";
+  const double scale = 1.5;
+  const Drift a = run_el_centro(imk, scale);
+  const Drift b = run_el_centro(bilinear, scale);
+  std::printf("  El Centro x %.1f: IMK peak drift %.4g m (broke: %s), bilinear %.4g m\n", scale,
+              a.peak, a.broke ? "yes" : "no", b.peak);
+  EXPECT_TRUE(a.broke);
+  EXPECT_GT(a.peak, 0.1);  // past theta_u
+  EXPECT_FALSE(b.broke);
+  EXPECT_LT(b.peak, 0.08);  // well inside theta_u = 0.1
+}
+
+// ---- 5. The compiler's words for the kernel's rule, at the key.
+std::string errors_of(const std::string& spring) {
+  const ntn::modelc::LoadResult r =
+      ntn::modelc::load_model_from_string(sdof_with(spring), "sdof.toml");
+  return r.ok() ? std::string() : ntn::modelc::format_all(r.errors);
+}
+
+TEST(ImkReader, WordsTheKernelsRuleAtTheKey) {
+  const std::string base =
+      "imk = 4.0e5, yield = 2500.0, pre_capping = 0.02, post_capping = 0.05, ultimate = 0.1";
+  EXPECT_EQ(errors_of("{ " + base + ", capping_ratio = 1.1 }"), "");
+  const struct {
+    std::string extra, key, words;
+  } cases[] = {
+      {"capping_ratio = 0.9", "capping_ratio", "must be at least 1"},
+      {"capping_ratio = 5.0", "capping_ratio", "is not below the elastic stiffness k = 400000"},
+      {"capping_ratio = 1.1, residual_ratio = 1.5", "residual_ratio",
+       "must lie between 0 and capping_ratio = 1.1"},
+      {"capping_ratio = [1.1, 1.1], exponent = 1.3", "exponent",
+       "must be a multiple of 0.25 from 0.25 to 4"},
+      {"capping_ratio = 1.1, rate = [1.0, 0.0]", "rate", "(negative sense)"},
+      {"capping_ratio = 1.1, dashpot = 10.0", "dashpot", "an imk direction takes no dashpot"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = errors_of("{ " + base + ", " + c.extra + " }");
+    EXPECT_NE(e.find("key 'hinges[0].ux." + c.key + "'"), std::string::npos) << e;
+    EXPECT_NE(e.find(c.words), std::string::npos) << e;
+  }
+  // ultimate short of the capping point F_y / k + theta_p = 0.02625
+  const std::string short_u = errors_of(
+      "{ imk = 4.0e5, yield = 2500.0, pre_capping = 0.02, post_capping = 0.05, "
+      "ultimate = 0.02, capping_ratio = 1.1 }");
+  EXPECT_NE(short_u.find("must lie beyond the capping point F_y / k + theta_p = 0.02625"),
+            std::string::npos)
+      << short_u;
+  // its keys only with imk
+  EXPECT_NE(errors_of("{ linear = 1.0, pre_capping = 0.02 }").find("only applies with 'imk'"),
+            std::string::npos);
+}
+
+}  // namespace imk_hinge_test
