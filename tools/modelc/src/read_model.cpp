@@ -24,6 +24,103 @@ const std::vector<std::string_view> kClampRules = {"momentum", "paper"};
 const std::vector<std::string_view> kDampingVelocities = {"central", "lagged"};
 const std::vector<std::string_view> kPlanes = {"xz", "xy", "yz"};
 
+// [model.damping]: alpha and beta as given, or a ratio at one frequency (mass-proportional),
+// at two frequencies or at two of the model's modes (Rayleigh).
+void read_damping_table(Reader& L, const toml::node* d, ModelTable& m) {
+  const auto* dt = d->as_table();
+  if (dt == nullptr) {
+    L.error(d->source(), "model.damping",
+            "expected a table ([model.damping]), got " + type_name(*d));
+    return;
+  }
+  Table dmp(L, *dt, "model.damping",
+            {"alpha", "beta", "ratio", "frequency", "frequencies", "modes"});
+  dmp.check_unknown();
+  // Every conflicting pair is reported (each checked before any return).
+  const bool alpha_ratio = dmp.conflict("alpha", "ratio");
+  const bool beta_ratio = dmp.conflict("beta", "ratio");
+  if (alpha_ratio || beta_ratio) return;
+  if (dmp.has("alpha") || dmp.has("beta")) {
+    // C = alpha M + beta K_el as given.
+    if (auto a = dmp.non_negative("alpha", Need::kOptional)) m.alpha = *a;
+    if (auto b = dmp.non_negative("beta", Need::kOptional)) m.beta = *b;
+    for (const char* k : {"frequency", "frequencies", "modes"}) {
+      if (dmp.has(k)) L.error(dmp.where(k), "only applies with 'ratio'");
+    }
+    return;
+  }
+  const auto ratio = dmp.non_negative("ratio", Need::kRequired);
+  const bool frequency_frequencies = dmp.conflict("frequency", "frequencies");
+  const bool frequency_modes = dmp.conflict("frequency", "modes");
+  const bool frequencies_modes = dmp.conflict("frequencies", "modes");
+  if (frequency_frequencies || frequency_modes || frequencies_modes) return;
+  if (dmp.has("frequencies")) {
+    // Rayleigh damping with `ratio` at two frequencies: the ratio alpha / (2 omega) +
+    // beta omega / 2 equals xi at omega_1 and omega_2 for alpha = 2 xi omega_1 omega_2 /
+    // (omega_1 + omega_2), beta = 2 xi / (omega_1 + omega_2) (rayleigh_coefficients).
+    const auto fs = dmp.numbers("frequencies", Need::kRequired, 2);
+    if (!fs) return;
+    const double f1 = (*fs)[0], f2 = (*fs)[1];
+    if (!(f1 > 0) || !(f2 > 0)) {
+      L.error(dmp.where("frequencies"), "must be positive (got [" + num(f1) + ", " + num(f2) +
+                                            "] Hz): the ratio is set at two natural frequencies");
+      return;
+    }
+    if (same_frequency(f1, f2)) {
+      L.error(dmp.where("frequencies"),
+              "the two frequencies are equal (" + num(f1) +
+                  " Hz, to 1e-9): Rayleigh damping needs two different ones (one frequency: "
+                  "'frequency', mass-proportional)");
+      return;
+    }
+    if (!ratio) return;
+    const RayleighCoefficients c =
+        rayleigh_coefficients(*ratio, 2.0 * std::numbers::pi * f1, 2.0 * std::numbers::pi * f2);
+    m.damping_ratio = *ratio, m.damping_frequencies = {f1, f2};
+    if (!c.finite()) {
+      L.error(dmp.where("frequencies"), "ratio = " + num(*ratio) + " at [" + num(f1) + ", " +
+                                            num(f2) + "] Hz gives alpha = " + num(c.alpha) +
+                                            " 1/s, beta = " + num(c.beta) +
+                                            " s: beyond double (1.8e308); check the units");
+      return;
+    }
+    m.alpha = c.alpha, m.beta = c.beta;
+    return;
+  }
+  if (const toml::node* mn = dmp.get("modes", Need::kOptional)) {
+    // Two of the model's own undamped modes (1-based): their frequencies come from the modal
+    // analysis, in the compile stage set_damping_from_modes.
+    const auto ids = L.array_of<long long>(
+        *mn, dmp.key("modes"), 2,
+        [&](const toml::node& e, const auto& k) { return L.integer(e, k, 1, kMaxDampingMode); });
+    m.damping_modes_at = dmp.where("modes");
+    if (!ids) return;
+    if ((*ids)[0] == (*ids)[1]) {
+      L.error(m.damping_modes_at, "the two modes are the same (" + std::to_string((*ids)[0]) +
+                                      "): Rayleigh damping needs two different ones");
+      return;
+    }
+    if (!ratio) return;
+    m.damping_ratio = *ratio;
+    m.damping_modes = {static_cast<int>((*ids)[0]), static_cast<int>((*ids)[1])};
+    return;
+  }
+  // C = alpha M gives the fraction of critical damping alpha / (2 omega) in a mode of
+  // circular frequency omega: alpha = 2 ratio (2 pi f) sets `ratio` at `frequency`.
+  const auto f = dmp.positive("frequency", Need::kRequired);
+  if (ratio && f) {
+    m.alpha = 2.0 * *ratio * (2.0 * std::numbers::pi * *f);
+    m.damping_ratio = *ratio, m.damping_frequency = *f;
+    if (!std::isfinite(m.alpha)) {
+      const bool blame_ratio = std::abs(std::log10(*ratio)) >= std::abs(std::log10(*f));
+      L.error(dmp.where(blame_ratio ? "ratio" : "frequency"),
+              "ratio = " + num(*ratio) + " at frequency = " + num(*f) +
+                  " Hz gives alpha = 2 ratio (2 pi frequency) beyond the largest double "
+                  "(1.8e308)");
+    }
+  }
+}
+
 void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
   const toml::node* n = root.get("model");
   if (n == nullptr) {
@@ -99,100 +196,7 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
   m.limit_stiffness = t.positive("limit_stiffness", Need::kOptional);
   m.limit_rotational_stiffness = t.positive("limit_rotational_stiffness", Need::kOptional);
 
-  if (const toml::node* d = t.get("damping", Need::kOptional)) {
-    const auto* dt = d->as_table();
-    if (dt == nullptr) {
-      L.error(d->source(), "model.damping",
-              "expected a table ([model.damping]), got " + type_name(*d));
-      return;
-    }
-    Table dmp(L, *dt, "model.damping",
-              {"alpha", "beta", "ratio", "frequency", "frequencies", "modes"});
-    dmp.check_unknown();
-    // Every conflicting pair is reported (each checked before any return).
-    const bool alpha_ratio = dmp.conflict("alpha", "ratio");
-    const bool beta_ratio = dmp.conflict("beta", "ratio");
-    if (alpha_ratio || beta_ratio) return;
-    if (dmp.has("alpha") || dmp.has("beta")) {
-      // C = alpha M + beta K_el as given.
-      if (auto a = dmp.non_negative("alpha", Need::kOptional)) m.alpha = *a;
-      if (auto b = dmp.non_negative("beta", Need::kOptional)) m.beta = *b;
-      for (const char* k : {"frequency", "frequencies", "modes"}) {
-        if (dmp.has(k)) L.error(dmp.where(k), "only applies with 'ratio'");
-      }
-      return;
-    }
-    const auto ratio = dmp.non_negative("ratio", Need::kRequired);
-    const bool frequency_frequencies = dmp.conflict("frequency", "frequencies");
-    const bool frequency_modes = dmp.conflict("frequency", "modes");
-    const bool frequencies_modes = dmp.conflict("frequencies", "modes");
-    if (frequency_frequencies || frequency_modes || frequencies_modes) return;
-    if (dmp.has("frequencies")) {
-      // Rayleigh damping with `ratio` at two frequencies: the ratio alpha / (2 omega) +
-      // beta omega / 2 equals xi at omega_1 and omega_2 for alpha = 2 xi omega_1 omega_2 /
-      // (omega_1 + omega_2), beta = 2 xi / (omega_1 + omega_2) (rayleigh_coefficients).
-      const auto fs = dmp.numbers("frequencies", Need::kRequired, 2);
-      if (!fs) return;
-      const double f1 = (*fs)[0], f2 = (*fs)[1];
-      if (!(f1 > 0) || !(f2 > 0)) {
-        L.error(dmp.where("frequencies"), "must be positive (got [" + num(f1) + ", " + num(f2) +
-                                              "] Hz): the ratio is set at two natural frequencies");
-        return;
-      }
-      if (same_frequency(f1, f2)) {
-        L.error(dmp.where("frequencies"),
-                "the two frequencies are equal (" + num(f1) +
-                    " Hz, to 1e-9): Rayleigh damping needs two different ones (one frequency: "
-                    "'frequency', mass-proportional)");
-        return;
-      }
-      if (!ratio) return;
-      const RayleighCoefficients c =
-          rayleigh_coefficients(*ratio, 2.0 * std::numbers::pi * f1, 2.0 * std::numbers::pi * f2);
-      m.damping_ratio = *ratio, m.damping_frequencies = {f1, f2};
-      if (!c.finite()) {
-        L.error(dmp.where("frequencies"), "ratio = " + num(*ratio) + " at [" + num(f1) + ", " +
-                                              num(f2) + "] Hz gives alpha = " + num(c.alpha) +
-                                              " 1/s, beta = " + num(c.beta) +
-                                              " s: beyond double (1.8e308); check the units");
-        return;
-      }
-      m.alpha = c.alpha, m.beta = c.beta;
-      return;
-    }
-    if (const toml::node* mn = dmp.get("modes", Need::kOptional)) {
-      // Two of the model's own undamped modes (1-based): their frequencies come from the modal
-      // analysis, in the compile stage set_damping_from_modes.
-      const auto ids = L.array_of<long long>(
-          *mn, dmp.key("modes"), 2,
-          [&](const toml::node& e, const auto& k) { return L.integer(e, k, 1, kMaxDampingMode); });
-      m.damping_modes_at = dmp.where("modes");
-      if (!ids) return;
-      if ((*ids)[0] == (*ids)[1]) {
-        L.error(m.damping_modes_at, "the two modes are the same (" + std::to_string((*ids)[0]) +
-                                        "): Rayleigh damping needs two different ones");
-        return;
-      }
-      if (!ratio) return;
-      m.damping_ratio = *ratio;
-      m.damping_modes = {static_cast<int>((*ids)[0]), static_cast<int>((*ids)[1])};
-      return;
-    }
-    // C = alpha M gives the fraction of critical damping alpha / (2 omega) in a mode of
-    // circular frequency omega: alpha = 2 ratio (2 pi f) sets `ratio` at `frequency`.
-    const auto f = dmp.positive("frequency", Need::kRequired);
-    if (ratio && f) {
-      m.alpha = 2.0 * *ratio * (2.0 * std::numbers::pi * *f);
-      m.damping_ratio = *ratio, m.damping_frequency = *f;
-      if (!std::isfinite(m.alpha)) {
-        const bool blame_ratio = std::abs(std::log10(*ratio)) >= std::abs(std::log10(*f));
-        L.error(dmp.where(blame_ratio ? "ratio" : "frequency"),
-                "ratio = " + num(*ratio) + " at frequency = " + num(*f) +
-                    " Hz gives alpha = 2 ratio (2 pi frequency) beyond the largest double "
-                    "(1.8e308)");
-      }
-    }
-  }
+  if (const toml::node* d = t.get("damping", Need::kOptional)) read_damping_table(L, d, m);
 }
 
 // [initial]: gravity = "sudden" | "static", and [[initial.nodes]] {node, u, v} (3 or 6 numbers).
