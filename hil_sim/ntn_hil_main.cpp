@@ -4,7 +4,7 @@
 // so that nothing is allocated in the loop. The program is ntn-hil-<model>'s (hil_driver.hpp): for
 // the same options the two give the same bits.
 #include "hil_driver.hpp"
-#include "ntn/run/loaded_model.hpp"
+#include "ntn/hil/loaded_model.hpp"
 
 namespace {
 
@@ -14,7 +14,7 @@ int hil_main(int argc, char** argv) {
           argc, argv, "Run a model file (TOML) in the real-time frame loop", true, options))
     return *code;
   int code = 0;
-  const auto m = ntn::run::load_or_report(options.model_path,
+  const auto m = ntn::hil::load_or_report(options.model_path,
                                           {.team = options.threads > 1, .checkpoint = true},
                                           "ntn-hil", options.quiet, code);
   if (!m) return code;

@@ -84,27 +84,61 @@ StableStepReport stable_time_step(const SpecView& spec) {
   return r;
 }
 
-StableStepReport stable_time_step(const SpecView& spec, std::span<const double> mass) {
-  using Block6 = Eigen::Matrix<double, 6, 6>;
-  using Vec6 = Eigen::Matrix<double, 6, 1>;
-  StableStepReport r = stable_time_step(spec);
-  if (r.issue != StepIssue::kNone) return r;
-  const int nodes = static_cast<int>(spec.nodes.size());
-  const bool rot = spec.settings.rotary_inertia;
+namespace {
+
+using Block6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+// The hinges' part of the stable step (DESIGN §6): per pass of kStepChunk nodes, the springs' and
+// dashpots' bound at each node with the elements' terms there, its lowest step and the spring
+// that governs it. The workspace is fixed in size (kStepChunk nodes, kStepPartners partners a
+// window), on the caller's stack: no heap.
+struct HingeStepPasses {
+  HingeStepPasses(const SpecView& s, std::span<const double> m, StableStepReport& report)
+      : spec(s),
+        mass(m),
+        r(report),
+        nodes(static_cast<int>(s.nodes.size())),
+        rot(s.settings.rotary_inertia),
+        alpha(stable_step_alpha(s.settings)),
+        beta(s.settings.beta) {}
+
+  const SpecView& spec;
+  std::span<const double> mass;
+  StableStepReport& r;
+  const int nodes;
+  const bool rot;
+  const double alpha, beta;
   // An intermediate result beyond double (a spring of 1e308, a mass of 1e-300): the step is 0
   // with the first hinge direction or element where it showed, never a term left out.
   bool overflow = false;
-  auto overflow_at = [&](int hinge, int direction, int element) {
+  int lo = 0, hi = -1;  // the range of nodes that springs touch
+  // L = sum of k w u u^T over the springs at a node (u their unit direction there): the pass's
+  // nodes first, then the window's partners (ascending).
+  std::array<Block6, kStepChunk + kStepPartners> load;
+  std::array<int, kStepPartners> partner;
+  int first = 0, count = 0, partners = 0;
+  double dt_best = 1e300, dt_springs = 1e300;
+  std::array<Block6, kStepChunk> P, Q;  // springs, dashpots
+  std::array<Vec6, kStepChunk> E;       // elements (the diagonal E_n)
+  std::array<bool, kStepChunk> touched;
+  std::array<std::array<int, 2>, kStepChunk> strongest;  // hinge, direction: largest term
+  std::array<double, kStepChunk> strongest_term;
+
+  static bool finite(double v) { return std::isfinite(v); }
+
+  void overflow_at(int hinge, int direction, int element) {
     if (overflow) return;
     overflow = true;
     r.governing_hinge = hinge, r.hinge_direction = direction;
     if (element >= 0) r.governing_element = element;
-  };
-  auto finite = [](double v) { return std::isfinite(v); };
+  }
+
   // Calls f(i, h, k, s1, s2, n1, n2) for every spring direction k (k or c > 0) of hinge i if
   // it is valid; false at a massless DOF (issue kMassless) or where k w or c w is not finite
   // (kNonFinite, w = n1 + n2), with the report set to 0 and that hinge and direction.
-  auto springs_of = [&](std::size_t i, auto f) {
+  template <class F>
+  bool springs_of(std::size_t i, F f) {
     HingeData h;
     if (!make_hinge_data(spec.hinges[i], spec.settings, spec.nodes.size(), spec.curves,
                          spec.curve_points, h))
@@ -122,36 +156,44 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
       f(i, h, k, s1, s2, n1, n2);
     }
     return true;
-  };
-  // A massless DOF under a spring, and the range of nodes that springs touch.
-  int lo = nodes, hi = -1;
-  for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
-    bool any = false;
-    if (!springs_of(i, [&](std::size_t, const HingeData&, std::size_t, const double*, const double*,
-                           double, double) { any = true; }))
-      return r;
-    if (!any) continue;
-    const HingeSpec& hs = spec.hinges[i];
-    lo = std::min(lo, hs.node1), hi = std::max(hi, hs.node1);
-    if (hs.node2 != kGround) lo = std::min(lo, hs.node2), hi = std::max(hi, hs.node2);
   }
-  if (hi < 0) return r;  // no spring: the elements' bound as it is
 
-  // L = sum of k w u u^T over the springs at a node (u their unit direction there): the pass's
-  // nodes first, then the window's partners (ascending).
-  std::array<Block6, kStepChunk + kStepPartners> load;
-  std::array<int, kStepPartners> partner;
-  int first = 0, count = 0, partners = 0;
-  auto in_pass = [&](int n) { return n >= first && n < first + count; };
-  auto load_index = [&](int n) {
+  // A massless DOF under a spring (false: the report is final), and the range of nodes that
+  // springs touch [lo, hi] (hi < 0: no spring).
+  bool find_spring_nodes() {
+    lo = nodes, hi = -1;
+    for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
+      bool any = false;
+      if (!springs_of(i, [&](std::size_t, const HingeData&, std::size_t, const double*,
+                             const double*, double, double) { any = true; }))
+        return false;
+      if (!any) continue;
+      const HingeSpec& hs = spec.hinges[i];
+      lo = std::min(lo, hs.node1), hi = std::max(hi, hs.node1);
+      if (hs.node2 != kGround) lo = std::min(lo, hs.node2), hi = std::max(hi, hs.node2);
+    }
+    return true;
+  }
+
+  bool in_pass(int n) const { return n >= first && n < first + count; }
+  int load_index(int n) const {
     if (in_pass(n)) return n - first;
     const int* begin = partner.data();
     const int* end = begin + partners;
     const int* p = std::lower_bound(begin, end, n);
     return p != end && *p == n ? kStepChunk + static_cast<int>(p - begin) : -1;
-  };
+  }
+  // The other node of a hinge of the pass: the ground or a node of the pass give -1.
+  int other_of(const HingeSpec& hs) const {
+    const int o = in_pass(hs.node1) ? hs.node2 : hs.node1;
+    return o == kGround || in_pass(o) ? -1 : o;
+  }
+  bool touches(const HingeSpec& hs) const {
+    return in_pass(hs.node1) || (hs.node2 != kGround && in_pass(hs.node2));
+  }
+
   // Adds k w u u^T of hinge i's springs at the nodes that have a load slot.
-  auto add_load = [&](std::size_t i) {
+  void add_load(std::size_t i) {
     (void)springs_of(i, [&](std::size_t, const HingeData& h, std::size_t k, const double* s1,
                             const double* s2, double n1, double n2) {
       const int node[2] = {h.node1, h.node2};
@@ -166,19 +208,97 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
         load[static_cast<std::size_t>(j)] += kw * (u * u.transpose());
       }
     });
-  };
-  // The other node of a hinge of the pass: the ground or a node of the pass give -1.
-  auto other_of = [&](const HingeSpec& hs) {
-    const int o = in_pass(hs.node1) ? hs.node2 : hs.node1;
-    return o == kGround || in_pass(o) ? -1 : o;
-  };
-  auto touches = [&](const HingeSpec& hs) {
-    return in_pass(hs.node1) || (hs.node2 != kGround && in_pass(hs.node2));
-  };
-  // Calls f(i, h, k, s1, s2, n1, n2, g) once for every spring direction at the pass's nodes,
-  // with g_1, g_2 from tau = n_2 L_2 / (n_1 L_1), L_i = u^T L u along the spring at node i
-  // (equal loads if one is zero: a dashpot alone).
-  auto pass_springs = [&](auto f) {
+  }
+
+  // The window: the kStepPartners smallest partners above `after`.
+  void next_window(int after) {
+    partners = 0;
+    for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
+      const HingeSpec& hs = spec.hinges[i];
+      if (!touches(hs)) continue;
+      const int o = other_of(hs);
+      if (o <= after) continue;
+      int* end = partner.data() + partners;
+      int* p = std::lower_bound(partner.data(), end, o);
+      if (p != end && *p == o) continue;
+      if (partners == kStepPartners) {
+        if (p == end) continue;  // above the window
+        --end, --partners;       // drop the largest
+      }
+      std::copy_backward(p, end, end + 1);
+      *p = o, ++partners;
+    }
+  }
+
+  // The window's partners' loads (a partner of a hinge without springs just gets a slot).
+  void add_partner_loads() {
+    for (int j = kStepChunk; j < kStepChunk + partners; ++j)
+      load[static_cast<std::size_t>(j)].setZero();
+    for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
+      const HingeSpec& hs = spec.hinges[i];
+      const bool p1 = !in_pass(hs.node1) && load_index(hs.node1) >= 0;
+      const bool p2 = hs.node2 != kGround && !in_pass(hs.node2) && load_index(hs.node2) >= 0;
+      if (!p1 && !p2) continue;
+      // Add only at the partners: the pass's nodes have their loads already.
+      (void)springs_of(i, [&](std::size_t, const HingeData& h, std::size_t k, const double* s1,
+                              const double* s2, double n1, double n2) {
+        const double* sv[2] = {s1, s2};
+        const double n[2] = {n1, n2};
+        const bool at[2] = {p1, p2};
+        for (int t = 0; t < 2; ++t) {
+          if (!at[t] || !(n[t] > 0)) continue;
+          const int j = load_index(t == 0 ? h.node1 : h.node2);
+          const Eigen::Map<const Vec6> u(sv[t]);
+          const double kw = h.stiffness[k] * (n1 + n2) / n[t];
+          if (!finite(kw)) overflow_at(static_cast<int>(i), static_cast<int>(k), -1);
+          load[static_cast<std::size_t>(j)] += kw * (u * u.transpose());
+        }
+      });
+    }
+  }
+
+  // Calls f(i, h, k, s1, s2, n1, n2, g) for the springs at the pass's nodes whose other node is
+  // the ground or a node of the pass (window 0 only) or a partner of this window, with g_1, g_2
+  // from tau = n_2 L_2 / (n_1 L_1), L_i = u^T L u along the spring at node i (equal loads if one
+  // is zero: a dashpot alone).
+  template <class F>
+  void visit_window_springs(int window, F f) {
+    for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
+      const HingeSpec& hs = spec.hinges[i];
+      if (!touches(hs)) continue;
+      const int o = other_of(hs);
+      if (o < 0 ? window > 0 : load_index(o) < 0) continue;  // another window's
+      (void)springs_of(i, [&](std::size_t ii, const HingeData& h, std::size_t k, const double* s1,
+                              const double* s2, double n1, double n2) {
+        const int node[2] = {h.node1, h.node2};
+        const double* sv[2] = {s1, s2};
+        const double n[2] = {n1, n2};
+        double l[2] = {0, 0};
+        for (int t = 0; t < 2; ++t) {
+          if (!(n[t] > 0)) continue;
+          const Eigen::Map<const Vec6> u(sv[t]);
+          l[t] = u.dot(load[static_cast<std::size_t>(load_index(node[t]))] * u) / n[t];
+        }
+        if (!finite(l[0]) || !finite(l[1])) {
+          overflow_at(static_cast<int>(ii), static_cast<int>(k), -1);
+          return;
+        }
+        if ((n1 > 0 && !(l[0] > 0)) || (n2 > 0 && !(l[1] > 0))) l[0] = 1, l[1] = 1;
+        const double a = n1 * l[0], b = n2 * l[1];
+        const double g[2] = {a > 0 ? (a + b) / a : 0.0, b > 0 ? (a + b) / b : 0.0};
+        if (!finite(g[0]) || !finite(g[1])) {
+          overflow_at(static_cast<int>(ii), static_cast<int>(k), -1);
+          return;
+        }
+        f(ii, h, k, s1, s2, n1, n2, g);
+      });
+    }
+  }
+
+  // Calls f(i, h, k, s1, s2, n1, n2, g) once for every spring direction at the pass's nodes:
+  // the pass's loads, then window by window the partners' loads and the springs to them.
+  template <class F>
+  void pass_springs(F f) {
     partners = 0;
     for (int j = 0; j < kStepChunk; ++j)
       load[static_cast<std::size_t>(j)].setZero();
@@ -186,91 +306,17 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
       if (touches(spec.hinges[i])) add_load(i);
     }
     for (int after = -1, window = 0;; ++window) {
-      // The window: the kStepPartners smallest partners above `after`.
-      partners = 0;
-      for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
-        const HingeSpec& hs = spec.hinges[i];
-        if (!touches(hs)) continue;
-        const int o = other_of(hs);
-        if (o <= after) continue;
-        int* end = partner.data() + partners;
-        int* p = std::lower_bound(partner.data(), end, o);
-        if (p != end && *p == o) continue;
-        if (partners == kStepPartners) {
-          if (p == end) continue;  // above the window
-          --end, --partners;       // drop the largest
-        }
-        std::copy_backward(p, end, end + 1);
-        *p = o, ++partners;
-      }
-      // Their loads (a partner of a hinge without springs just gets a slot).
-      for (int j = kStepChunk; j < kStepChunk + partners; ++j)
-        load[static_cast<std::size_t>(j)].setZero();
-      for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
-        const HingeSpec& hs = spec.hinges[i];
-        const bool p1 = !in_pass(hs.node1) && load_index(hs.node1) >= 0;
-        const bool p2 = hs.node2 != kGround && !in_pass(hs.node2) && load_index(hs.node2) >= 0;
-        if (!p1 && !p2) continue;
-        // Add only at the partners: the pass's nodes have their loads already.
-        (void)springs_of(i, [&](std::size_t, const HingeData& h, std::size_t k, const double* s1,
-                                const double* s2, double n1, double n2) {
-          const double* sv[2] = {s1, s2};
-          const double n[2] = {n1, n2};
-          const bool at[2] = {p1, p2};
-          for (int t = 0; t < 2; ++t) {
-            if (!at[t] || !(n[t] > 0)) continue;
-            const int j = load_index(t == 0 ? h.node1 : h.node2);
-            const Eigen::Map<const Vec6> u(sv[t]);
-            const double kw = h.stiffness[k] * (n1 + n2) / n[t];
-            if (!finite(kw)) overflow_at(static_cast<int>(i), static_cast<int>(k), -1);
-            load[static_cast<std::size_t>(j)] += kw * (u * u.transpose());
-          }
-        });
-      }
-      for (std::size_t i = 0; i < spec.hinges.size(); ++i) {
-        const HingeSpec& hs = spec.hinges[i];
-        if (!touches(hs)) continue;
-        const int o = other_of(hs);
-        if (o < 0 ? window > 0 : load_index(o) < 0) continue;  // another window's
-        (void)springs_of(i, [&](std::size_t ii, const HingeData& h, std::size_t k, const double* s1,
-                                const double* s2, double n1, double n2) {
-          const int node[2] = {h.node1, h.node2};
-          const double* sv[2] = {s1, s2};
-          const double n[2] = {n1, n2};
-          double l[2] = {0, 0};
-          for (int t = 0; t < 2; ++t) {
-            if (!(n[t] > 0)) continue;
-            const Eigen::Map<const Vec6> u(sv[t]);
-            l[t] = u.dot(load[static_cast<std::size_t>(load_index(node[t]))] * u) / n[t];
-          }
-          if (!finite(l[0]) || !finite(l[1])) {
-            overflow_at(static_cast<int>(ii), static_cast<int>(k), -1);
-            return;
-          }
-          if ((n1 > 0 && !(l[0] > 0)) || (n2 > 0 && !(l[1] > 0))) l[0] = 1, l[1] = 1;
-          const double a = n1 * l[0], b = n2 * l[1];
-          const double g[2] = {a > 0 ? (a + b) / a : 0.0, b > 0 ? (a + b) / b : 0.0};
-          if (!finite(g[0]) || !finite(g[1])) {
-            overflow_at(static_cast<int>(ii), static_cast<int>(k), -1);
-            return;
-          }
-          f(ii, h, k, s1, s2, n1, n2, g);
-        });
-      }
+      next_window(after);
+      add_partner_loads();
+      visit_window_springs(window, f);
       if (partners < kStepPartners) break;
       after = partner[static_cast<std::size_t>(partners - 1)];
     }
-  };
+  }
 
-  const double alpha = stable_step_alpha(spec.settings), beta = spec.settings.beta;
-  double dt_best = 1e300, dt_springs = 1e300;
-  std::array<Block6, kStepChunk> P, Q;  // springs, dashpots
-  std::array<Vec6, kStepChunk> E;       // elements (the diagonal E_n)
-  std::array<bool, kStepChunk> touched;
-  std::array<std::array<int, 2>, kStepChunk> strongest;  // hinge, direction: largest term
-  std::array<double, kStepChunk> strongest_term;
-  for (first = lo; first <= hi && !overflow; first += count) {
-    count = std::min(kStepChunk, hi - first + 1);
+  // P_n = sum k g u u^T and Q_n = sum c g u u^T over the springs at each node of the pass, and
+  // the spring with the largest term there.
+  void add_spring_blocks() {
     for (std::size_t j = 0; j < kStepChunk; ++j) {
       P[j].setZero(), Q[j].setZero(), E[j].setZero(), touched[j] = false;
       strongest[j] = {-1, -1}, strongest_term[j] = -1;
@@ -296,7 +342,10 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
         touched[j] = true;
       }
     });
-    if (overflow) break;
+  }
+
+  // E_n: the elements' omega_max^2 m_e / m at the pass's nodes that springs touch.
+  void add_element_terms() {
     for (std::size_t ei = 0; ei < spec.elements.size(); ++ei) {
       const ElementSpec& e = spec.elements[ei];
       const int end[2] = {e.node_i, e.node_j};
@@ -320,8 +369,12 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
         }
       }
     }
-    int best = -1;  // the pass's node that lowers dt_best
-    Vec6 top_k, top_c;
+  }
+
+  // Each touched node's step from lambda_max(P_n + E_n) and lambda_max(beta E_n + Q_n); the
+  // node that lowers dt_best (-1: none) with the eigenvectors of its bound.
+  int lower_step(Vec6& top_k, Vec6& top_c) {
+    int best = -1;
     for (int j = 0; j < count; ++j) {
       const auto js = static_cast<std::size_t>(j);
       if (!touched[js]) continue;
@@ -345,9 +398,11 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
       const double dt = quadratic_step(omega2, alpha + eta);
       if (dt < dt_best) dt_best = dt, best = first + j, top_k = vk, top_c = vc;
     }
-    if (overflow) break;
-    if (best < 0) continue;
-    // The spring with the largest share of that node's bound.
+    return best;
+  }
+
+  // The spring with the largest share of node best's bound governs.
+  void find_governing_spring(int best, const Vec6& top_k, const Vec6& top_c) {
     double share_max = -1;
     pass_springs([&](std::size_t i, const HingeData& h, std::size_t k, const double* s1,
                      const double* s2, double, double, const double* g) {
@@ -365,12 +420,36 @@ StableStepReport stable_time_step(const SpecView& spec, std::span<const double> 
     });
   }
 
-  if (overflow) {
+  // One pass over the nodes [first, first + count).
+  void pass() {
+    add_spring_blocks();
+    if (overflow) return;
+    add_element_terms();
+    Vec6 top_k, top_c;
+    const int best = lower_step(top_k, top_c);
+    if (overflow || best < 0) return;
+    find_governing_spring(best, top_k, top_c);
+  }
+};
+
+}  // namespace
+
+StableStepReport stable_time_step(const SpecView& spec, std::span<const double> mass) {
+  StableStepReport r = stable_time_step(spec);
+  if (r.issue != StepIssue::kNone) return r;
+  HingeStepPasses h(spec, mass, r);
+  if (!h.find_spring_nodes()) return r;
+  if (h.hi < 0) return r;  // no spring: the elements' bound as it is
+  for (h.first = h.lo; h.first <= h.hi && !h.overflow; h.first += h.count) {
+    h.count = std::min(kStepChunk, h.hi - h.first + 1);
+    h.pass();
+  }
+  if (h.overflow) {
     r.dt_stable = 0, r.dt_hinges = 0, r.issue = StepIssue::kNonFinite;
     return r;
   }
-  r.dt_hinges = dt_springs;
-  r.dt_stable = std::min(dt_best, r.dt_elements);
+  r.dt_hinges = h.dt_springs;
+  r.dt_stable = std::min(h.dt_best, r.dt_elements);
   if (!(r.dt_hinges < r.dt_elements)) r.governing_hinge = -1, r.hinge_direction = -1;
   return r;
 }

@@ -29,13 +29,13 @@
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/energy.hpp"
 #include "ntn/hil/gate.hpp"
+#include "ntn/hil/loaded_model.hpp"
 #include "ntn/hil/loop.hpp"
 #include "ntn/hil/output_hash.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
-#include "ntn/run/loaded_model.hpp"
 #include "pinned_joint_model.hpp"
 #include "portal_plastic_model.hpp"
 #include "portal_slip_model.hpp"
@@ -97,7 +97,7 @@ bool same(const A& a, const B& b) {
 // Runs `steps` steps of both storages from the model's initial state and compares. `rt` was
 // bound and init()ed from the same model.
 template <ntn::Sizes S>
-void expect_same_run(const ntn::ModelSpec<S>& spec, ntn::run::LoadedModel& rt, std::int64_t steps) {
+void expect_same_run(const ntn::ModelSpec<S>& spec, ntn::hil::LoadedModel& rt, std::int64_t steps) {
   auto c = std::make_unique<Compiled<S>>();
   ASSERT_TRUE(ntn::init(spec, c->model, c->work).ok());
   const ntn::InitStatus st = rt.init();
@@ -163,7 +163,7 @@ template <ntn::Sizes S>
 void expect_file_same(const ntn::ModelSpec<S>& spec, const std::string& file, double seconds) {
   ntn::modelc::LoadResult r = ntn::modelc::load_model(file);
   ASSERT_TRUE(r.ok()) << ntn::modelc::format_all(r.errors);
-  ntn::run::LoadedModel rt(std::move(*r.model), {});
+  ntn::hil::LoadedModel rt(std::move(*r.model), {});
   ASSERT_TRUE(rt.bound());
   const auto steps = static_cast<std::int64_t>(seconds / spec.settings.dt);
   expect_same_run(spec, rt, steps);
@@ -190,7 +190,7 @@ void expect_frame_same(std::int64_t steps) {
   d.element_loads.assign(v.element_loads.begin(), v.element_loads.end());
   d.hystereses.assign(v.hystereses.begin(), v.hystereses.end());
   d.settings = v.settings;
-  ntn::run::LoadedModel rt(std::move(d), {});
+  ntn::hil::LoadedModel rt(std::move(d), {});
   ASSERT_TRUE(rt.bound());
   expect_same_run(*spec, rt, steps);
 }
@@ -204,7 +204,7 @@ TEST(RuntimeStorage, InfoCountsTheStiffnessEntriesInitShares) {
     ntn::modelc::LoadResult r = ntn::modelc::load_model(NTN_CONFIG_DIR "/" + std::string(name));
     ASSERT_TRUE(r.ok()) << name;
     const std::string info = ntn::modelc::info_text(*r.model);
-    ntn::run::LoadedModel rt(std::move(*r.model), {});
+    ntn::hil::LoadedModel rt(std::move(*r.model), {});
     ASSERT_TRUE(rt.init().ok()) << name;
     const ntn::Model<ntn::kRunTime>& m = rt.model();
     const std::size_t blocks = ntn::beam_blocks(m.sizes.elements);
@@ -328,7 +328,7 @@ TEST(RuntimeStorage, LoopAllocatesNothingAndHashesAsCompiled) {
 
   ntn::modelc::LoadResult r = ntn::modelc::load_model(NTN_CONFIG_DIR "/portal_plastic.toml");
   ASSERT_TRUE(r.ok());
-  ntn::run::LoadedModel rt(std::move(*r.model), {.checkpoint = true});
+  ntn::hil::LoadedModel rt(std::move(*r.model), {.checkpoint = true});
   ASSERT_TRUE(rt.init().ok());
   const std::uint64_t runtime = loop_hash(rt.spec(), rt.model(), rt.state(), rt.scratch(),
                                           rt.checkpoint(), &rt.loop_buffers(), runtime_allocations);

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "ntn/hil/energy.hpp"
+#include "ntn/hil/loaded_model.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/diagnostic.hpp"
 #include "ntn/modelc/load_model.hpp"
-#include "ntn/run/loaded_model.hpp"
 #include "text_model.hpp"
 
 namespace ntn_test::block {
@@ -133,7 +133,7 @@ mass = 1000.0
 }
 
 // The model loaded as ntn-run loads it, init()ed and started with a_g(0) = ag0.
-inline std::unique_ptr<ntn::run::LoadedModel> load(const Block& b, double ag0 = 0.0) {
+inline std::unique_ptr<ntn::hil::LoadedModel> load(const Block& b, double ag0 = 0.0) {
   auto rt = load_text_model(block_model(b), "block.toml");
   if (rt == nullptr) return nullptr;
   ntn::initial_state(rt->model(), rt->state());
@@ -148,7 +148,7 @@ using Books = ntn::hil::EnergyBalance<ntn::kRunTime>;
 // One run: every step's channels (at t_n), a_g(t) as the input; the energy books in `books` (begun
 // here) where given.
 template <class Ground>
-inline std::vector<std::vector<double>> run(ntn::run::LoadedModel& rt, long steps, Ground&& ag,
+inline std::vector<std::vector<double>> run(ntn::hil::LoadedModel& rt, long steps, Ground&& ag,
                                             Books* books = nullptr) {
   std::vector<std::vector<double>> rows;
   std::vector<double> in(rt.model().sizes.inputs, 0.0);

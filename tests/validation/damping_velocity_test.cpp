@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
+#include "ntn/hil/loaded_model.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
-#include "ntn/run/loaded_model.hpp"
 #include "support/temp_files.hpp"
 #include "text_model.hpp"
 
@@ -60,12 +60,12 @@ std::string model_text(Damping damping, const std::string& velocity, double dt,
   return t;
 }
 
-std::unique_ptr<ntn::run::LoadedModel> load(const std::string& text) {
+std::unique_ptr<ntn::hil::LoadedModel> load(const std::string& text) {
   return ntn_test::load_text_model(text, "sdof.toml");
 }
 
 // u at t_n (the channel "u") for n = 0 .. steps - 1, free vibration from u_0 at rest.
-std::vector<double> run(ntn::run::LoadedModel& rt, double u0, long steps) {
+std::vector<double> run(ntn::hil::LoadedModel& rt, double u0, long steps) {
   ntn::Model<ntn::kRunTime>& m = rt.model();
   ntn::State<ntn::kRunTime>& s = rt.state();
   ntn::Scratch<ntn::kRunTime>& w = rt.scratch();

@@ -1,6 +1,6 @@
 // The single-degree-of-freedom oscillator without members (config/sdof.toml: m = 1000 kg on a
 // spring k = 400 kN/m to the ground along x, the other directions rigid; omega = 20 rad/s), run
-// by the kernel from the model file's text in run-time storage (ntn::run::LoadedModel, as ntn-run
+// by the kernel from the model file's text in run-time storage (ntn::hil::LoadedModel, as ntn-run
 // loads it), with the hinge's dashpot taken out, against truth of its own:
 //
 // - Free vibration from u_0, v_0 = 0: central difference is the recurrence
@@ -35,9 +35,9 @@
 #include <string>
 #include <vector>
 
+#include "ntn/hil/loaded_model.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
-#include "ntn/run/loaded_model.hpp"
 #include "sdof_model.hpp"
 #include "support/temp_files.hpp"
 #include "text_model.hpp"
@@ -58,14 +58,14 @@ std::string undamped(const std::string& tables = "") {
   return t + "\n" + tables + "\n";
 }
 
-std::unique_ptr<ntn::run::LoadedModel> load(const std::string& text) {
+std::unique_ptr<ntn::hil::LoadedModel> load(const std::string& text) {
   return ntn_test::load_text_model(text, "sdof.toml");
 }
 
 // u at t_n (the channel "u", outputs[0]) for n = 0 .. steps - 1, from u_0 along x at rest, with
 // the ground acceleration ag(n) in g.
 template <class Ag>
-std::vector<double> run(ntn::run::LoadedModel& rt, ntn::ElementPass path, double u0, long steps,
+std::vector<double> run(ntn::hil::LoadedModel& rt, ntn::ElementPass path, double u0, long steps,
                         Ag ag) {
   ntn::Model<ntn::kRunTime>& m = rt.model();
   ntn::State<ntn::kRunTime>& s = rt.state();

@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
+#include "ntn/hil/loaded_model.hpp"
 #include "ntn/modal/modal.hpp"
 #include "ntn/modecheck/modecheck.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/modelc/model_report.hpp"
-#include "ntn/run/loaded_model.hpp"
 #include "ntn/spectral/error.hpp"
 #include "ntn/spectral/welch.hpp"
 #include "ntn/spectral/window.hpp"
@@ -149,7 +149,7 @@ inline std::atomic<std::uint64_t> g_model_serial{0};
 
 class PyModel {
  public:
-  explicit PyModel(std::unique_ptr<ntn::run::LoadedModel> m) : m_(std::move(m)) {
+  explicit PyModel(std::unique_ptr<ntn::hil::LoadedModel> m) : m_(std::move(m)) {
     const ntn::InitStatus st = m_->init();
     if (!st.ok())
       throw ModelError(m_->description().source_file + ": error: " + ntn::to_string(st.error) +
@@ -159,7 +159,7 @@ class PyModel {
   }
 
   const ntn::modelc::ModelDescription& d() const { return m_->description(); }
-  ntn::run::LoadedModel& loaded() { return *m_; }
+  ntn::hil::LoadedModel& loaded() { return *m_; }
 
   py::dict sizes() const {
     const ntn::Sizes z = d().sizes();
@@ -516,7 +516,7 @@ class PyModel {
     return out;
   }
 
-  std::unique_ptr<ntn::run::LoadedModel> m_;
+  std::unique_ptr<ntn::hil::LoadedModel> m_;
   std::vector<double> in_;
   bool started_ = false;
   std::atomic<bool> busy_{false};
@@ -533,10 +533,10 @@ std::unique_ptr<PyModel> load(const std::string& path) {
   ntn::modelc::LoadResult r = ntn::modelc::load_model(path);
   if (!r.ok()) throw ModelError(trimmed(ntn::modelc::format_all(r.errors)));
   const ntn::RunTimeOptions options{.team = true, .checkpoint = false};
-  if (const auto refused = ntn::run::storage_memory_refusal(*r.model, options))
+  if (const auto refused = ntn::hil::storage_memory_refusal(*r.model, options))
     throw ModelError(path + ": error: " + *refused);
   return std::make_unique<PyModel>(
-      std::make_unique<ntn::run::LoadedModel>(std::move(*r.model), options));
+      std::make_unique<ntn::hil::LoadedModel>(std::move(*r.model), options));
 }
 
 ntn::spectral::Window window_of(const std::string& name) {

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "ntn/run/loaded_model.hpp"
+#include "ntn/hil/loaded_model.hpp"
 #include "run_driver.hpp"
 
 int main(int argc, char** argv) {
@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   ntn::run::add_options(app, options);
   if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   int code = 0;
-  const auto m = ntn::run::load_or_report(model_path, {.team = options.threads > 1}, "ntn-run",
+  const auto m = ntn::hil::load_or_report(model_path, {.team = options.threads > 1}, "ntn-run",
                                           options.quiet, code);
   if (!m) return code;
   // run_model() runs init() into the bound storage, as the compiled runners do.

@@ -8,13 +8,13 @@
 #include <fstream>
 #include <limits>
 
+#include "ntn/hil/loaded_model.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/ida/spectrum.hpp"
 #include "ntn/modal/modal.hpp"
 #include "ntn/modelc/diagnostic.hpp"
 #include "ntn/modelc/load_model.hpp"
-#include "ntn/run/loaded_model.hpp"
 #include "numbers.hpp"
 #include "run_driver.hpp"
 
@@ -244,12 +244,12 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
     return nullptr;
   }
 
-  if (const auto refused = run::storage_memory_refusal(*loaded.model, RunTimeOptions{})) {
+  if (const auto refused = hil::storage_memory_refusal(*loaded.model, RunTimeOptions{})) {
     errors.push_back(config.model_path + ": error: " + *refused);
     exit_code = 1;
     return nullptr;
   }
-  s->model_ = std::make_unique<run::LoadedModel>(std::move(*loaded.model), RunTimeOptions{});
+  s->model_ = std::make_unique<hil::LoadedModel>(std::move(*loaded.model), RunTimeOptions{});
   const InitStatus st = s->model_->init();
   if (!st.ok()) {
     errors.push_back(config.model_path + ": " + to_string(st.error) + " (at " +
@@ -267,7 +267,7 @@ std::string Study::measure_name() const {
 
 RunRow Study::run(std::size_t r, double im) {
   const RecordEntry& e = records_[r];
-  run::LoadedModel& m = *model_;
+  hil::LoadedModel& m = *model_;
   const ModelSpec<kRunTime>& spec = m.spec();
   const InputSpec& in = spec.inputs[input_];
   RunRow row;

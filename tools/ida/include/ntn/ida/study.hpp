@@ -1,6 +1,6 @@
 // One incremental dynamic analysis: a model file, a suite of records and a tracing
 // plan. Each (record, intensity) pair is one kernel run of the model in run-time storage
-// (ntn::run::LoadedModel, the run of ntn-run), the record scaled so that its intensity measure
+// (ntn::hil::LoadedModel, the run of ntn-run), the record scaled so that its intensity measure
 // (PGA or Sa(T1)) equals the intensity. A run gives the engineering demands (peak storey drift,
 // residual drift, peak floor acceleration, the hinges' performance level, any output's peak) and
 // whether the frame collapsed (a drift past the limit, or a run that diverged: the kernel's safe
@@ -19,7 +19,7 @@
 #include "ntn/ida/trace.hpp"
 #include "record.hpp"
 
-namespace ntn::run {
+namespace ntn::hil {
 class LoadedModel;
 }
 
@@ -109,7 +109,7 @@ class Study {
  private:
   Study() = default;
   StudyConfig config_;
-  std::unique_ptr<run::LoadedModel> model_;
+  std::unique_ptr<hil::LoadedModel> model_;
   std::vector<RecordEntry> records_;
   std::vector<EdpColumn> columns_;
   std::size_t input_ = 0;

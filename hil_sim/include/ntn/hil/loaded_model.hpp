@@ -15,7 +15,7 @@
 #include "ntn/modelc/load_model.hpp"
 #include "ntn/runtime_storage.hpp"
 
-namespace ntn::run {
+namespace ntn::hil {
 
 class LoadedModel {
  public:
@@ -70,4 +70,4 @@ std::optional<std::string> storage_memory_refusal(const modelc::ModelDescription
 std::unique_ptr<LoadedModel> load_or_report(const std::string& path, const RunTimeOptions& options,
                                             const char* program, bool quiet, int& exit_code);
 
-}  // namespace ntn::run
+}  // namespace ntn::hil

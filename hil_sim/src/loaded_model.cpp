@@ -1,4 +1,4 @@
-#include "ntn/run/loaded_model.hpp"
+#include "ntn/hil/loaded_model.hpp"
 
 #include "ntn/modelc/memory.hpp"
 
@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-namespace ntn::run {
+namespace ntn::hil {
 
 void LoadedModel::FreeBlock::operator()(std::byte* p) const {
   ::operator delete (p, std::align_val_t{kRunTimeBlockAlign});
@@ -79,4 +79,4 @@ std::unique_ptr<LoadedModel> load_or_report(const std::string& path, const RunTi
   return std::make_unique<LoadedModel>(std::move(*r.model), options);
 }
 
-}  // namespace ntn::run
+}  // namespace ntn::hil
