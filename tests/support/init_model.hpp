@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "ntn/init.hpp"
 #include "ntn/model.hpp"
 #include "ntn/state.hpp"
 

@@ -6,6 +6,7 @@
 #include "ntn/constraint_forest.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
+#include "ntn/init.hpp"
 #include "ntn/integrator.hpp"
 #include "ntn/loads.hpp"
 #include "ntn/model.hpp"

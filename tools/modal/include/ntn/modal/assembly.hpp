@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ntn/beam.hpp"
+#include "ntn/init.hpp"
 #include "ntn/model.hpp"
 #include "ntn/model_spec.hpp"
 
