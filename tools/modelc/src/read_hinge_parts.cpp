@@ -34,6 +34,212 @@ std::string also_with(std::string_view k) {
   return s;
 }
 
+bool law_values_ok(Reader& L, Table& tb, const toml::table& t) {
+  // The kernel's bound on a law's values (ntn::kLawValueLimit), at the key that breaks it: a
+  // value the kernel would refuse far from its cause ("hinge with a bad node, frame, curve or
+  // stiffness") or overflow with.
+  for (const char* k : {"yield", "yield_negative", "rigid_plastic", "hardening_stiffness",
+                        "friction", "cohesion", "failure", "io", "ls", "cp"}) {
+    const toml::node* v = t.get(k);
+    if (v == nullptr || !(v->is_floating_point() || v->is_integer())) continue;
+    const double x = v->is_integer() ? static_cast<double>(v->as_integer()->get())
+                                     : v->as_floating_point()->get();
+    if (std::isfinite(x) && !ntn::law_value_ok(std::fabs(x))) {
+      L.error(tb.where(k), "must be below " + num(ntn::kLawValueLimit) +
+                               " in magnitude (the kernel's bound on a hinge law's values; got " +
+                               num(x) + ")");
+      return false;
+    }
+  }
+  return true;
+}
+
+// Which keys go together: one kind of direction, each key with the kind it belongs to.
+bool combination_ok(Reader& L, Table& tb, const std::vector<std::string_view>& kinds) {
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    for (std::size_t j = i + 1; j < kinds.size(); ++j) {
+      if (kinds[i] == "linear" && kinds[j] == "failure") continue;  // a spring that breaks
+      if (tb.conflict(kinds[i], kinds[j])) return false;
+    }
+  }
+  const std::pair<std::string_view, std::string_view> kOnlyWith[] = {
+      {"hardening_stiffness", "rigid_plastic"}, {"control", "fixed_if"}, {"circle", "friction"}};
+  for (const auto& [k, with] : kOnlyWith) {
+    if (tb.has(k) && !tb.has(with)) {
+      L.error(tb.where(k), "only applies with '" + std::string(with) + "'");
+      return false;
+    }
+  }
+  for (std::string_view k : {"yield", "hardening"}) {
+    if (tb.has(k) && !tb.has("plastic") && !taken_by_law(tb, k)) {
+      L.error(tb.where(k), "only applies with 'plastic'" + also_with(k));
+      return false;
+    }
+  }
+  for (std::string_view k : {"cohesion", "normal"}) {
+    if (tb.has(k) && !tb.has("friction")) {
+      L.error(tb.where(k), "only applies with 'friction'");
+      return false;
+    }
+  }
+  if (tb.has("yield_negative") && !tb.has("plastic") && !tb.has("rigid_plastic") &&
+      !taken_by_law(tb, "yield_negative")) {
+    L.error(tb.where("yield_negative"),
+            "only applies with 'plastic' or 'rigid_plastic'" + also_with("yield_negative"));
+    return false;
+  }
+  for (const LawReader& r : law_readers()) {
+    for (std::string_view k : r.own) {
+      if (tb.has(k) && !tb.has(r.key)) {
+        L.error(tb.where(k), "only applies with '" + std::string(r.key) + "'");
+        return false;
+      }
+    }
+  }
+  bool limits_apply = tb.has("plastic") || tb.has("rigid_plastic") || tb.has("friction");
+  std::string laws;
+  for (const LawReader& r : law_readers()) {
+    limits_apply = limits_apply || tb.has(r.key);
+    laws += ", '" + std::string(r.key) + "'";
+  }
+  for (std::string_view k : {"io", "ls", "cp"}) {
+    if (tb.has(k) && !limits_apply) {
+      L.error(tb.where(k),
+              "only applies with 'plastic'" + laws + ", 'rigid_plastic' or 'friction'");
+      return false;
+    }
+  }
+  return true;
+}
+
+// Coulomb friction: rigid while |f| < mu max(0, -N) + cohesion (ntn/slip.hpp).
+std::optional<BehaviourIn> read_friction(Reader& L, Table& tb, const toml::table& t,
+                                         BehaviourIn b) {
+  // Coulomb friction: rigid while |f| < mu max(0, -N) + cohesion, N the force of direction
+  // `normal` of the same hinge (ntn/slip.hpp).
+  const auto mu = tb.non_negative("friction", Need::kOptional);
+  const auto c = tb.non_negative("cohesion", Need::kOptional);
+  const auto normal = tb.choice("normal", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
+  const auto circle = tb.choice("circle", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
+  std::array<double, 3> limits{};
+  bool ok = mu && (c || !tb.has("cohesion")) && (normal || !tb.has("normal")) &&
+            (circle || !tb.has("circle"));
+  ok = read_limits(L, tb, t, limits) && ok;
+  if (tb.has("dashpot")) {
+    L.error(tb.where("dashpot"),
+            "a friction direction takes no dashpot: it is rigid while it sticks");
+    ok = false;
+  }
+  if (!ok) return std::nullopt;
+  b.kind = HingeBehaviour::kRigidPlastic;
+  b.law.normal = normal.value_or(0);
+  b.law.mu = *mu;
+  b.law.cohesion = c.value_or(0.0);
+  b.law.limits = limits;
+  b.normal_at = tb.has("normal") ? tb.where("normal") : b.at;
+  b.law.circle = circle.value_or(-1);
+  if (circle) b.circle_at = tb.where("circle");
+  return b;
+}
+
+// Rigid while the force of its control has the sign, free otherwise (ntn/slip.hpp).
+std::optional<BehaviourIn> read_fixed_if(Reader& L, Table& tb, BehaviourIn b) {
+  // Rigid while the force of its control (itself by default) has the sign, free otherwise
+  // (ntn/slip.hpp; on its own force a stop at d = 0).
+  const auto sign = tb.choice("fixed_if", Need::kRequired, {"negative", "positive"});
+  const auto control = tb.choice("control", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
+  if (tb.has("dashpot")) {
+    L.error(tb.where("dashpot"), "a fixed_if direction takes no dashpot: it is rigid or free");
+    return std::nullopt;
+  }
+  if (!sign || (!control && tb.has("control"))) return std::nullopt;
+  const int s_ = *sign == 0 ? -1 : 1;
+  b.normal_at = tb.has("control") ? tb.where("control") : b.at;
+  if (control) {
+    b.kind = HingeBehaviour::kRigidPlastic;
+    b.law.fixed_if = s_;
+    b.law.normal = *control;
+  } else {
+    b.kind = HingeBehaviour::kCurve;
+    b.stop = s_;
+  }
+  return b;
+}
+
+// Rigid or a linear spring until its force first passes the limit (ntn/laws/brittle.hpp).
+std::optional<BehaviourIn> read_failure(Reader& L, Table& tb, BehaviourIn b) {
+  // Rigid (or a linear spring) until its force first passes the limit, free from then on
+  // (ntn/laws/brittle.hpp; rigid under ntn_exact: ntn/slip.hpp).
+  const auto fy = tb.positive("failure", Need::kRequired);
+  const auto k = tb.has("linear") ? tb.positive("linear", Need::kRequired) : std::nullopt;
+  if (tb.has("dashpot")) {
+    L.error(tb.where("dashpot"),
+            "a failure direction takes no dashpot: its force must drop "
+            "to zero when it breaks");
+    return std::nullopt;
+  }
+  if (!fy || (!k && tb.has("linear"))) return std::nullopt;
+  b.kind = k ? HingeBehaviour::kPlastic : HingeBehaviour::kRigidPlastic;
+  b.k = k.value_or(0.0);
+  b.law.rule = HysteresisRule::kBrittle;
+  b.law.yield_pos = b.law.yield_neg = *fy;
+  return b;
+}
+
+// Rigid until its force reaches the yield, then sliding at it (ntn/slip.hpp).
+std::optional<BehaviourIn> read_rigid_plastic(Reader& L, Table& tb, const toml::table& t,
+                                              BehaviourIn b) {
+  // Rigid until its force reaches the yield, then sliding at it (ntn/slip.hpp).
+  const auto fy = tb.positive("rigid_plastic", Need::kRequired);
+  const auto fn = tb.positive("yield_negative", Need::kOptional);
+  const auto hard = tb.non_negative("hardening_stiffness", Need::kOptional);
+  std::array<double, 3> limits{};
+  bool ok = fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening_stiffness"));
+  ok = read_limits(L, tb, t, limits) && ok;
+  if (tb.has("dashpot")) {
+    L.error(tb.where("dashpot"),
+            "a rigid_plastic direction takes no dashpot: it is rigid while it sticks");
+    ok = false;
+  }
+  if (!ok) return std::nullopt;
+  b.kind = HingeBehaviour::kRigidPlastic;
+  b.k = hard.value_or(0.0);  // hardening with the slip: a parallel spring (ntn/slip.hpp)
+  b.c = 0;
+  b.law.yield_pos = *fy;
+  b.law.yield_neg = fn.value_or(*fy);
+  b.law.limits = limits;
+  return b;
+}
+
+// Bilinear elasto-plastic with kinematic hardening (ntn/laws/bilinear.hpp).
+std::optional<BehaviourIn> read_plastic(Reader& L, Table& tb, const toml::table& t, BehaviourIn b) {
+  // Bilinear elasto-plastic with kinematic hardening (ntn/hysteresis.hpp).
+  const auto k = tb.positive("plastic", Need::kRequired);
+  const auto fy = tb.positive("yield", Need::kRequired);
+  const auto fn = tb.positive("yield_negative", Need::kOptional);
+  const auto hard = tb.number("hardening", Need::kOptional);
+  const auto c = tb.non_negative("dashpot", Need::kOptional);
+  bool ok = k && fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening")) &&
+            (c || !tb.has("dashpot"));
+  if (hard && !(*hard >= 0 && *hard < 1)) {
+    L.error(tb.where("hardening"),
+            "must be at least 0 and less than 1: the tangent after yield is hardening x k (got " +
+                num(*hard) + ")");
+    ok = false;
+  }
+  std::array<double, 3> limits{};
+  ok = read_limits(L, tb, t, limits) && ok;
+  if (!ok) return std::nullopt;
+  b.law.limits = limits;
+  b.kind = HingeBehaviour::kPlastic;
+  b.k = *k;
+  b.c = c.value_or(0.0);
+  b.law.yield_pos = *fy;
+  b.law.yield_neg = fn.value_or(*fy);
+  b.law.hardening = hard.value_or(0.0);
+  return b;
+}
+
 }  // namespace
 
 // One hinge direction: "rigid", "free", { linear = k, dashpot = c }, { curve = "id" },
@@ -81,194 +287,15 @@ std::optional<BehaviourIn> read_behaviour(Reader& L, const toml::node& n, const 
     kinds.push_back(k);
   Table tb(L, *t, key, keys);
   tb.check_unknown();
-  // The kernel's bound on a law's values (ntn::kLawValueLimit), at the key that breaks it: a
-  // value the kernel would refuse far from its cause ("hinge with a bad node, frame, curve or
-  // stiffness") or overflow with.
-  for (const char* k : {"yield", "yield_negative", "rigid_plastic", "hardening_stiffness",
-                        "friction", "cohesion", "failure", "io", "ls", "cp"}) {
-    const toml::node* v = t->get(k);
-    if (v == nullptr || !(v->is_floating_point() || v->is_integer())) continue;
-    const double x = v->is_integer() ? static_cast<double>(v->as_integer()->get())
-                                     : v->as_floating_point()->get();
-    if (std::isfinite(x) && !ntn::law_value_ok(std::fabs(x))) {
-      L.error(tb.where(k), "must be below " + num(ntn::kLawValueLimit) +
-                               " in magnitude (the kernel's bound on a hinge law's values; got " +
-                               num(x) + ")");
-      return std::nullopt;
-    }
-  }
-  for (std::size_t i = 0; i < kinds.size(); ++i) {
-    for (std::size_t j = i + 1; j < kinds.size(); ++j) {
-      if (kinds[i] == "linear" && kinds[j] == "failure") continue;  // a spring that breaks
-      if (tb.conflict(kinds[i], kinds[j])) return std::nullopt;
-    }
-  }
-  const std::pair<std::string_view, std::string_view> kOnlyWith[] = {
-      {"hardening_stiffness", "rigid_plastic"}, {"control", "fixed_if"}, {"circle", "friction"}};
-  for (const auto& [k, with] : kOnlyWith) {
-    if (tb.has(k) && !tb.has(with)) {
-      L.error(tb.where(k), "only applies with '" + std::string(with) + "'");
-      return std::nullopt;
-    }
-  }
-  for (std::string_view k : {"yield", "hardening"}) {
-    if (tb.has(k) && !tb.has("plastic") && !taken_by_law(tb, k)) {
-      L.error(tb.where(k), "only applies with 'plastic'" + also_with(k));
-      return std::nullopt;
-    }
-  }
-  for (std::string_view k : {"cohesion", "normal"}) {
-    if (tb.has(k) && !tb.has("friction")) {
-      L.error(tb.where(k), "only applies with 'friction'");
-      return std::nullopt;
-    }
-  }
-  if (tb.has("yield_negative") && !tb.has("plastic") && !tb.has("rigid_plastic") &&
-      !taken_by_law(tb, "yield_negative")) {
-    L.error(tb.where("yield_negative"),
-            "only applies with 'plastic' or 'rigid_plastic'" + also_with("yield_negative"));
-    return std::nullopt;
-  }
-  for (const LawReader& r : law_readers()) {
-    for (std::string_view k : r.own) {
-      if (tb.has(k) && !tb.has(r.key)) {
-        L.error(tb.where(k), "only applies with '" + std::string(r.key) + "'");
-        return std::nullopt;
-      }
-    }
-  }
-  bool limits_apply = tb.has("plastic") || tb.has("rigid_plastic") || tb.has("friction");
-  std::string laws;
-  for (const LawReader& r : law_readers()) {
-    limits_apply = limits_apply || tb.has(r.key);
-    laws += ", '" + std::string(r.key) + "'";
-  }
-  for (std::string_view k : {"io", "ls", "cp"}) {
-    if (tb.has(k) && !limits_apply) {
-      L.error(tb.where(k),
-              "only applies with 'plastic'" + laws + ", 'rigid_plastic' or 'friction'");
-      return std::nullopt;
-    }
-  }
+  if (!law_values_ok(L, tb, *t)) return std::nullopt;
+  if (!combination_ok(L, tb, kinds)) return std::nullopt;
   for (const LawReader& r : law_readers())
     if (tb.has(r.key)) return r.read(L, tb, *t, b);
-  if (tb.has("friction")) {
-    // Coulomb friction: rigid while |f| < mu max(0, -N) + cohesion, N the force of direction
-    // `normal` of the same hinge (ntn/slip.hpp).
-    const auto mu = tb.non_negative("friction", Need::kOptional);
-    const auto c = tb.non_negative("cohesion", Need::kOptional);
-    const auto normal = tb.choice("normal", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
-    const auto circle = tb.choice("circle", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
-    std::array<double, 3> limits{};
-    bool ok = mu && (c || !tb.has("cohesion")) && (normal || !tb.has("normal")) &&
-              (circle || !tb.has("circle"));
-    ok = read_limits(L, tb, *t, limits) && ok;
-    if (tb.has("dashpot")) {
-      L.error(tb.where("dashpot"),
-              "a friction direction takes no dashpot: it is rigid while it sticks");
-      ok = false;
-    }
-    if (!ok) return std::nullopt;
-    b.kind = HingeBehaviour::kRigidPlastic;
-    b.law.normal = normal.value_or(0);
-    b.law.mu = *mu;
-    b.law.cohesion = c.value_or(0.0);
-    b.law.limits = limits;
-    b.normal_at = tb.has("normal") ? tb.where("normal") : b.at;
-    b.law.circle = circle.value_or(-1);
-    if (circle) b.circle_at = tb.where("circle");
-    return b;
-  }
-  if (tb.has("fixed_if")) {
-    // Rigid while the force of its control (itself by default) has the sign, free otherwise
-    // (ntn/slip.hpp; on its own force a stop at d = 0).
-    const auto sign = tb.choice("fixed_if", Need::kRequired, {"negative", "positive"});
-    const auto control =
-        tb.choice("control", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
-    if (tb.has("dashpot")) {
-      L.error(tb.where("dashpot"), "a fixed_if direction takes no dashpot: it is rigid or free");
-      return std::nullopt;
-    }
-    if (!sign || (!control && tb.has("control"))) return std::nullopt;
-    const int s_ = *sign == 0 ? -1 : 1;
-    b.normal_at = tb.has("control") ? tb.where("control") : b.at;
-    if (control) {
-      b.kind = HingeBehaviour::kRigidPlastic;
-      b.law.fixed_if = s_;
-      b.law.normal = *control;
-    } else {
-      b.kind = HingeBehaviour::kCurve;
-      b.stop = s_;
-    }
-    return b;
-  }
-  if (tb.has("failure")) {
-    // Rigid (or a linear spring) until its force first passes the limit, free from then on
-    // (ntn/laws/brittle.hpp; rigid under ntn_exact: ntn/slip.hpp).
-    const auto fy = tb.positive("failure", Need::kRequired);
-    const auto k = tb.has("linear") ? tb.positive("linear", Need::kRequired) : std::nullopt;
-    if (tb.has("dashpot")) {
-      L.error(tb.where("dashpot"),
-              "a failure direction takes no dashpot: its force must drop "
-              "to zero when it breaks");
-      return std::nullopt;
-    }
-    if (!fy || (!k && tb.has("linear"))) return std::nullopt;
-    b.kind = k ? HingeBehaviour::kPlastic : HingeBehaviour::kRigidPlastic;
-    b.k = k.value_or(0.0);
-    b.law.rule = HysteresisRule::kBrittle;
-    b.law.yield_pos = b.law.yield_neg = *fy;
-    return b;
-  }
-  if (tb.has("rigid_plastic")) {
-    // Rigid until its force reaches the yield, then sliding at it (ntn/slip.hpp).
-    const auto fy = tb.positive("rigid_plastic", Need::kRequired);
-    const auto fn = tb.positive("yield_negative", Need::kOptional);
-    const auto hard = tb.non_negative("hardening_stiffness", Need::kOptional);
-    std::array<double, 3> limits{};
-    bool ok = fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening_stiffness"));
-    ok = read_limits(L, tb, *t, limits) && ok;
-    if (tb.has("dashpot")) {
-      L.error(tb.where("dashpot"),
-              "a rigid_plastic direction takes no dashpot: it is rigid while it sticks");
-      ok = false;
-    }
-    if (!ok) return std::nullopt;
-    b.kind = HingeBehaviour::kRigidPlastic;
-    b.k = hard.value_or(0.0);  // hardening with the slip: a parallel spring (ntn/slip.hpp)
-    b.c = 0;
-    b.law.yield_pos = *fy;
-    b.law.yield_neg = fn.value_or(*fy);
-    b.law.limits = limits;
-    return b;
-  }
-  if (tb.has("plastic")) {
-    // Bilinear elasto-plastic with kinematic hardening (ntn/hysteresis.hpp).
-    const auto k = tb.positive("plastic", Need::kRequired);
-    const auto fy = tb.positive("yield", Need::kRequired);
-    const auto fn = tb.positive("yield_negative", Need::kOptional);
-    const auto hard = tb.number("hardening", Need::kOptional);
-    const auto c = tb.non_negative("dashpot", Need::kOptional);
-    bool ok = k && fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening")) &&
-              (c || !tb.has("dashpot"));
-    if (hard && !(*hard >= 0 && *hard < 1)) {
-      L.error(tb.where("hardening"),
-              "must be at least 0 and less than 1: the tangent after yield is hardening x k (got " +
-                  num(*hard) + ")");
-      ok = false;
-    }
-    std::array<double, 3> limits{};
-    ok = read_limits(L, tb, *t, limits) && ok;
-    if (!ok) return std::nullopt;
-    b.law.limits = limits;
-    b.kind = HingeBehaviour::kPlastic;
-    b.k = *k;
-    b.c = c.value_or(0.0);
-    b.law.yield_pos = *fy;
-    b.law.yield_neg = fn.value_or(*fy);
-    b.law.hardening = hard.value_or(0.0);
-    return b;
-  }
+  if (tb.has("friction")) return read_friction(L, tb, *t, b);
+  if (tb.has("fixed_if")) return read_fixed_if(L, tb, b);
+  if (tb.has("failure")) return read_failure(L, tb, b);
+  if (tb.has("rigid_plastic")) return read_rigid_plastic(L, tb, *t, b);
+  if (tb.has("plastic")) return read_plastic(L, tb, *t, b);
   if (tb.has("curve")) {
     if (tb.has("dashpot")) {
       L.error(tb.where("dashpot"), "only applies with 'linear'");
