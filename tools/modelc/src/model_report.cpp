@@ -11,8 +11,8 @@
 #include "ntn/beam.hpp"
 #include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
-#include "ntn/modal/assembly.hpp"
 #include "ntn/init.hpp"
+#include "ntn/modal/assembly.hpp"
 #include "ntn/model.hpp"
 #include "ntn/modelc/model_bytes.hpp"
 

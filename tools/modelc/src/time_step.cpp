@@ -26,9 +26,9 @@ void choose_time_step(Compilation& comp) {
   // elastic k is often chosen far stiffer than needed; when it sets the step well below the
   // elements' own (half or less), say so at the direction (a note: the model runs). Without
   // elements there is no such step to compare with (an oscillator on its hinge).
-  if (const StableStepReport& st = d.stable;
-      !d.elements.empty() && st.governing_hinge >= 0 && st.dt_stable > 0 &&
-      st.dt_stable <= 0.5 * st.dt_elements) {
+  if (const StableStepReport& st = d.stable; !d.elements.empty() && st.governing_hinge >= 0 &&
+                                             st.dt_stable > 0 &&
+                                             st.dt_stable <= 0.5 * st.dt_elements) {
     const auto h = static_cast<std::size_t>(st.governing_hinge);
     const auto k = static_cast<std::size_t>(st.hinge_direction);
     if (d.hinges[h].behaviour[k] == HingeBehaviour::kPlastic) {
