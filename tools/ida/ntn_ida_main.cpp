@@ -205,10 +205,8 @@ int prepare_output(const Options& o, const Study& study, std::vector<std::string
   return 0;
 }
 
-int ida(int argc, char** argv, int rank, int size) {
-  Options o;
-  ntn::cli::App app{"Incremental dynamic analysis and fragility of a model over a record suite",
-                    "ntn-ida"};
+// The command line's options, into `o`.
+void add_options(ntn::cli::App& app, Options& o) {
   app.add_option("model", o.model, "the model file (TOML)")->required();
   app.add_option("--records", o.records,
                  "the records: a directory (its .AT2 files) or a list file (one path per line)")
@@ -273,13 +271,11 @@ int ida(int argc, char** argv, int rank, int size) {
   app.add_flag("--resume", o.resume, "continue the study whose runs are in --out");
   app.add_flag("--no-plots", o.no_plots, "no PNG/SVG plots");
   app.add_flag("-q,--quiet", o.quiet, "only the summary");
-  // CLI11 prints its messages on every process: only the first one speaks.
-  if (rank != 0) {
-    app.silence_failures();
-  }
-  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
+}
 
-  ntn::ida::StudyConfig config;
+// The study's configuration from the options, its intensities and its record files. 0 or an
+// exit code (the first process says why).
+int make_config(const Options& o, int rank, ntn::ida::StudyConfig& config) {
   config.model_path = o.model;
   config.input = o.input;
   config.measure = o.im == "pga" ? ntn::ida::Measure::kPga : ntn::ida::Measure::kSaT1;
@@ -305,127 +301,184 @@ int ida(int argc, char** argv, int rank, int size) {
     if (rank == 0) std::fprintf(stderr, "error: %s\n", error.c_str());
     return 2;
   }
-  std::vector<std::string> errors, notes;
-  int code = 0;
-  std::unique_ptr<Study> study = Study::open(config, errors, notes, code);
-  if (!study) {
-    if (rank == 0) {
-      for (const std::string& e : errors)
-        std::fprintf(
-            stderr, "%s%s\n",
-            e.rfind("error", 0) == 0 || e.find(": error") != std::string::npos ? "" : "error: ",
-            e.c_str());
-      std::fprintf(stderr, "ntn-ida: nothing run\n");
-    }
-    return code;
-  }
+  return 0;
+}
 
-  // The output folder and the journal, by the first process; the others wait for its word.
-  int status = rank == 0 ? prepare_output(o, *study, notes) : 0;
+// The model and the records loaded, or null and the exit code (the first process says why).
+std::unique_ptr<Study> open_study(const ntn::ida::StudyConfig& config, int rank,
+                                  std::vector<std::string>& notes, int& code) {
+  std::vector<std::string> errors;
+  std::unique_ptr<Study> study = Study::open(config, errors, notes, code);
+  if (!study && rank == 0) {
+    for (const std::string& e : errors)
+      std::fprintf(
+          stderr, "%s%s\n",
+          e.rfind("error", 0) == 0 || e.find(": error") != std::string::npos ? "" : "error: ",
+          e.c_str());
+    std::fprintf(stderr, "ntn-ida: nothing run\n");
+  }
+  return study;
+}
+
+// The output folder and the journal, by the first process; the others wait for its word.
+int prepare_output_everywhere(const Options& o, const Study& study, std::vector<std::string>& notes,
+                              int rank) {
+  int status = rank == 0 ? prepare_output(o, study, notes) : 0;
 #ifdef NTN_IDA_MPI
   if (g_mpi) MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
 #endif
-  if (status != 0) return status;
-  const fs::path runs_dir = fs::path(o.out) / "runs";
-  std::size_t refused = 0;
-  const std::vector<RunRow> known = read_journal(*study, runs_dir, refused);
-  if (rank == 0 && !o.quiet) {
-    for (const std::string& n : notes)
-      std::printf("note: %s\n", n.c_str());
-    std::printf("ntn-ida: %s, %zu records, %s, %d process%s\n", o.model.c_str(),
-                study->records().size(), study->measure_name().c_str(), size,
-                size == 1 ? "" : "es");
-    if (o.resume)
-      std::printf(
-          "resume: %zu runs done earlier%s\n", known.size(),
-          refused > 0 ? (", " + std::to_string(refused) + " cut lines left out").c_str() : "");
+  return status;
+}
+
+// The first process's opening lines: the notes, the study and what a resume takes over.
+void print_start(const Options& o, const Study& study, const std::vector<std::string>& notes,
+                 std::size_t known, std::size_t refused, int size) {
+  for (const std::string& n : notes)
+    std::printf("note: %s\n", n.c_str());
+  std::printf("ntn-ida: %s, %zu records, %s, %d process%s\n", o.model.c_str(),
+              study.records().size(), study.measure_name().c_str(), size, size == 1 ? "" : "es");
+  if (o.resume)
+    std::printf(
+        "resume: %zu runs done earlier%s\n", known,
+        refused > 0 ? (", " + std::to_string(refused) + " cut lines left out").c_str() : "");
+}
+
+// This process's journal file (one per process and start, never shared). A line that does not
+// fit (a full disk) is cut back off, so the journal holds whole lines only, and the journal is
+// given up: the runs after it are counted as lost to a resume.
+struct Journal {
+  std::string path;
+  std::FILE* file = nullptr;
+  long good = 0;  // the length of its whole lines
+  std::string error;
+  double lost = 0;  // runs not in it
+
+  // Opens it for appending; false (and the message) when it cannot.
+  bool open(const fs::path& runs_dir, int rank) {
+    path = (runs_dir / ("p" + std::to_string(rank) + "-" + std::to_string(::getpid()) + ".runs"))
+               .string();
+    file = std::fopen(path.c_str(), "a");
+    if (file == nullptr) {
+      std::fprintf(stderr, "error: cannot write %s: %s\n", path.c_str(), std::strerror(errno));
+      return false;
+    }
+    good = std::ftell(file);
+    return true;
   }
 
-  // This process's journal file (one per process and start, never shared).
-  const std::string journal_path =
-      (runs_dir / ("p" + std::to_string(rank) + "-" + std::to_string(::getpid()) + ".runs"))
-          .string();
-  std::FILE* journal = std::fopen(journal_path.c_str(), "a");
-  if (journal == nullptr) {
-    std::fprintf(stderr, "error: cannot write %s: %s\n", journal_path.c_str(),
-                 std::strerror(errno));
-#ifdef NTN_IDA_MPI
-    if (g_mpi) MPI_Abort(MPI_COMM_WORLD, 2);
-#endif
-    return 2;
+  void append(const std::string& line) {
+    if (!error.empty()) {
+      ++lost;
+      return;
+    }
+    errno = 0;
+    if (std::fputs(line.c_str(), file) >= 0 && std::fflush(file) == 0) {
+      good += static_cast<long>(line.size());
+      return;
+    }
+    error = std::strerror(errno != 0 ? errno : EIO);
+    ++lost;
+    if (::ftruncate(::fileno(file), good) != 0) error += "; a cut line is left";
   }
 
-  // The records, longest first (the longest runs start early: less time waiting at the end).
-  const auto& records = study->records();
+  // Closes it and says which of this process's `new_runs` runs it lost.
+  void close(std::size_t new_runs) {
+    if (std::fclose(file) != 0 && error.empty()) {
+      error = std::strerror(errno != 0 ? errno : EIO);
+      lost = static_cast<double>(new_runs);  // what the close could not write is unknown
+    }
+    if (!error.empty()) {
+      std::fprintf(stderr,
+                   "error: %s: %.0f of this process's %zu runs are not in the journal (%s): "
+                   "--resume would make them again\n",
+                   path.c_str(), lost, new_runs, error.c_str());
+    }
+  }
+};
+
+// The records, longest first (the longest runs start early: less time waiting at the end).
+std::vector<std::size_t> longest_first(const Study& study) {
+  const auto& records = study.records();
   std::vector<std::size_t> order(records.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return records[a].record.duration() > records[b].record.duration();
   });
+  return order;
+}
 
+// The next task of any process: an atomic counter in an MPI window on the first process under
+// mpirun, a local one alone.
+class TaskCounter {
+ public:
+  explicit TaskCounter([[maybe_unused]] int rank) {
 #ifdef NTN_IDA_MPI
-  std::int64_t* counter = nullptr;
-  MPI_Win window = MPI_WIN_NULL;
-  if (g_mpi) {
-    MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
-                     sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter, &window);
-    if (rank == 0) {
-      MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
-      *counter = 0;
-      MPI_Win_unlock(0, window);
+    if (g_mpi) {
+      MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
+                       sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter_, &window_);
+      if (rank == 0) {
+        MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window_);
+        *counter_ = 0;
+        MPI_Win_unlock(0, window_);
+      }
+      MPI_Barrier(MPI_COMM_WORLD);
     }
-    MPI_Barrier(MPI_COMM_WORLD);
-  }
 #endif
-  std::int64_t next_local = 0;
-  const auto next_task = [&]() -> std::int64_t {
+  }
+
+  std::int64_t next() {
 #ifdef NTN_IDA_MPI
     if (g_mpi) {
       const std::int64_t one = 1;
       std::int64_t task = 0;
-      MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
-      MPI_Fetch_and_op(&one, &task, MPI_INT64_T, 0, 0, MPI_SUM, window);
-      MPI_Win_unlock(0, window);
+      MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window_);
+      MPI_Fetch_and_op(&one, &task, MPI_INT64_T, 0, 0, MPI_SUM, window_);
+      MPI_Win_unlock(0, window_);
       return task;
     }
 #endif
-    return next_local++;
-  };
+    return next_local_++;
+  }
 
-  // A line that does not fit (a full disk) is cut back off, so the journal holds whole lines
-  // only, and the journal is given up: the runs after it are counted as lost to a resume.
-  long journal_good = std::ftell(journal);
-  std::string journal_error;
-  double journal_lost = 0;
-  const auto journal_append = [&](const std::string& line) {
-    if (!journal_error.empty()) {
-      ++journal_lost;
-      return;
-    }
-    errno = 0;
-    if (std::fputs(line.c_str(), journal) >= 0 && std::fflush(journal) == 0) {
-      journal_good += static_cast<long>(line.size());
-      return;
-    }
-    journal_error = std::strerror(errno != 0 ? errno : EIO);
-    ++journal_lost;
-    if (::ftruncate(::fileno(journal), journal_good) != 0) journal_error += "; a cut line is left";
-  };
+  // The window freed (after the gathers: every process has taken its last task).
+  void release() {
+#ifdef NTN_IDA_MPI
+    if (g_mpi) MPI_Win_free(&window_);
+#endif
+  }
 
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<RunRow> mine;
-  double busy = 0;
+ private:
+  std::int64_t next_local_ = 0;
+#ifdef NTN_IDA_MPI
+  std::int64_t* counter_ = nullptr;
+  MPI_Win window_ = MPI_WIN_NULL;
+#endif
+};
+
+// What one process ran: its rows, and its new runs and their time.
+struct ProcessRuns {
+  std::vector<RunRow> rows;
+  double busy = 0;  // s
   std::size_t new_runs = 0;
-  for (std::int64_t task = next_task(); task < static_cast<std::int64_t>(order.size());
-       task = next_task()) {
+};
+
+// This process's records, taken from the counter until none is left: each traced, its new runs
+// journaled as they end, a line per record unless quiet.
+ProcessRuns run_records(const Options& o, Study& study, const std::vector<RunRow>& known,
+                        const std::vector<std::size_t>& order, TaskCounter& tasks, Journal& journal,
+                        int rank) {
+  const auto& records = study.records();
+  ProcessRuns mine;
+  for (std::int64_t task = tasks.next(); task < static_cast<std::int64_t>(order.size());
+       task = tasks.next()) {
     const std::size_t r = order[static_cast<std::size_t>(task)];
-    const auto traced = study->trace(r, known, [&](const RunRow& row) {
-      journal_append(journal_line(study->csv_row(row)));
-      busy += row.seconds;
-      ++new_runs;
+    const auto traced = study.trace(r, known, [&](const RunRow& row) {
+      journal.append(journal_line(study.csv_row(row)));
+      mine.busy += row.seconds;
+      ++mine.new_runs;
     });
     if (!o.quiet) {
-      const auto cap = ntn::ida::capacities(*study, traced);
+      const auto cap = ntn::ida::capacities(study, traced);
       std::string c = "no collapse";
       // capacities() indexes by record: this record's entry.
       if (cap[r].collapse.im) c = "collapses from " + ntn::cli::num(*cap[r].collapse.im) + " g";
@@ -433,30 +486,29 @@ int ida(int argc, char** argv, int rank, int size) {
                   c.c_str());
       std::fflush(stdout);
     }
-    mine.insert(mine.end(), traced.begin(), traced.end());
+    mine.rows.insert(mine.rows.end(), traced.begin(), traced.end());
   }
-  if (std::fclose(journal) != 0 && journal_error.empty()) {
-    journal_error = std::strerror(errno != 0 ? errno : EIO);
-    journal_lost = static_cast<double>(new_runs);  // what the close could not write is unknown
-  }
-  if (!journal_error.empty()) {
-    std::fprintf(stderr,
-                 "error: %s: %.0f of this process's %zu runs are not in the journal (%s): "
-                 "--resume would make them again\n",
-                 journal_path.c_str(), journal_lost, new_runs, journal_error.c_str());
-  }
+  return mine;
+}
 
-  // Every process's rows to the first one, as text.
+// Every process's rows (as text), runs, time and lost runs, on the first process.
+struct Gathered {
   std::string text;
-  for (const RunRow& row : mine)
-    text += study->csv_row(row) + "\n";
-  std::vector<RunRow> all;
-  std::vector<double> busy_of(static_cast<std::size_t>(size), busy);
-  std::vector<double> runs_of(static_cast<std::size_t>(size), static_cast<double>(new_runs));
-  std::vector<double> lost_of(static_cast<std::size_t>(size), journal_lost);
+  std::vector<double> busy_of, runs_of, lost_of;
+};
+
+Gathered gather(const Study& study, const ProcessRuns& mine, double journal_lost,
+                [[maybe_unused]] int rank, int size) {
+  Gathered g;
+  for (const RunRow& row : mine.rows)
+    g.text += study.csv_row(row) + "\n";
+  const double busy = mine.busy;
+  g.busy_of.assign(static_cast<std::size_t>(size), busy);
+  g.runs_of.assign(static_cast<std::size_t>(size), static_cast<double>(mine.new_runs));
+  g.lost_of.assign(static_cast<std::size_t>(size), journal_lost);
 #ifdef NTN_IDA_MPI
   if (g_mpi) {
-    const int length = static_cast<int>(text.size());
+    const int length = static_cast<int>(g.text.size());
     std::vector<int> lengths(static_cast<std::size_t>(size)),
         offsets(static_cast<std::size_t>(size));
     MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -466,44 +518,59 @@ int ida(int argc, char** argv, int rank, int size) {
         offsets[k] = offsets[k - 1] + lengths[k - 1];
       gathered.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
     }
-    MPI_Gatherv(text.data(), length, MPI_CHAR, gathered.data(), lengths.data(), offsets.data(),
+    MPI_Gatherv(g.text.data(), length, MPI_CHAR, gathered.data(), lengths.data(), offsets.data(),
                 MPI_CHAR, 0, MPI_COMM_WORLD);
-    MPI_Gather(&busy, 1, MPI_DOUBLE, busy_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    const double my_runs = static_cast<double>(new_runs);
-    MPI_Gather(&my_runs, 1, MPI_DOUBLE, runs_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    MPI_Gather(&journal_lost, 1, MPI_DOUBLE, lost_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    MPI_Win_free(&window);
-    text = std::move(gathered);
+    MPI_Gather(&busy, 1, MPI_DOUBLE, g.busy_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    const double my_runs = static_cast<double>(mine.new_runs);
+    MPI_Gather(&my_runs, 1, MPI_DOUBLE, g.runs_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    MPI_Gather(&journal_lost, 1, MPI_DOUBLE, g.lost_of.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    g.text = std::move(gathered);
   }
 #endif
-  // The study's time: after the gathers, so every process has finished its records.
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (rank != 0) return 0;
+  return g;
+}
+
+// The rows of the gathered text.
+std::vector<RunRow> parse_rows(const Study& study, const std::string& text) {
+  std::vector<RunRow> all;
   std::stringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
-    if (auto row = study->parse_row(line)) all.push_back(*row);
+    if (auto row = study.parse_row(line)) all.push_back(*row);
   }
+  return all;
+}
 
-  std::vector<std::string> out_notes;
-  const ntn::ida::Written written =
-      ntn::ida::write_results(*study, all, o.out, !o.no_plots, out_notes);
-  for (const std::string& n : out_notes)
-    std::printf("note: %s\n", n.c_str());
-  std::printf("%s", ntn::ida::summary_text(*study, all).c_str());
+// The study's time and each process's runs and time; the total of the lost runs.
+double print_times(const Gathered& g, double wall, int size) {
   double total_runs = 0, total_lost = 0;
   std::string per_process;
-  for (std::size_t k = 0; k < busy_of.size(); ++k) {
-    total_runs += runs_of[k];
-    total_lost += lost_of[k];
+  for (std::size_t k = 0; k < g.busy_of.size(); ++k) {
+    total_runs += g.runs_of[k];
+    total_lost += g.lost_of[k];
     char part[64];
-    std::snprintf(part, sizeof part, "%s p%zu %.0f runs %.1f s", k == 0 ? "" : ",", k, runs_of[k],
-                  busy_of[k]);
+    std::snprintf(part, sizeof part, "%s p%zu %.0f runs %.1f s", k == 0 ? "" : ",", k, g.runs_of[k],
+                  g.busy_of[k]);
     per_process += part;
   }
   std::printf(
       "time %.1f s, %.0f new runs, %.2f runs/s on %d process%s (runs and their time per "
       "process:%s)\n",
       wall, total_runs, total_runs / wall, size, size == 1 ? "" : "es", per_process.c_str());
+  return total_lost;
+}
+
+// The first process's end: the result files and plots, the summary, the times, what was
+// written and lost. The exit code: 2 when a result (a file or journal lines) is lost, 3 when the
+// results are whole but a plot is not.
+int write_and_report(const Options& o, const Study& study, const std::vector<RunRow>& all,
+                     const Gathered& g, double wall, int size) {
+  std::vector<std::string> out_notes;
+  const ntn::ida::Written written =
+      ntn::ida::write_results(study, all, o.out, !o.no_plots, out_notes);
+  for (const std::string& n : out_notes)
+    std::printf("note: %s\n", n.c_str());
+  std::printf("%s", ntn::ida::summary_text(study, all).c_str());
+  const double total_lost = print_times(g, wall, size);
   std::string files;
   for (const std::string& f : written.files)
     files += (files.empty() ? "" : ", ") + f;
@@ -514,9 +581,53 @@ int ida(int argc, char** argv, int rank, int size) {
     std::fprintf(stderr, "error: %s\n", p.c_str());
   if (total_lost > 0 && size > 1)
     std::fprintf(stderr, "error: %.0f runs are not in the journal (see above)\n", total_lost);
-  // 2: a result (a file or journal lines) is lost; 3: the results are whole, a plot is not.
   if (!written.lost.empty() || total_lost > 0) return 2;
   return written.plots_lost.empty() ? 0 : 3;
+}
+
+int ida(int argc, char** argv, int rank, int size) {
+  Options o;
+  ntn::cli::App app{"Incremental dynamic analysis and fragility of a model over a record suite",
+                    "ntn-ida"};
+  add_options(app, o);
+  // CLI11 prints its messages on every process: only the first one speaks.
+  if (rank != 0) {
+    app.silence_failures();
+  }
+  if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
+
+  ntn::ida::StudyConfig config;
+  if (const int code = make_config(o, rank, config); code != 0) return code;
+  std::vector<std::string> notes;
+  int code = 0;
+  std::unique_ptr<Study> study = open_study(config, rank, notes, code);
+  if (!study) return code;
+  if (const int status = prepare_output_everywhere(o, *study, notes, rank); status != 0)
+    return status;
+
+  const fs::path runs_dir = fs::path(o.out) / "runs";
+  std::size_t refused = 0;
+  const std::vector<RunRow> known = read_journal(*study, runs_dir, refused);
+  if (rank == 0 && !o.quiet) print_start(o, *study, notes, known.size(), refused, size);
+  Journal journal;
+  if (!journal.open(runs_dir, rank)) {
+#ifdef NTN_IDA_MPI
+    if (g_mpi) MPI_Abort(MPI_COMM_WORLD, 2);
+#endif
+    return 2;
+  }
+
+  const std::vector<std::size_t> order = longest_first(*study);
+  TaskCounter tasks(rank);
+  const auto t0 = std::chrono::steady_clock::now();
+  const ProcessRuns mine = run_records(o, *study, known, order, tasks, journal, rank);
+  journal.close(mine.new_runs);
+  const Gathered g = gather(*study, mine, journal.lost, rank, size);
+  tasks.release();
+  // The study's time: after the gathers, so every process has finished its records.
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (rank != 0) return 0;
+  return write_and_report(o, *study, parse_rows(*study, g.text), g, wall, size);
 }
 
 }  // namespace
