@@ -125,11 +125,7 @@ std::optional<BehaviourIn> read_friction(Reader& L, Table& tb, const toml::table
   bool ok = mu && (c || !tb.has("cohesion")) && (normal || !tb.has("normal")) &&
             (circle || !tb.has("circle"));
   ok = read_limits(L, tb, t, limits) && ok;
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"),
-            "a friction direction takes no dashpot: it is rigid while it sticks");
-    ok = false;
-  }
+  ok = no_dashpot(L, tb, "a friction", "it is rigid while it sticks") && ok;
   if (!ok) return std::nullopt;
   b.kind = HingeBehaviour::kRigidPlastic;
   b.law.normal = normal.value_or(0);
@@ -148,10 +144,7 @@ std::optional<BehaviourIn> read_fixed_if(Reader& L, Table& tb, BehaviourIn b) {
   // (ntn/slip.hpp; on its own force a stop at d = 0).
   const auto sign = tb.choice("fixed_if", Need::kRequired, {"negative", "positive"});
   const auto control = tb.choice("control", Need::kOptional, {"ux", "uy", "uz", "rx", "ry", "rz"});
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"), "a fixed_if direction takes no dashpot: it is rigid or free");
-    return std::nullopt;
-  }
+  if (!no_dashpot(L, tb, "a fixed_if", "it is rigid or free")) return std::nullopt;
   if (!sign || (!control && tb.has("control"))) return std::nullopt;
   const int s_ = *sign == 0 ? -1 : 1;
   b.normal_at = tb.has("control") ? tb.where("control") : b.at;
@@ -172,12 +165,8 @@ std::optional<BehaviourIn> read_failure(Reader& L, Table& tb, BehaviourIn b) {
   // (ntn/laws/brittle.hpp; rigid under ntn_exact: ntn/slip.hpp).
   const auto fy = tb.positive("failure", Need::kRequired);
   const auto k = tb.has("linear") ? tb.positive("linear", Need::kRequired) : std::nullopt;
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"),
-            "a failure direction takes no dashpot: its force must drop "
-            "to zero when it breaks");
+  if (!no_dashpot(L, tb, "a failure", "its force must drop to zero when it breaks"))
     return std::nullopt;
-  }
   if (!fy || (!k && tb.has("linear"))) return std::nullopt;
   b.kind = k ? HingeBehaviour::kPlastic : HingeBehaviour::kRigidPlastic;
   b.k = k.value_or(0.0);
@@ -196,11 +185,7 @@ std::optional<BehaviourIn> read_rigid_plastic(Reader& L, Table& tb, const toml::
   std::array<double, 3> limits{};
   bool ok = fy && (fn || !tb.has("yield_negative")) && (hard || !tb.has("hardening_stiffness"));
   ok = read_limits(L, tb, t, limits) && ok;
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"),
-            "a rigid_plastic direction takes no dashpot: it is rigid while it sticks");
-    ok = false;
-  }
+  ok = no_dashpot(L, tb, "a rigid_plastic", "it is rigid while it sticks") && ok;
   if (!ok) return std::nullopt;
   b.kind = HingeBehaviour::kRigidPlastic;
   b.k = hard.value_or(0.0);  // hardening with the slip: a parallel spring (ntn/slip.hpp)

@@ -107,12 +107,9 @@ std::optional<BehaviourIn> read_backbone(Reader& L, Table& tb, const toml::table
   const auto rule = tb.choice("rule", Need::kRequired, {"kinematic", "peak_oriented"});
   std::array<double, 3> limits{};
   bool ok = read_limits(L, tb, t, limits) && pos && rule && (neg || !tb.has("backbone_negative"));
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"),
-            "a backbone direction takes no dashpot: its force must be able to drop to zero "
-            "(damp the frame with [model.damping])");
-    ok = false;
-  }
+  ok = no_dashpot(L, tb, "a backbone",
+                  "its force must be able to drop to zero (damp the frame with [model.damping])") &&
+       ok;
   if (!pos) return std::nullopt;
   const double k = (*pos)[0].d > 0 ? (*pos)[0].force / (*pos)[0].d : 0.0;
   std::array<CurvePoint, 4> neg_points = neg.value_or(*pos);

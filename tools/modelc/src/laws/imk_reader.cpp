@@ -102,12 +102,9 @@ std::pair<std::string_view, std::string> imk_fault(const HysteresisSpec& s, doub
 
 std::optional<BehaviourIn> read_imk(Reader& L, Table& tb, const toml::table& t, BehaviourIn b) {
   namespace P = imk;
-  if (tb.has("dashpot")) {
-    L.error(tb.where("dashpot"),
-            "an imk direction takes no dashpot: its force must be able to drop to zero "
-            "(damp the frame with [model.damping])");
+  if (!no_dashpot(L, tb, "an imk",
+                  "its force must be able to drop to zero (damp the frame with [model.damping])"))
     return std::nullopt;
-  }
   const auto k = tb.positive("imk", Need::kRequired);
   const auto fy = tb.positive("yield", Need::kRequired);
   const auto fn = tb.positive("yield_negative", Need::kOptional);

@@ -31,6 +31,10 @@ std::span<const LawReader> law_readers();
 // io <= ls <= cp. False (reported) when they are not.
 bool read_limits(Reader& L, Table& tb, const toml::table& t, std::array<double, 3>& limits);
 
+// A direction of this kind ("a friction direction") takes no dashpot, for `why`: false
+// (reported at the dashpot) when it has one.
+bool no_dashpot(Reader& L, Table& tb, std::string_view what, std::string_view why);
+
 // The readers (one file each).
 std::optional<BehaviourIn> read_backbone(Reader& L, Table& tb, const toml::table& t, BehaviourIn b);
 std::optional<BehaviourIn> read_imk(Reader& L, Table& tb, const toml::table& t, BehaviourIn b);

@@ -20,6 +20,13 @@ std::span<const LawReader> law_readers() {
   return kReaders;
 }
 
+bool no_dashpot(Reader& L, Table& tb, std::string_view what, std::string_view why) {
+  if (!tb.has("dashpot")) return true;
+  L.error(tb.where("dashpot"),
+          std::string(what) + " direction takes no dashpot: " + std::string(why));
+  return false;
+}
+
 // Acceptance criteria io, ls, cp on the peak plastic deformation: all three or none,
 // io <= ls <= cp. False (reported) when they are not.
 bool read_limits(Reader& L, Table& tb, const toml::table& t, std::array<double, 3>& limits) {
