@@ -23,10 +23,16 @@
 // Cyclic deterioration (Ibarra et al. 2005, eq. 3-7): an excursion ends when the force changes
 // sign; with E_i the energy it dissipated and sum E_j the energy dissipated so far (this one
 // included), beta_i = (E_i / (E_t - sum E_j))^c (1 when E_t - sum E_j <= E_i: the capacity is
-// spent, and the direction breaks). Then in both senses, with D the sense's rate:
+// spent, and the direction breaks). Then in the sense the new excursion loads (the force's new
+// sign), with D that sense's rate:
 //   F_y,i = (1 - D beta_s) F_y,i-1 and K_s,i = (1 - D beta_s) K_s,i-1  (basic strength)
 //   the post-capping line's intercept at d = 0, (1 - D beta_c) of its last  (post-capping)
+// and, shared by both senses,
 //   K_u,i = (1 - beta_k) K_u,i-1                                          (unloading stiffness)
+// Deteriorating the loaded sense only is what OpenSees' IMKBilin does and what Lignos and
+// Krawinkler's calibrated Lambda assume: under a symmetric protocol each sense loses strength
+// once per cycle. (IMKBilin deteriorates K_u at every reversal of d against 2 E_t; here it is
+// once per excursion against E_t.)
 // A force on a bound of slope s at or above K_u would not be reached by the elastic line; every
 // slope here is below k, and K_s and K_u deteriorate alike when Lambda_s = Lambda_k.
 // The force is k (d - d_p) like every law's (law.hpp): d_p = d - f / k, and the plastic work
@@ -267,11 +273,10 @@ struct Imk {
                            h.p[P::kExponentOf + j]);
         if (beta[j] >= 1.0) return fail(k, d, dp, dissipated, peak, x);  // capacity spent
       }
-      for (std::size_t i = 0; i < 2; ++i) {
-        const double rate = h.p[P::kRateOf + i];
-        x[P::kLostStrength + i] = 1.0 - (1.0 - rate * beta[0]) * (1.0 - x[P::kLostStrength + i]);
-        x[P::kLostCapping + i] = 1.0 - (1.0 - rate * beta[1]) * (1.0 - x[P::kLostCapping + i]);
-      }
+      const std::size_t i = sign > 0 ? 0 : 1;  // the sense the next excursion loads
+      const double rate = h.p[P::kRateOf + i];
+      x[P::kLostStrength + i] = 1.0 - (1.0 - rate * beta[0]) * (1.0 - x[P::kLostStrength + i]);
+      x[P::kLostCapping + i] = 1.0 - (1.0 - rate * beta[1]) * (1.0 - x[P::kLostCapping + i]);
       x[P::kLostUnloading] = 1.0 - (1.0 - beta[2]) * (1.0 - x[P::kLostUnloading]);
     }
     return false;
