@@ -730,6 +730,10 @@ int dump_state(const char* path) {
   ok &= dump_one<Joints::kMixed, Variant::kExact>(f);
   ok &= dump_one<Joints::kMixed, Variant::kPaper>(f);
   ok &= dump_one<Joints::kMixed, Variant::kPenalty>(f);
+  ok &= dump_one<Joints::kSemiRigid, Variant::kExact>(f);
+  ok &= dump_one<Joints::kPlastic, Variant::kExact>(f);
+  ok &= dump_one<Joints::kRigidPlastic, Variant::kExact>(f);
+  ok &= dump_one<Joints::kRigidPlastic, Variant::kPenalty>(f);
   ok &= std::fclose(f) == 0;
   return ok ? 0 : 1;
 }
