@@ -59,6 +59,205 @@ double drift_at(const std::vector<const RunRow*>& rows, double im) {
   return collapse ? kInf : std::numeric_limits<double>::quiet_NaN();
 }
 
+namespace pl = ntn::plot;
+
+// results.csv: the header and one line per run.
+std::string results_text(const Study& study, const std::vector<RunRow>& sorted) {
+  std::string text = study.csv_header() + "\n";
+  for (const RunRow& row : sorted)
+    text += study.csv_row(row) + "\n";
+  return text;
+}
+
+// capacities.csv: per record its intensity measures, the intensity at which it reached each limit
+// state (empty: never), its highest intensity and whether it was traced to the end.
+std::string capacities_text(const Study& study, const std::vector<RecordCapacities>& caps) {
+  const auto& records = study.records();
+  std::string text = "record,im_record[g],pga[g],io[g],ls[g],cp[g],collapse[g],highest[g],traced\n";
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    const RecordCapacities& c = caps[r];
+    text += records[r].name + "," + number(records[r].im) + "," + number(records[r].pga);
+    for (const LimitState s : kLimitStates) {
+      const Capacity& k = c.of(s);
+      text += "," + (k.im ? number(*k.im) : std::string());
+    }
+    text += "," + number(c.collapse.highest) + "," + (c.traced ? "1" : "0") + "\n";
+  }
+  return text;
+}
+
+// fragility.csv: per limit state its fit, or the note that says why there is none (a carriage
+// return in a note written as a space).
+std::string fragility_text(const std::vector<Fragility>& fr) {
+  std::string text = "limit_state,median[g],beta,observed,censored,note\n";
+  for (const Fragility& f : fr) {
+    text += std::string(limit_state_name(f.state)) + ",";
+    if (f.fit.ok()) {
+      text += number(f.fit.median) + "," + number(f.fit.beta);
+    } else {
+      text += ",";
+    }
+    text += "," + std::to_string(f.fit.observed) + "," + std::to_string(f.fit.censored) + "," +
+            (f.fit.ok() ? std::string() : f.fit.error) + "\n";
+  }
+  for (char& c : text)
+    if (c == '\r') c = ' ';
+  return text;
+}
+
+// Each record's IDA curve in `p`: from (0, 0) through the runs that stood, then flat out to the
+// drift limit (%) at its collapse. The records' rows, by intensity.
+std::vector<std::vector<const RunRow*>> add_record_curves(pl::Panel& p,
+                                                          const std::vector<RunRow>& sorted,
+                                                          std::size_t records, double limit) {
+  std::vector<std::vector<const RunRow*>> by_record;
+  for (std::size_t r = 0; r < records; ++r) {
+    by_record.push_back(rows_of(sorted, r));
+    pl::Series s;
+    s.x.push_back(0), s.y.push_back(0);
+    for (const RunRow* row : by_record.back()) {
+      if (row->error()) continue;
+      if (row->collapse) {  // the flatline, out to the drift limit
+        s.x.push_back(limit), s.y.push_back(s.y.back());
+        break;
+      }
+      s.x.push_back(100 * row->peak_drift), s.y.push_back(row->im);
+    }
+    s.colour = "#a8a8a8", s.width = 1.0;
+    if (r == 0) s.name = "records";
+    if (s.x.size() > 1) p.series.push_back(std::move(s));
+  }
+  return by_record;
+}
+
+// The 16/50/84 % fractiles of drift given the intensity (collapse: infinite drift) in `p`, up to
+// the lowest intensity some record did not reach without collapsing; `top`: the highest
+// intensity run.
+void add_fractile_curves(pl::Panel& p, const std::vector<std::vector<const RunRow*>>& by_record,
+                         double top, double limit) {
+  const double fractiles[3] = {0.16, 0.50, 0.84};
+  const char* const colours[3] = {"#1f77b4", "#000000", "#d62728"};
+  for (int j = 0; j < 3; ++j) {
+    const double q = fractiles[j];
+    pl::Series s;
+    s.name = short_number(100 * q) + " % (drift given the intensity)";
+    s.colour = colours[j], s.width = 2.5;
+    for (int k = 0; k <= 60; ++k) {
+      const double im = top * k / 60.0;
+      std::vector<double> d;
+      bool known = true;
+      for (const auto& rr : by_record) {
+        const double v = drift_at(rr, im);
+        if (std::isnan(v)) known = false;
+        d.push_back(v);
+      }
+      if (!known) break;
+      const double f = fractile(d, q);
+      if (!std::isfinite(f) || 100 * f > 1.1 * limit) break;
+      s.x.push_back(100 * f), s.y.push_back(im);
+    }
+    if (s.x.size() > 1) p.series.push_back(std::move(s));
+  }
+}
+
+// The IDA figure: the records' curves and their fractiles, peak storey drift against intensity.
+pl::Figure ida_figure(const Study& study, const std::vector<RunRow>& sorted, double top,
+                      const std::string& im_label) {
+  const std::size_t records = study.records().size();
+  pl::Figure fig;
+  fig.title = "IDA curves: " + std::to_string(records) + " records";
+  fig.height = 700;
+  pl::Panel& p = fig.panels.emplace_back();
+  p.x_label = "peak storey drift [%]";
+  p.y_label = im_label;
+  const double limit = 100 * study.config().collapse_drift;
+  p.x_range = {0.0, 1.1 * limit};
+  p.y_range.min = 0.0;
+  add_fractile_curves(p, add_record_curves(p, sorted, records, limit), top, limit);
+  return fig;
+}
+
+// The records' capacities for limit state s as an empirical curve up to 1.2 `top` (censored
+// records never step up).
+pl::Series empirical_curve(LimitState s, const std::vector<RecordCapacities>& caps, double top) {
+  std::vector<double> seen;
+  for (const RecordCapacities& c : caps)
+    if (c.traced && c.of(s).im) seen.push_back(*c.of(s).im);
+  std::sort(seen.begin(), seen.end());
+  std::size_t traced = 0;
+  for (const RecordCapacities& c : caps)
+    traced += c.traced ? 1 : 0;
+  pl::Series e;
+  e.name = std::string(limit_state_name(s)) + ": records";
+  e.x.push_back(0), e.y.push_back(0);
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    e.x.push_back(seen[k]), e.y.push_back(static_cast<double>(k) / static_cast<double>(traced));
+    e.x.push_back(seen[k]), e.y.push_back(static_cast<double>(k + 1) / static_cast<double>(traced));
+  }
+  e.x.push_back(1.2 * top), e.y.push_back(e.y.back());
+  return e;
+}
+
+// The fragility figure: each fitted limit state's lognormal curve up to 1.2 `top` and the
+// records' capacities beside it.
+pl::Figure fragility_figure(const std::vector<Fragility>& fr,
+                            const std::vector<RecordCapacities>& caps, double top,
+                            const std::string& im_label) {
+  pl::Figure fig;
+  fig.title = "Fragility curves (lognormal, maximum likelihood)";
+  fig.height = 600;
+  pl::Panel& p = fig.panels.emplace_back();
+  p.x_label = im_label;
+  p.y_label = "probability of exceedance";
+  p.y_range = {0.0, 1.0};
+  for (const Fragility& f : fr) {
+    if (!f.fit.ok()) continue;
+    pl::Series s;
+    s.name = std::string(limit_state_name(f.state)) + ": median " + short_number(f.fit.median) +
+             " g, beta " + short_number(f.fit.beta);
+    for (int k = 0; k <= 200; ++k) {
+      const double im = 1.2 * top * k / 200.0;
+      s.x.push_back(im), s.y.push_back(lognormal_cdf(im, f.fit.median, f.fit.beta));
+    }
+    p.series.push_back(std::move(s));
+    p.series.push_back(empirical_curve(f.state, caps, top));
+  }
+  return fig;
+}
+
+// The plots DIR/ida (with drifts) and DIR/fragility (with a fit): their files into `w`,
+// gnuplot's warnings and a plot with nothing to draw into `notes`, a plot error into
+// w.plots_lost.
+void draw_plots(const Study& study, const std::vector<RunRow>& sorted,
+                const std::vector<RecordCapacities>& caps, const std::vector<Fragility>& fr,
+                const std::string& dir, Written& w, std::vector<std::string>& notes) {
+  namespace fs = std::filesystem;
+  double top = 0;
+  for (const RunRow& row : sorted)
+    if (!row.error()) top = std::max(top, row.im);
+  const std::string im_label = study.measure_name() + " [g]";
+  try {
+    if (study.has_drifts()) {
+      const pl::Figure fig = ida_figure(study, sorted, top, im_label);
+      const pl::Rendered out = pl::render(fig, (fs::path(dir) / "ida").string());
+      for (const std::string& n : out.warnings)
+        notes.push_back("ida plot: " + n);
+      w.files.push_back(out.png), w.files.push_back(out.svg);
+    }
+    const pl::Figure fig = fragility_figure(fr, caps, top, im_label);
+    if (!fig.panels.front().series.empty()) {
+      const pl::Rendered out = pl::render(fig, (fs::path(dir) / "fragility").string());
+      for (const std::string& n : out.warnings)
+        notes.push_back("fragility plot: " + n);
+      w.files.push_back(out.png), w.files.push_back(out.svg);
+    } else {
+      notes.push_back("no fragility curve to plot: no limit state was fitted");
+    }
+  } catch (const pl::Error& e) {
+    w.plots_lost.push_back(std::string("plots not made: ") + e.what());
+  }
+}
+
 }  // namespace
 
 const char* limit_state_name(LimitState s) {
@@ -167,43 +366,13 @@ Written write_results(const Study& study, const std::vector<RunRow>& rows, const
       w.files.push_back(path(name));
     }
   };
-  const auto& records = study.records();
   std::vector<RunRow> sorted = rows;
   sort_rows(sorted);
-
-  std::string text = study.csv_header() + "\n";
-  for (const RunRow& row : sorted)
-    text += study.csv_row(row) + "\n";
-  write("results.csv", text);
-
+  write("results.csv", results_text(study, sorted));
   const std::vector<RecordCapacities> caps = capacities(study, sorted);
-  text = "record,im_record[g],pga[g],io[g],ls[g],cp[g],collapse[g],highest[g],traced\n";
-  for (std::size_t r = 0; r < records.size(); ++r) {
-    const RecordCapacities& c = caps[r];
-    text += records[r].name + "," + number(records[r].im) + "," + number(records[r].pga);
-    for (const LimitState s : kLimitStates) {
-      const Capacity& k = c.of(s);
-      text += "," + (k.im ? number(*k.im) : std::string());
-    }
-    text += "," + number(c.collapse.highest) + "," + (c.traced ? "1" : "0") + "\n";
-  }
-  write("capacities.csv", text);
-
+  write("capacities.csv", capacities_text(study, caps));
   const std::vector<Fragility> fr = fragilities(caps);
-  text = "limit_state,median[g],beta,observed,censored,note\n";
-  for (const Fragility& f : fr) {
-    text += std::string(limit_state_name(f.state)) + ",";
-    if (f.fit.ok()) {
-      text += number(f.fit.median) + "," + number(f.fit.beta);
-    } else {
-      text += ",";
-    }
-    text += "," + std::to_string(f.fit.observed) + "," + std::to_string(f.fit.censored) + "," +
-            (f.fit.ok() ? std::string() : f.fit.error) + "\n";
-  }
-  for (char& c : text)
-    if (c == '\r') c = ' ';
-  write("fragility.csv", text);
+  write("fragility.csv", fragility_text(fr));
 
   if (!plots) return w;
   if (!w.lost.empty()) {
@@ -211,116 +380,7 @@ Written write_results(const Study& study, const std::vector<RunRow>& rows, const
         "plots not made: the result files they are drawn from are not all written");
     return w;
   }
-  namespace pl = ntn::plot;
-  double top = 0;
-  for (const RunRow& row : sorted)
-    if (!row.error()) top = std::max(top, row.im);
-  const std::string im_label = study.measure_name() + " [g]";
-  try {
-    if (study.has_drifts()) {
-      pl::Figure fig;
-      fig.title = "IDA curves: " + std::to_string(records.size()) + " records";
-      fig.height = 700;
-      pl::Panel& p = fig.panels.emplace_back();
-      p.x_label = "peak storey drift [%]";
-      p.y_label = im_label;
-      const double limit = 100 * study.config().collapse_drift;
-      p.x_range = {0.0, 1.1 * limit};
-      p.y_range.min = 0.0;
-      std::vector<std::vector<const RunRow*>> by_record;
-      for (std::size_t r = 0; r < records.size(); ++r) {
-        by_record.push_back(rows_of(sorted, r));
-        pl::Series s;
-        s.x.push_back(0), s.y.push_back(0);
-        for (const RunRow* row : by_record.back()) {
-          if (row->error()) continue;
-          if (row->collapse) {  // the flatline, out to the drift limit
-            s.x.push_back(limit), s.y.push_back(s.y.back());
-            break;
-          }
-          s.x.push_back(100 * row->peak_drift), s.y.push_back(row->im);
-        }
-        s.colour = "#a8a8a8", s.width = 1.0;
-        if (r == 0) s.name = "records";
-        if (s.x.size() > 1) p.series.push_back(std::move(s));
-      }
-      // The 16/50/84 % fractiles of drift given the intensity (collapse: infinite drift), up to
-      // the lowest intensity some record did not reach without collapsing.
-      const double fractiles[3] = {0.16, 0.50, 0.84};
-      const char* const colours[3] = {"#1f77b4", "#000000", "#d62728"};
-      for (int j = 0; j < 3; ++j) {
-        const double q = fractiles[j];
-        pl::Series s;
-        s.name = short_number(100 * q) + " % (drift given the intensity)";
-        s.colour = colours[j], s.width = 2.5;
-        for (int k = 0; k <= 60; ++k) {
-          const double im = top * k / 60.0;
-          std::vector<double> d;
-          bool known = true;
-          for (const auto& rr : by_record) {
-            const double v = drift_at(rr, im);
-            if (std::isnan(v)) known = false;
-            d.push_back(v);
-          }
-          if (!known) break;
-          const double f = fractile(d, q);
-          if (!std::isfinite(f) || 100 * f > 1.1 * limit) break;
-          s.x.push_back(100 * f), s.y.push_back(im);
-        }
-        if (s.x.size() > 1) p.series.push_back(std::move(s));
-      }
-      const pl::Rendered out = pl::render(fig, (fs::path(dir) / "ida").string());
-      for (const std::string& n : out.warnings)
-        notes.push_back("ida plot: " + n);
-      w.files.push_back(out.png), w.files.push_back(out.svg);
-    }
-    pl::Figure fig;
-    fig.title = "Fragility curves (lognormal, maximum likelihood)";
-    fig.height = 600;
-    pl::Panel& p = fig.panels.emplace_back();
-    p.x_label = im_label;
-    p.y_label = "probability of exceedance";
-    p.y_range = {0.0, 1.0};
-    for (const Fragility& f : fr) {
-      if (!f.fit.ok()) continue;
-      pl::Series s;
-      s.name = std::string(limit_state_name(f.state)) + ": median " + short_number(f.fit.median) +
-               " g, beta " + short_number(f.fit.beta);
-      for (int k = 0; k <= 200; ++k) {
-        const double im = 1.2 * top * k / 200.0;
-        s.x.push_back(im), s.y.push_back(lognormal_cdf(im, f.fit.median, f.fit.beta));
-      }
-      p.series.push_back(std::move(s));
-      // The records' capacities as an empirical curve (censored records never step up).
-      std::vector<double> seen;
-      for (const RecordCapacities& c : caps)
-        if (c.traced && c.of(f.state).im) seen.push_back(*c.of(f.state).im);
-      std::sort(seen.begin(), seen.end());
-      std::size_t traced = 0;
-      for (const RecordCapacities& c : caps)
-        traced += c.traced ? 1 : 0;
-      pl::Series e;
-      e.name = std::string(limit_state_name(f.state)) + ": records";
-      e.x.push_back(0), e.y.push_back(0);
-      for (std::size_t k = 0; k < seen.size(); ++k) {
-        e.x.push_back(seen[k]), e.y.push_back(static_cast<double>(k) / static_cast<double>(traced));
-        e.x.push_back(seen[k]),
-            e.y.push_back(static_cast<double>(k + 1) / static_cast<double>(traced));
-      }
-      e.x.push_back(1.2 * top), e.y.push_back(e.y.back());
-      p.series.push_back(std::move(e));
-    }
-    if (!p.series.empty()) {
-      const pl::Rendered out = pl::render(fig, (fs::path(dir) / "fragility").string());
-      for (const std::string& n : out.warnings)
-        notes.push_back("fragility plot: " + n);
-      w.files.push_back(out.png), w.files.push_back(out.svg);
-    } else {
-      notes.push_back("no fragility curve to plot: no limit state was fitted");
-    }
-  } catch (const pl::Error& e) {
-    w.plots_lost.push_back(std::string("plots not made: ") + e.what());
-  }
+  draw_plots(study, sorted, caps, fr, dir, w, notes);
   return w;
 }
 

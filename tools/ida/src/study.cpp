@@ -61,6 +61,182 @@ std::optional<double> to_double(std::string_view text) {
   return v;
 }
 
+// The input the records feed: named, or the model's first ground acceleration; it must be a
+// ground acceleration. Its index into `input`, or the message.
+std::optional<std::string> choose_input(const modelc::ModelDescription& d, const std::string& name,
+                                        std::size_t& input) {
+  const auto& names = d.input_names;
+  if (name.empty()) {
+    const auto it = std::find_if(d.inputs.begin(), d.inputs.end(), [](const InputSpec& in) {
+      return in.kind == InputKind::kGroundAcceleration;
+    });
+    if (it == d.inputs.end())
+      return "the model has no ground acceleration input; name one with --input";
+    input = static_cast<std::size_t>(it - d.inputs.begin());
+  } else {
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) return "--input: the model has no input channel '" + name + "'";
+    input = static_cast<std::size_t>(it - names.begin());
+  }
+  if (d.inputs[input].kind != InputKind::kGroundAcceleration) {
+    return "input '" + names[input] +
+           "' is not a ground acceleration: an intensity measure scales ground motions";
+  }
+  return std::nullopt;
+}
+
+// The outputs the standard demands read: storey drifts, floor (translational absolute)
+// accelerations.
+struct DemandOutputs {
+  bool drifts = false;
+  bool floor_accelerations = false;
+};
+
+DemandOutputs demand_outputs(const modelc::ModelDescription& d) {
+  DemandOutputs has;
+  for (const OutputSpec& out : d.outputs) {
+    if (out.kind == OutputKind::kDrift) has.drifts = true;
+    if (out.kind == OutputKind::kAbsoluteAcceleration && out.dof < 3)
+      has.floor_accelerations = true;
+  }
+  return has;
+}
+
+// The demands to write: those asked for, with peak_drift first when the model has drifts (the
+// IDA curve's demand: always written); none asked: the standard ones the model has.
+std::vector<std::string> wanted_demands(const std::vector<std::string>& asked,
+                                        const DemandOutputs& has, bool plastic) {
+  std::vector<std::string> wanted = asked;
+  if (wanted.empty()) {
+    if (has.drifts) wanted.insert(wanted.end(), {"peak_drift", "residual_drift"});
+    if (has.floor_accelerations) wanted.emplace_back("peak_floor_acceleration");
+    if (plastic) wanted.emplace_back("hinge_level");
+  } else if (has.drifts && std::find(wanted.begin(), wanted.end(), "peak_drift") == wanted.end()) {
+    wanted.insert(wanted.begin(), "peak_drift");
+  }
+  return wanted;
+}
+
+// The column of demand `w` into `col`, or the message when the model has no output it reads.
+std::optional<std::string> demand_column(const modelc::ModelDescription& d, const std::string& w,
+                                         const DemandOutputs& has, EdpColumn& col) {
+  using Kind = EdpColumn::Kind;
+  col.name = w;
+  if (w == "peak_drift" || w == "residual_drift") {
+    if (!has.drifts) return "--edp " + w + ": the model has no output of kind \"drift\"";
+    col.kind = w == "peak_drift" ? Kind::kPeakDrift : Kind::kResidualDrift;
+    col.unit = "-";
+  } else if (w == "peak_floor_acceleration") {
+    if (!has.floor_accelerations)
+      return "--edp " + w + ": the model has no output of kind \"absolute_acceleration\"";
+    col.kind = Kind::kPeakFloorAcceleration;
+    col.unit = "g";
+  } else if (w == "hinge_level") {
+    col.kind = Kind::kHingeLevel;
+    col.unit = "-";
+  } else {
+    const auto it = std::find(d.output_names.begin(), d.output_names.end(), w);
+    if (it == d.output_names.end()) {
+      return "--edp " + w +
+             ": neither peak_drift, residual_drift, peak_floor_acceleration, "
+             "hinge_level nor an output channel of the model";
+    }
+    col.kind = Kind::kPeak;
+    col.output = static_cast<int>(it - d.output_names.begin());
+    col.name = "peak_" + w;
+    col.unit = d.output_units[static_cast<std::size_t>(col.output)];
+  }
+  return std::nullopt;
+}
+
+// The demand columns (wanted_demands) into `columns`, or the message for the first the model
+// cannot give.
+std::optional<std::string> demand_columns(const modelc::ModelDescription& d,
+                                          const std::vector<std::string>& asked,
+                                          const DemandOutputs& has,
+                                          std::vector<EdpColumn>& columns) {
+  for (const std::string& w : wanted_demands(asked, has, !d.hystereses.empty())) {
+    EdpColumn col;
+    if (const auto e = demand_column(d, w, has, col)) return e;
+    columns.push_back(col);
+  }
+  return std::nullopt;
+}
+
+// T1: the period of the mode with the largest effective mass along the input's direction into
+// `period`, and a note saying which mode; or the message when the modal analysis gives none.
+std::optional<std::string> first_period(const modelc::ModelDescription& d, const InputSpec& in,
+                                        double& period, std::vector<std::string>& notes) {
+  modal::ModalOptions options;
+  options.modes = 12;
+  const modal::ModalResult m = modal::modal_analysis(d.view(), options);
+  if (!m.ok() || m.effective_mass.rows() == 0) {
+    return "the model's first period: modal analysis: " +
+           (m.ok() ? std::string("no modes") : m.error) + " (give --period)";
+  }
+  Eigen::Index best = 0;
+  const auto dir = static_cast<Eigen::Index>(in.dof);
+  for (Eigen::Index k = 1; k < m.effective_mass.rows(); ++k)
+    if (m.effective_mass(k, dir) > m.effective_mass(best, dir)) best = k;
+  period = m.period(best);
+  const double share =
+      100 * m.effective_mass(best, dir) / m.total_mass[static_cast<std::size_t>(in.dof)];
+  notes.push_back("T1 = " + short_number(period) + " s: mode " + std::to_string(best + 1) + ", " +
+                  short_number(share) + " % of the mass along the input's direction");
+  return std::nullopt;
+}
+
+// The records, in the input's unit, into `records`, or the message for the first that cannot be
+// read, has no intensity or repeats a name. Their intensity measures are in g, of the motion the
+// model feels (the record times the model file's scale, InputSpec::factor): PGA and Sa are linear
+// in the record, so they are computed on it and converted once (exactly unchanged for an input in
+// g with no scale). |factor|: a negative one reverses the motion, not its intensity.
+std::optional<std::string> read_records(const StudyConfig& config, const InputSpec& in,
+                                        const std::string& input_name, double period,
+                                        std::vector<RecordEntry>& records) {
+  const double to_g =
+      io::input_unit(true, in.dof, in.scale).si * std::abs(in.factor) / io::parse_unit("g")->si;
+  for (const std::string& path : config.record_paths) {
+    RecordEntry e;
+    e.path = path;
+    e.name = std::filesystem::path(path).filename().string();
+    if (const auto err = hil::load_input_record(in, input_name, path, "", false, e.record))
+      return err;
+    e.pga = peak_ground_acceleration(e.record.values) * to_g;
+    e.im =
+        config.measure == Measure::kPga
+            ? e.pga
+            : pseudo_spectral_acceleration(e.record.values, e.record.dt, period, config.damping) *
+                  to_g;
+    if (!(e.im > 0) || !std::isfinite(e.im)) {
+      return path + ": its intensity measure is " + short_number(e.im) +
+             ": it cannot be scaled to an intensity";
+    }
+    for (const RecordEntry& other : records) {
+      if (other.name == e.name) {
+        return path + ": a second record named " + e.name +
+               " (records are named by their file name)";
+      }
+    }
+    records.push_back(std::move(e));
+  }
+  if (records.empty()) return "no records";
+  return std::nullopt;
+}
+
+// The model in run-time storage (ntn-run's), initialised, into `model`; or the message when its
+// storage is refused or its initialisation fails.
+std::optional<std::string> run_time_model(const std::string& path,
+                                          modelc::ModelDescription&& description,
+                                          std::unique_ptr<hil::LoadedModel>& model) {
+  if (const auto refused = hil::storage_memory_refusal(description, RunTimeOptions{}))
+    return path + ": error: " + *refused;
+  model = std::make_unique<hil::LoadedModel>(std::move(description), RunTimeOptions{});
+  const InitStatus st = model->init();
+  if (!st.ok()) return path + ": " + to_string(st.error) + " (at " + std::to_string(st.where) + ")";
+  return std::nullopt;
+}
+
 }  // namespace
 
 Study::~Study() = default;
@@ -68,195 +244,40 @@ Study::~Study() = default;
 std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::string>& errors,
                                    std::vector<std::string>& notes, int& exit_code) {
   exit_code = 0;
+  // A refusal: its message and exit code, and no study.
+  const auto refuse = [&](std::string message, int code) {
+    errors.push_back(std::move(message));
+    exit_code = code;
+    return nullptr;
+  };
   std::unique_ptr<Study> s(new Study());
   s->config_ = config;
-  if (const auto e = check_plan(config.plan)) {
-    errors.push_back(*e);
-    exit_code = 2;
-    return nullptr;
-  }
+  if (const auto e = check_plan(config.plan)) return refuse(*e, 2);
 
   modelc::LoadResult loaded = modelc::load_model(config.model_path);
-  if (!loaded.ok()) {
-    errors.push_back(modelc::format_all(loaded.errors));
-    exit_code = loaded.unreadable ? 2 : 1;
-    return nullptr;
-  }
+  if (!loaded.ok()) return refuse(modelc::format_all(loaded.errors), loaded.unreadable ? 2 : 1);
   if (!loaded.notes.empty()) notes.push_back(modelc::format_all(loaded.notes));
   const modelc::ModelDescription& d = *loaded.model;
 
-  // The input the records feed: named, or the model's first ground acceleration.
-  const auto& names = d.input_names;
-  if (config.input.empty()) {
-    const auto it = std::find_if(d.inputs.begin(), d.inputs.end(), [](const InputSpec& in) {
-      return in.kind == InputKind::kGroundAcceleration;
-    });
-    if (it == d.inputs.end()) {
-      errors.push_back("the model has no ground acceleration input; name one with --input");
-      exit_code = 2;
-      return nullptr;
-    }
-    s->input_ = static_cast<std::size_t>(it - d.inputs.begin());
-  } else {
-    const auto it = std::find(names.begin(), names.end(), config.input);
-    if (it == names.end()) {
-      errors.push_back("--input: the model has no input channel '" + config.input + "'");
-      exit_code = 2;
-      return nullptr;
-    }
-    s->input_ = static_cast<std::size_t>(it - names.begin());
-  }
+  if (const auto e = choose_input(d, config.input, s->input_)) return refuse(*e, 2);
   const InputSpec& in = d.inputs[s->input_];
-  if (in.kind != InputKind::kGroundAcceleration) {
-    errors.push_back("input '" + names[s->input_] +
-                     "' is not a ground acceleration: an intensity measure scales ground motions");
-    exit_code = 2;
-    return nullptr;
-  }
 
-  // The demand columns.
-  std::vector<int> drifts, floor_accelerations;
-  for (std::size_t c = 0; c < d.outputs.size(); ++c) {
-    if (d.outputs[c].kind == OutputKind::kDrift) drifts.push_back(static_cast<int>(c));
-    if (d.outputs[c].kind == OutputKind::kAbsoluteAcceleration && d.outputs[c].dof < 3)
-      floor_accelerations.push_back(static_cast<int>(c));
-  }
-  s->has_drifts_ = !drifts.empty();
-  const bool plastic = !d.hystereses.empty();
-  using Kind = EdpColumn::Kind;
-  std::vector<std::string> wanted = config.edps;
-  if (wanted.empty()) {
-    if (s->has_drifts_) wanted.insert(wanted.end(), {"peak_drift", "residual_drift"});
-    if (!floor_accelerations.empty()) wanted.emplace_back("peak_floor_acceleration");
-    if (plastic) wanted.emplace_back("hinge_level");
-  } else if (s->has_drifts_ &&
-             std::find(wanted.begin(), wanted.end(), "peak_drift") == wanted.end()) {
-    wanted.insert(wanted.begin(), "peak_drift");  // the IDA curve's demand: always written
-  }
-  for (const std::string& w : wanted) {
-    EdpColumn col;
-    col.name = w;
-    if (w == "peak_drift" || w == "residual_drift") {
-      if (!s->has_drifts_) {
-        errors.push_back("--edp " + w + ": the model has no output of kind \"drift\"");
-        exit_code = 2;
-        return nullptr;
-      }
-      col.kind = w == "peak_drift" ? Kind::kPeakDrift : Kind::kResidualDrift;
-      col.unit = "-";
-    } else if (w == "peak_floor_acceleration") {
-      if (floor_accelerations.empty()) {
-        errors.push_back("--edp " + w +
-                         ": the model has no output of kind \"absolute_acceleration\"");
-        exit_code = 2;
-        return nullptr;
-      }
-      col.kind = Kind::kPeakFloorAcceleration;
-      col.unit = "g";
-    } else if (w == "hinge_level") {
-      col.kind = Kind::kHingeLevel;
-      col.unit = "-";
-    } else {
-      const auto it = std::find(d.output_names.begin(), d.output_names.end(), w);
-      if (it == d.output_names.end()) {
-        errors.push_back("--edp " + w +
-                         ": neither peak_drift, residual_drift, peak_floor_acceleration, "
-                         "hinge_level nor an output channel of the model");
-        exit_code = 2;
-        return nullptr;
-      }
-      col.kind = Kind::kPeak;
-      col.output = static_cast<int>(it - d.output_names.begin());
-      col.name = "peak_" + w;
-      col.unit = d.output_units[static_cast<std::size_t>(col.output)];
-    }
-    s->columns_.push_back(col);
-  }
+  const DemandOutputs has = demand_outputs(d);
+  s->has_drifts_ = has.drifts;
+  if (const auto e = demand_columns(d, config.edps, has, s->columns_)) return refuse(*e, 2);
   if (!s->has_drifts_)
     notes.push_back("the model has no drift output: a run collapses only when it diverges");
 
-  // T1: the period of the mode with the largest effective mass along the input's direction.
-  if (config.measure == Measure::kSaT1) {
-    if (config.period > 0) {
-      s->period_ = config.period;
-    } else {
-      modal::ModalOptions options;
-      options.modes = 12;
-      const modal::ModalResult m = modal::modal_analysis(d.view(), options);
-      if (!m.ok() || m.effective_mass.rows() == 0) {
-        errors.push_back("the model's first period: modal analysis: " +
-                         (m.ok() ? std::string("no modes") : m.error) + " (give --period)");
-        exit_code = 2;
-        return nullptr;
-      }
-      Eigen::Index best = 0;
-      const auto dir = static_cast<Eigen::Index>(in.dof);
-      for (Eigen::Index k = 1; k < m.effective_mass.rows(); ++k)
-        if (m.effective_mass(k, dir) > m.effective_mass(best, dir)) best = k;
-      s->period_ = m.period(best);
-      const double share =
-          100 * m.effective_mass(best, dir) / m.total_mass[static_cast<std::size_t>(in.dof)];
-      notes.push_back("T1 = " + short_number(s->period_) + " s: mode " + std::to_string(best + 1) +
-                      ", " + short_number(share) + " % of the mass along the input's direction");
-    }
+  if (config.measure == Measure::kSaT1 && config.period > 0) {
+    s->period_ = config.period;
+  } else if (config.measure == Measure::kSaT1) {
+    if (const auto e = first_period(d, in, s->period_, notes)) return refuse(*e, 2);
   }
 
-  // The records, in the input's unit. Their intensity measures are in g, of the motion the model
-  // feels (the record times the model file's scale, InputSpec::factor): PGA and Sa are linear in
-  // the record, so they are computed on it and converted once (exactly unchanged for an input
-  // in g with no scale). |factor|: a negative one reverses the motion, not its intensity.
-  const double to_g =
-      io::input_unit(true, in.dof, in.scale).si * std::abs(in.factor) / io::parse_unit("g")->si;
-  for (const std::string& path : config.record_paths) {
-    RecordEntry e;
-    e.path = path;
-    e.name = std::filesystem::path(path).filename().string();
-    if (const auto err = hil::load_input_record(in, names[s->input_], path, "", false, e.record)) {
-      errors.push_back(*err);
-      exit_code = 2;
-      return nullptr;
-    }
-    e.pga = peak_ground_acceleration(e.record.values) * to_g;
-    e.im = config.measure == Measure::kPga
-               ? e.pga
-               : pseudo_spectral_acceleration(e.record.values, e.record.dt, s->period_,
-                                              config.damping) *
-                     to_g;
-    if (!(e.im > 0) || !std::isfinite(e.im)) {
-      errors.push_back(path + ": its intensity measure is " + short_number(e.im) +
-                       ": it cannot be scaled to an intensity");
-      exit_code = 2;
-      return nullptr;
-    }
-    for (const RecordEntry& other : s->records_) {
-      if (other.name == e.name) {
-        errors.push_back(path + ": a second record named " + e.name +
-                         " (records are named by their file name)");
-        exit_code = 2;
-        return nullptr;
-      }
-    }
-    s->records_.push_back(std::move(e));
-  }
-  if (s->records_.empty()) {
-    errors.push_back("no records");
-    exit_code = 2;
-    return nullptr;
-  }
-
-  if (const auto refused = hil::storage_memory_refusal(*loaded.model, RunTimeOptions{})) {
-    errors.push_back(config.model_path + ": error: " + *refused);
-    exit_code = 1;
-    return nullptr;
-  }
-  s->model_ = std::make_unique<hil::LoadedModel>(std::move(*loaded.model), RunTimeOptions{});
-  const InitStatus st = s->model_->init();
-  if (!st.ok()) {
-    errors.push_back(config.model_path + ": " + to_string(st.error) + " (at " +
-                     std::to_string(st.where) + ")");
-    exit_code = 1;
-    return nullptr;
-  }
+  if (const auto e = read_records(config, in, d.input_names[s->input_], s->period_, s->records_))
+    return refuse(*e, 2);
+  if (const auto e = run_time_model(config.model_path, std::move(*loaded.model), s->model_))
+    return refuse(*e, 1);
   return s;
 }
 

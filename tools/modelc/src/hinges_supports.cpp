@@ -16,12 +16,10 @@
 namespace ntn::modelc::compile {
 namespace {
 
-// A hinge's directions from the file's behaviours: a curve reference resolves to its index; a
-// fixed_if on its own force becomes a stop (a curve with one rigid branch at d = 0).
-bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
-  auto ref = [&comp](const std::map<std::string, int>& index, const IdAt& id,
-                     const std::string& what) { return comp.ref(index, id, what); };
-  Behaviours dirs = given;  // a fixed_if whose control is its own direction: the stop
+// A fixed_if whose control is its own direction becomes a stop: a curve with one rigid branch at
+// d = 0 (add_stop_curve).
+Behaviours with_stops(const Behaviours& given) {
+  Behaviours dirs = given;
   for (std::size_t k = 0; k < kDofsPerNode; ++k) {
     BehaviourIn& b = dirs[k];
     if (b.law.fixed_if != 0 && b.law.normal == static_cast<int>(k)) {
@@ -30,31 +28,40 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
       b.law = {};
     }
   }
-  // The friction circle: the partner a friction direction with the same law; both get the pair.
-  const auto is_friction = [&dirs](std::size_t n) {
-    return dirs[n].kind == HingeBehaviour::kRigidPlastic && dirs[n].law.normal >= 0 &&
-           dirs[n].law.fixed_if == 0;
-  };
+  return dirs;
+}
+
+// Direction n is a friction direction: rigid_plastic with a normal, not fixed_if.
+bool is_friction(const Behaviours& dirs, std::size_t n) {
+  return dirs[n].kind == HingeBehaviour::kRigidPlastic && dirs[n].law.normal >= 0 &&
+         dirs[n].law.fixed_if == 0;
+}
+
+// Why direction c cannot be the circle of friction direction k; empty when it can.
+std::string circle_refusal(const Behaviours& given, const Behaviours& dirs, std::size_t k,
+                           std::size_t c) {
+  const HysteresisSpec& a = dirs[k].law;
+  if (c == k) return "it is this direction";
+  if (c == static_cast<std::size_t>(a.normal)) return "it is the normal";
+  if (c / 3 != k / 3)
+    return k < 3 ? "it is a rotation and this a translation"
+                 : "it is a translation and this a rotation";
+  if (!is_friction(dirs, c)) return "it is not a friction direction";
+  if (dirs[c].law.normal != a.normal || dirs[c].law.mu != a.mu ||
+      dirs[c].law.cohesion != a.cohesion)
+    return "its friction, cohesion or normal differ from this direction's";
+  if (given[c].law.circle >= 0 && given[c].law.circle != static_cast<int>(k))
+    return "its own circle names another direction";
+  return {};
+}
+
+// The friction circle: the partner a friction direction with the same law; both get the pair.
+// False, and the error, for a circle that names no such partner.
+bool pair_friction_circles(Compilation& comp, const Behaviours& given, Behaviours& dirs) {
   for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-    if (given[k].law.circle < 0 || !is_friction(k)) continue;
+    if (given[k].law.circle < 0 || !is_friction(dirs, k)) continue;
     const auto c = static_cast<std::size_t>(given[k].law.circle);
-    const HysteresisSpec& a = dirs[k].law;
-    std::string why;
-    if (c == k) {
-      why = "it is this direction";
-    } else if (c == static_cast<std::size_t>(a.normal)) {
-      why = "it is the normal";
-    } else if (c / 3 != k / 3) {
-      why = k < 3 ? "it is a rotation and this a translation"
-                  : "it is a translation and this a rotation";
-    } else if (!is_friction(c)) {
-      why = "it is not a friction direction";
-    } else if (dirs[c].law.normal != a.normal || dirs[c].law.mu != a.mu ||
-               dirs[c].law.cohesion != a.cohesion) {
-      why = "its friction, cohesion or normal differ from this direction's";
-    } else if (given[c].law.circle >= 0 && given[c].law.circle != static_cast<int>(k)) {
-      why = "its own circle names another direction";
-    }
+    const std::string why = circle_refusal(given, dirs, k, c);
     if (!why.empty()) {
       comp.L.error(given[k].circle_at,
                    "the circle of a friction direction must be another friction direction of the "
@@ -65,115 +72,146 @@ bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
     }
     dirs[c].law.circle = static_cast<int>(k);
   }
-  const HingeMethod method = comp.d.settings.hinge_method;
-  // Direction n is a stop (a rigid branch, by the kernel's rule): its force is the stops'
-  // clamp's, known only after the slip stage.
-  const auto is_stop = [&](std::size_t n) {
-    if (dirs[n].stop != 0) return true;
-    if (dirs[n].kind != HingeBehaviour::kCurve) return false;
-    const auto it = comp.ids.curves.find(dirs[n].curve->id);
-    if (it == comp.ids.curves.end()) return false;
-    const CurveBranches b =
-        curve_branches(comp.d.curve_points, comp.d.curves[static_cast<std::size_t>(it->second)],
-                       branch_slope_limit(comp.d.settings, n));
-    return b.valid && (b.lower > -1e300 || b.upper < 1e300);
-  };
-  bool ok = true;
-  for (std::size_t k = 0; k < kDofsPerNode; ++k) {
-    const BehaviourIn& b = dirs[k];
-    hs.behaviour[k] = b.kind;
-    if (b.kind == HingeBehaviour::kLinear) hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
-    if (b.kind == HingeBehaviour::kPlastic) {  // its law gets a history slot of its own
-      hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
-      hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
-      comp.d.hystereses.push_back(b.law);
-    }
-    if (b.kind == HingeBehaviour::kRigidPlastic) {  // a history slot: its slip, its work
-      const bool brittle = law_breaks(b.law.rule);
-      const char* what = brittle               ? "a failure direction"
-                         : b.law.fixed_if != 0 ? "a fixed_if direction with a control"
-                         : b.law.normal >= 0   ? "a friction direction"
-                                               : "a rigid_plastic direction";
-      if (method == HingeMethod::kNtnPaper) {
-        comp.L.error(b.at, std::string(what) +
-                               " needs hinge_method = \"ntn_exact\" (exact stick and slip)" +
-                               (b.law.normal < 0 ? " or \"penalty\" (an elasto-plastic "
-                                                   "penalty spring)"
-                                                 : "") +
-                               ": the seed's algorithm (\"ntn_paper\") gives no constraint force "
-                               "to test against the limit" +
-                               (brittle ? " (a spring that breaks works with every method: "
-                                          "{ linear = k, failure = F })"
-                                        : ""));
-        ok = false;
-        continue;
-      }
-      if (b.law.normal >= 0) {  // friction, fixed_if: the normal is another, non-slip direction
-        const auto n = static_cast<std::size_t>(b.law.normal);
-        const char* role = b.law.fixed_if != 0 ? "the control of a fixed_if direction"
-                                               : "the normal of a friction direction";
-        // A free normal carries no force: the limit would be the cohesion alone (friction) or
-        // the direction never held (fixed_if). A translation's friction takes a force as its
-        // normal, not a moment (mu x N m is not a force).
-        const bool free_normal = dirs[n].kind == HingeBehaviour::kFree;
-        const bool moment_normal = b.law.fixed_if == 0 && k < 3 && n >= 3;
-        if (free_normal || moment_normal) {
-          comp.L.error(b.normal_at,
-                       std::string(role) + " is " + std::string(kDofNames[n]) +
-                           (!free_normal ? ", a rotation: a translation's friction limit mu "
-                                           "N needs a force N, not a moment"
-                            : b.law.fixed_if != 0 ? ", a free direction: it carries no force, so "
-                                                    "the direction would never be held"
-                                                  : ", a free direction: it carries no force, so "
-                                                    "the limit would be the cohesion alone") +
-                           " (give normal = / control = a direction that carries the force)");
-          ok = false;
-          continue;
-        }
-        if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic || is_stop(n)) {
-          const bool by_default =
-              b.normal_at.line == b.at.line && b.normal_at.column == b.at.column;
-          comp.L.error(
-              b.normal_at,
-              std::string(role) +
-                  " must be another direction of the hinge that does not slide itself and is "
-                  "not a stop (rigid, a spring or a curve without rigid branches)" +
-                  (n == k                                          ? ": it is this direction"
-                   : dirs[n].kind == HingeBehaviour::kRigidPlastic ? ": it slides"
-                                                                   : ": it is a stop, whose "
-                                                                     "force comes after the "
-                                                                     "slip stage") +
-                  (by_default ? " (the default normal is ux: give normal = \"..\")" : ""));
-          ok = false;
-          continue;
-        }
-        if (method == HingeMethod::kPenalty) {
-          comp.L.error(b.at, std::string(what) +
-                                 " needs hinge_method = \"ntn_exact\": under \"penalty\" only "
-                                 "a constant limit (rigid_plastic = F, failure = F) is offered");
-          ok = false;
-          continue;
-        }
-      }
-      hs.stiffness[k] = b.k;  // its hardening with the slip, if any
-      hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
-      comp.d.hystereses.push_back(b.law);
-    }
-    if (b.kind == HingeBehaviour::kCurve && b.stop != 0) {  // fixed_if on its own force
-      const double side = static_cast<double>(b.stop);      // -1: rigid against d < 0
-      hs.curve[k] = static_cast<int>(comp.d.curves.size());
-      comp.d.curves.push_back({static_cast<int>(comp.d.curve_points.size()), 3});
-      // A rigid branch of slope 1e300 (at least any limit stiffness) on one side of d = 0, no
-      // force on the other.
-      comp.d.curve_points.push_back({-1.0, side < 0 ? -1e300 : 0.0});
-      comp.d.curve_points.push_back({0.0, 0.0});
-      comp.d.curve_points.push_back({1.0, side < 0 ? 0.0 : 1e300});
-      comp.d.curve_ids.push_back("fixed_if");
-    } else if (b.kind == HingeBehaviour::kCurve) {
-      hs.curve[k] = ref(comp.ids.curves, *b.curve, "curve");
-      ok = ok && hs.curve[k] >= 0;
-    }
+  return true;
+}
+
+// Direction n is a stop (a rigid branch, by the kernel's rule): its force is the stops'
+// clamp's, known only after the slip stage.
+bool is_stop(const Compilation& comp, const Behaviours& dirs, std::size_t n) {
+  if (dirs[n].stop != 0) return true;
+  if (dirs[n].kind != HingeBehaviour::kCurve) return false;
+  const auto it = comp.ids.curves.find(dirs[n].curve->id);
+  if (it == comp.ids.curves.end()) return false;
+  const CurveBranches b =
+      curve_branches(comp.d.curve_points, comp.d.curves[static_cast<std::size_t>(it->second)],
+                     branch_slope_limit(comp.d.settings, n));
+  return b.valid && (b.lower > -1e300 || b.upper < 1e300);
+}
+
+// The normal of friction direction k, or the control of fixed_if direction k: another,
+// non-slip direction that carries the force; false, and the error, when it is not.
+bool check_normal(Compilation& comp, const Behaviours& dirs, std::size_t k) {
+  const BehaviourIn& b = dirs[k];
+  const auto n = static_cast<std::size_t>(b.law.normal);
+  const char* role = b.law.fixed_if != 0 ? "the control of a fixed_if direction"
+                                         : "the normal of a friction direction";
+  // A free normal carries no force: the limit would be the cohesion alone (friction) or
+  // the direction never held (fixed_if). A translation's friction takes a force as its
+  // normal, not a moment (mu x N m is not a force).
+  const bool free_normal = dirs[n].kind == HingeBehaviour::kFree;
+  const bool moment_normal = b.law.fixed_if == 0 && k < 3 && n >= 3;
+  if (free_normal || moment_normal) {
+    comp.L.error(b.normal_at,
+                 std::string(role) + " is " + std::string(kDofNames[n]) +
+                     (!free_normal          ? ", a rotation: a translation's friction limit mu "
+                                              "N needs a force N, not a moment"
+                      : b.law.fixed_if != 0 ? ", a free direction: it carries no force, so "
+                                              "the direction would never be held"
+                                            : ", a free direction: it carries no force, so "
+                                              "the limit would be the cohesion alone") +
+                     " (give normal = / control = a direction that carries the force)");
+    return false;
   }
+  if (n == k || dirs[n].kind == HingeBehaviour::kRigidPlastic || is_stop(comp, dirs, n)) {
+    const bool by_default = b.normal_at.line == b.at.line && b.normal_at.column == b.at.column;
+    comp.L.error(b.normal_at,
+                 std::string(role) +
+                     " must be another direction of the hinge that does not slide itself and is "
+                     "not a stop (rigid, a spring or a curve without rigid branches)" +
+                     (n == k                                          ? ": it is this direction"
+                      : dirs[n].kind == HingeBehaviour::kRigidPlastic ? ": it slides"
+                                                                      : ": it is a stop, whose "
+                                                                        "force comes after the "
+                                                                        "slip stage") +
+                     (by_default ? " (the default normal is ux: give normal = \"..\")" : ""));
+    return false;
+  }
+  return true;
+}
+
+// Rigid_plastic direction k under the model's hinge method: one that gives a constraint force to
+// test against the limit and, for friction and fixed_if, a limit the method offers; false, and
+// the error, when it does not fit.
+bool check_rigid_plastic(Compilation& comp, const Behaviours& dirs, std::size_t k) {
+  const BehaviourIn& b = dirs[k];
+  const HingeMethod method = comp.d.settings.hinge_method;
+  const bool brittle = law_breaks(b.law.rule);
+  const char* what = brittle               ? "a failure direction"
+                     : b.law.fixed_if != 0 ? "a fixed_if direction with a control"
+                     : b.law.normal >= 0   ? "a friction direction"
+                                           : "a rigid_plastic direction";
+  if (method == HingeMethod::kNtnPaper) {
+    comp.L.error(b.at, std::string(what) +
+                           " needs hinge_method = \"ntn_exact\" (exact stick and slip)" +
+                           (b.law.normal < 0 ? " or \"penalty\" (an elasto-plastic "
+                                               "penalty spring)"
+                                             : "") +
+                           ": the seed's algorithm (\"ntn_paper\") gives no constraint force "
+                           "to test against the limit" +
+                           (brittle ? " (a spring that breaks works with every method: "
+                                      "{ linear = k, failure = F })"
+                                    : ""));
+    return false;
+  }
+  if (b.law.normal < 0) return true;
+  // friction, fixed_if: the normal is another, non-slip direction
+  if (!check_normal(comp, dirs, k)) return false;
+  if (method == HingeMethod::kPenalty) {
+    comp.L.error(b.at, std::string(what) +
+                           " needs hinge_method = \"ntn_exact\": under \"penalty\" only "
+                           "a constant limit (rigid_plastic = F, failure = F) is offered");
+    return false;
+  }
+  return true;
+}
+
+// Direction k's curve for a fixed_if on its own force (`stop`, -1: rigid against d < 0): a rigid
+// branch of slope 1e300 (at least any limit stiffness) on one side of d = 0, no force on the
+// other.
+void add_stop_curve(ModelDescription& d, HingeSpec& hs, std::size_t k, int stop) {
+  const double side = static_cast<double>(stop);
+  hs.curve[k] = static_cast<int>(d.curves.size());
+  d.curves.push_back({static_cast<int>(d.curve_points.size()), 3});
+  d.curve_points.push_back({-1.0, side < 0 ? -1e300 : 0.0});
+  d.curve_points.push_back({0.0, 0.0});
+  d.curve_points.push_back({1.0, side < 0 ? 0.0 : 1e300});
+  d.curve_ids.push_back("fixed_if");
+}
+
+// Direction k of the hinge from its behaviour: its stiffness and dashpot, a history slot for a
+// law, its curve; false (reported) when it does not fit.
+bool set_dir(Compilation& comp, HingeSpec& hs, const Behaviours& dirs, std::size_t k) {
+  const BehaviourIn& b = dirs[k];
+  hs.behaviour[k] = b.kind;
+  if (b.kind == HingeBehaviour::kLinear) hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
+  if (b.kind == HingeBehaviour::kPlastic) {  // its law gets a history slot of its own
+    hs.stiffness[k] = b.k, hs.dashpot[k] = b.c;
+    hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
+    comp.d.hystereses.push_back(b.law);
+  }
+  if (b.kind == HingeBehaviour::kRigidPlastic) {  // a history slot: its slip, its work
+    if (!check_rigid_plastic(comp, dirs, k)) return false;
+    hs.stiffness[k] = b.k;  // its hardening with the slip, if any
+    hs.hysteresis[k] = static_cast<int>(comp.d.hystereses.size());
+    comp.d.hystereses.push_back(b.law);
+  }
+  if (b.kind == HingeBehaviour::kCurve && b.stop != 0) {  // fixed_if on its own force
+    add_stop_curve(comp.d, hs, k, b.stop);
+  } else if (b.kind == HingeBehaviour::kCurve) {
+    hs.curve[k] = comp.ref(comp.ids.curves, *b.curve, "curve");
+    return hs.curve[k] >= 0;
+  }
+  return true;
+}
+
+// A hinge's directions from the file's behaviours: a curve reference resolves to its index; a
+// fixed_if on its own force becomes a stop (a curve with one rigid branch at d = 0).
+bool set_dirs(Compilation& comp, HingeSpec& hs, const Behaviours& given) {
+  Behaviours dirs = with_stops(given);
+  if (!pair_friction_circles(comp, given, dirs)) return false;
+  bool ok = true;
+  for (std::size_t k = 0; k < kDofsPerNode; ++k)
+    ok = set_dir(comp, hs, dirs, k) && ok;
   return ok;
 }
 

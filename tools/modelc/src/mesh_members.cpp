@@ -43,178 +43,233 @@ void set_orientation(const Member& m, double dx, double dy, double dz, double le
   }
 }
 
-}  // namespace
+// Whether sorted `ts` holds a value within kSamePoint of t.
+bool near(const std::vector<double>& ts, double t) {
+  const auto it = std::lower_bound(ts.begin(), ts.end(), t - kSamePoint);
+  return it != ts.end() && *it <= t + kSamePoint;
+}
 
-void mesh_members(Compilation& comp) {
-  DiagnosticSink& L = comp.L;
-  const SourceModel& p = comp.p;
-  ModelDescription& d = comp.d;
-  auto node_ref = [&comp](long long id, const Where& at) { return comp.node_ref(id, at); };
-  auto ref = [&comp](const std::map<std::string, int>& index, const IdAt& id,
-                     const std::string& what) { return comp.ref(index, id, what); };
-  const auto& materials = comp.ids.materials;
-  const auto& sections = comp.ids.sections;
-  std::vector<PendingHinge>& releases = comp.releases;
+// One member's end nodes, their positions and its axis (b - a) and length.
+struct MemberAxis {
+  int a = -1, b = -1;
+  NodeSpec na, nb;
+  double dx = 0, dy = 0, dz = 0;
+  double len = 0;
+};
 
-  // User nodes first, in file order; generated nodes follow, member by member.
-  for (const UserNode& n : p.nodes) {
+// The interior points of a member, ascending; split[k]: point k is a member point's.
+struct InteriorPoints {
+  std::vector<double> cuts;
+  std::vector<bool> split;
+};
+
+// User nodes first, in file order; generated nodes follow, member by member.
+void add_user_nodes(Compilation& comp) {
+  for (const UserNode& n : comp.p.nodes) {
     NodeSpec ns;
     ns.x = n.x, ns.y = n.y, ns.z = n.z;
-    d.nodes.push_back(ns);
-    d.node_ids.push_back(static_cast<int>(n.id));
+    comp.d.nodes.push_back(ns);
+    comp.d.node_ids.push_back(static_cast<int>(n.id));
   }
+}
 
-  // Members are optional (point masses on hinges are a model: an SDOF); with neither there is
-  // no mass anywhere. A node without mass in a free DOF is named by check_nodes_have_mass.
-  if (p.members.empty() && p.point_masses.empty()) {
-    L.error_at_start("members",
-                     "the model has no members and no point masses, so it has no mass and nothing "
-                     "to integrate");
+// Members are optional (point masses on hinges are a model: an SDOF); with neither there is
+// no mass anywhere. A node without mass in a free DOF is named by check_nodes_have_mass.
+void check_model_has_mass(Compilation& comp) {
+  if (comp.p.members.empty() && comp.p.point_masses.empty()) {
+    comp.L.error_at_start("members",
+                          "the model has no members and no point masses, so it has no mass and "
+                          "nothing to integrate");
   }
+}
 
-  comp.member_index.assign(p.members.size(), -1);
-  comp.member_nodes.assign(p.members.size(), {});
-  // The member points of each member, as sorted fractions of its length.
-  std::vector<std::vector<double>> point_ts(p.members.size());
+// The member points of each member, as sorted fractions of its length.
+std::vector<std::vector<double>> member_point_fractions(const Compilation& comp) {
+  std::vector<std::vector<double>> point_ts(comp.p.members.size());
   for (const auto& [mp, pa] : comp.points) {
     (void)mp;
     point_ts[static_cast<std::size_t>(pa.member)].push_back(pa.t);
   }
   for (auto& ts : point_ts)
     std::sort(ts.begin(), ts.end());
-  // Whether sorted `ts` holds a value within kSamePoint of t.
-  const auto near = [](const std::vector<double>& ts, double t) {
-    const auto it = std::lower_bound(ts.begin(), ts.end(), t - kSamePoint);
-    return it != ts.end() && *it <= t + kSamePoint;
-  };
-  for (std::size_t mi = 0; mi < p.members.size(); ++mi) {
-    const Member& m = p.members[mi];
-    const int a = node_ref(m.nodes[0], m.nodes_at);
-    const int b = node_ref(m.nodes[1], m.nodes_at);
-    const int mat = ref(materials, m.material, "material");
-    const int sec = ref(sections, m.section, "section");
-    if (a < 0 || b < 0 || mat < 0 || sec < 0) continue;
-    const Material& ma = p.materials[static_cast<std::size_t>(mat)];
-    const Section& se = p.sections[static_cast<std::size_t>(sec)];
-    const NodeSpec na = d.nodes[static_cast<std::size_t>(a)];
-    const NodeSpec nb = d.nodes[static_cast<std::size_t>(b)];
+  return point_ts;
+}
 
-    ElementSpec e;
-    e.E = ma.E, e.G = ma.G, e.rho = ma.rho;
-    e.A = se.A, e.Iy = se.Iy, e.Iz = se.Iz, e.J = se.J;
-    e.shear_area_y = se.shear_y, e.shear_area_z = se.shear_z;
-    e.member = static_cast<int>(mi);
+// The element of member mi before meshing: its material's and section's properties.
+ElementSpec member_element(const Material& ma, const Section& se, std::size_t mi) {
+  ElementSpec e;
+  e.E = ma.E, e.G = ma.G, e.rho = ma.rho;
+  e.A = se.A, e.Iy = se.Iy, e.Iz = se.Iz, e.J = se.J;
+  e.shear_area_y = se.shear_y, e.shear_area_z = se.shear_z;
+  e.member = static_cast<int>(mi);
+  return e;
+}
 
-    // Orientation vector (DESIGN §3): given, or the default reference turned by `roll`.
-    const double dx = nb.x - na.x, dy = nb.y - na.y, dz = nb.z - na.z;
-    const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
-    set_orientation(m, dx, dy, dz, len, e);
-
-    // Whole-member geometry with the kernel's own check.
-    e.node_i = a, e.node_j = b;
-    const BeamGeometry g = beam_geometry(na, nb, e);
-    if (g.check == ElementCheck::kZeroLength) {
-      L.error(m.nodes_at, "member " + m.id.id + " has zero length: nodes " +
-                              std::to_string(m.nodes[0]) + " and " + std::to_string(m.nodes[1]) +
-                              " are both at (" + num(na.x) + ", " + num(na.y) + ", " + num(na.z) +
-                              ")");
-      continue;
-    }
-    if (g.check == ElementCheck::kOrientationParallel) {
-      L.error(m.orientation_at, "orientation (" + num(e.ref_x) + ", " + num(e.ref_y) + ", " +
-                                    num(e.ref_z) + ") is parallel to the axis of member " +
-                                    m.id.id);
-      continue;
-    }
-
-    // Interior points: the division points k / N, and the member points that are none of them
-    // (nor an end), ascending; split[k]: point k is a member point's.
-    std::vector<double> cuts;
-    std::vector<bool> split;
-    for (int k = 1; k < m.divisions; ++k) {
-      cuts.push_back(static_cast<double>(k) / static_cast<double>(m.divisions));
-      split.push_back(false);
-    }
-    for (const double t : point_ts[mi]) {
-      if (t <= kSamePoint || t >= 1 - kSamePoint || near(cuts, t)) continue;
-      const auto pos = std::lower_bound(cuts.begin(), cuts.end(), t);
-      split.insert(split.begin() + (pos - cuts.begin()), true);
-      cuts.insert(pos, t);
-    }
-    const int elements = static_cast<int>(cuts.size()) + 1;
-
-    // Mesh: interior nodes at x_a + t (x_b - x_a) for each interior point t.
-    MemberInfo info;
-    info.name = m.id.id;
-    info.material = ma.id.id;
-    info.section = se.id.id;
-    info.first_element = static_cast<int>(d.elements.size());
-    info.element_count = elements;
-    info.start_node = a;
-    info.end_node = b;
-    info.first_interior_node = static_cast<int>(d.nodes.size());
-    info.interior_node_count = elements - 1;
-    const int member = static_cast<int>(d.members.size());
-    auto& along = comp.member_nodes[mi];
-    along.emplace_back(0.0, a);
-    int prev = a;
-    for (int k = 1; k <= elements; ++k) {
-      int next = b;
-      if (k < elements) {
-        const double t = cuts[static_cast<std::size_t>(k - 1)];
-        NodeSpec n;
-        n.x = na.x + t * dx, n.y = na.y + t * dy, n.z = na.z + t * dz;
-        next = static_cast<int>(d.nodes.size());
-        d.nodes.push_back(n);
-        d.node_ids.push_back(kGeneratedNode);
-        along.emplace_back(t, next);
-      }
-      ElementSpec el = e;
-      el.node_i = prev, el.node_j = next;
-      d.elements.push_back(el);
-      d.element_member.push_back(static_cast<int>(mi));
-      prev = next;
-    }
-    along.emplace_back(1.0, b);
-    // The member points made or reused on this member, for reports.
-    for (std::size_t k = 0; k < along.size() && !point_ts[mi].empty(); ++k) {
-      const auto& [t, n] = along[k];
-      if (!near(point_ts[mi], t)) continue;
-      const bool was_split = k > 0 && k + 1 < along.size() && split[k - 1];
-      d.member_points.push_back({member, t, n, was_split});
-    }
-    // Member-end releases: a node at the end, coincident with the joint, takes the end element;
-    // a hinge in the member's local axes (the end element's rotation) joins it to the joint.
-    for (int end = 0; end < 2; ++end) {
-      if (!m.release[end]) continue;
-      const int joint = end == 0 ? a : b;
-      const int el_index =
-          end == 0 ? info.first_element : info.first_element + info.element_count - 1;
-      NodeSpec rn;
-      rn.x = d.nodes[static_cast<std::size_t>(joint)].x;
-      rn.y = d.nodes[static_cast<std::size_t>(joint)].y;
-      rn.z = d.nodes[static_cast<std::size_t>(joint)].z;
-      const int rnode = static_cast<int>(d.nodes.size());
-      d.nodes.push_back(rn);
-      d.node_ids.push_back(kGeneratedNode);
-      ElementSpec& el = d.elements[static_cast<std::size_t>(el_index)];
-      (end == 0 ? el.node_i : el.node_j) = rnode;
-      PendingHinge ph;
-      ph.spec.node1 = rnode;
-      ph.spec.node2 = joint;
-      ph.spec.frame = beam_geometry(d.nodes[static_cast<std::size_t>(el.node_i)],
-                                    d.nodes[static_cast<std::size_t>(el.node_j)], el)
-                          .rotation;
-      ph.info = {m.id.id + (end == 0 ? ".start" : ".end"), HingeOrigin::kRelease,
-                 static_cast<int>(d.members.size()), end};
-      ph.dirs = &m.release[end]->dirs;
-      ph.at = m.release[end]->at;
-      releases.push_back(ph);
-      (end == 0 ? info.start_release_node : info.end_release_node) = rnode;
-    }
-    comp.member_index[mi] = member;
-    d.members.push_back(info);
+// Whole-member geometry with the kernel's own check: false, and the error, for a zero length or
+// an orientation parallel to the axis.
+bool check_member_geometry(DiagnosticSink& L, const Member& m, const MemberAxis& ax,
+                           const ElementSpec& e) {
+  const BeamGeometry g = beam_geometry(ax.na, ax.nb, e);
+  if (g.check == ElementCheck::kZeroLength) {
+    L.error(m.nodes_at, "member " + m.id.id + " has zero length: nodes " +
+                            std::to_string(m.nodes[0]) + " and " + std::to_string(m.nodes[1]) +
+                            " are both at (" + num(ax.na.x) + ", " + num(ax.na.y) + ", " +
+                            num(ax.na.z) + ")");
+    return false;
   }
+  if (g.check == ElementCheck::kOrientationParallel) {
+    L.error(m.orientation_at, "orientation (" + num(e.ref_x) + ", " + num(e.ref_y) + ", " +
+                                  num(e.ref_z) + ") is parallel to the axis of member " + m.id.id);
+    return false;
+  }
+  return true;
+}
+
+// Interior points: the division points k / N, and the member points `ts` that are none of them
+// (nor an end).
+InteriorPoints interior_points(int divisions, const std::vector<double>& ts) {
+  InteriorPoints in;
+  for (int k = 1; k < divisions; ++k) {
+    in.cuts.push_back(static_cast<double>(k) / static_cast<double>(divisions));
+    in.split.push_back(false);
+  }
+  for (const double t : ts) {
+    if (t <= kSamePoint || t >= 1 - kSamePoint || near(in.cuts, t)) continue;
+    const auto pos = std::lower_bound(in.cuts.begin(), in.cuts.end(), t);
+    in.split.insert(in.split.begin() + (pos - in.cuts.begin()), true);
+    in.cuts.insert(pos, t);
+  }
+  return in;
+}
+
+// Mesh: interior nodes at x_a + t (x_b - x_a) for each interior point t and the elements between
+// them (copies of e); the member's nodes as (t, node) along it, into `along`.
+void add_elements(ModelDescription& d, std::size_t mi, const ElementSpec& e, const MemberAxis& ax,
+                  const std::vector<double>& cuts, std::vector<std::pair<double, int>>& along) {
+  const int elements = static_cast<int>(cuts.size()) + 1;
+  along.emplace_back(0.0, ax.a);
+  int prev = ax.a;
+  for (int k = 1; k <= elements; ++k) {
+    int next = ax.b;
+    if (k < elements) {
+      const double t = cuts[static_cast<std::size_t>(k - 1)];
+      NodeSpec n;
+      n.x = ax.na.x + t * ax.dx, n.y = ax.na.y + t * ax.dy, n.z = ax.na.z + t * ax.dz;
+      next = static_cast<int>(d.nodes.size());
+      d.nodes.push_back(n);
+      d.node_ids.push_back(kGeneratedNode);
+      along.emplace_back(t, next);
+    }
+    ElementSpec el = e;
+    el.node_i = prev, el.node_j = next;
+    d.elements.push_back(el);
+    d.element_member.push_back(static_cast<int>(mi));
+    prev = next;
+  }
+  along.emplace_back(1.0, ax.b);
+}
+
+// The member points made or reused on member `member` (its nodes `along`), for reports.
+void add_member_points(ModelDescription& d, int member,
+                       const std::vector<std::pair<double, int>>& along,
+                       const std::vector<double>& ts, const std::vector<bool>& split) {
+  for (std::size_t k = 0; k < along.size() && !ts.empty(); ++k) {
+    const auto& [t, n] = along[k];
+    if (!near(ts, t)) continue;
+    const bool was_split = k > 0 && k + 1 < along.size() && split[k - 1];
+    d.member_points.push_back({member, t, n, was_split});
+  }
+}
+
+// Member-end releases: a node at the end, coincident with the joint, takes the end element;
+// a hinge in the member's local axes (the end element's rotation) joins it to the joint.
+void add_end_releases(Compilation& comp, const Member& m, int a, int b, MemberInfo& info) {
+  ModelDescription& d = comp.d;
+  for (int end = 0; end < 2; ++end) {
+    if (!m.release[end]) continue;
+    const int joint = end == 0 ? a : b;
+    const int el_index =
+        end == 0 ? info.first_element : info.first_element + info.element_count - 1;
+    NodeSpec rn;
+    rn.x = d.nodes[static_cast<std::size_t>(joint)].x;
+    rn.y = d.nodes[static_cast<std::size_t>(joint)].y;
+    rn.z = d.nodes[static_cast<std::size_t>(joint)].z;
+    const int rnode = static_cast<int>(d.nodes.size());
+    d.nodes.push_back(rn);
+    d.node_ids.push_back(kGeneratedNode);
+    ElementSpec& el = d.elements[static_cast<std::size_t>(el_index)];
+    (end == 0 ? el.node_i : el.node_j) = rnode;
+    PendingHinge ph;
+    ph.spec.node1 = rnode;
+    ph.spec.node2 = joint;
+    ph.spec.frame = beam_geometry(d.nodes[static_cast<std::size_t>(el.node_i)],
+                                  d.nodes[static_cast<std::size_t>(el.node_j)], el)
+                        .rotation;
+    ph.info = {m.id.id + (end == 0 ? ".start" : ".end"), HingeOrigin::kRelease,
+               static_cast<int>(d.members.size()), end};
+    ph.dirs = &m.release[end]->dirs;
+    ph.at = m.release[end]->at;
+    comp.releases.push_back(ph);
+    (end == 0 ? info.start_release_node : info.end_release_node) = rnode;
+  }
+}
+
+// Member mi, whose member points are at the sorted fractions `ts`: its elements and interior
+// nodes, its member points and its end releases; nothing more when a reference or its geometry
+// is wrong (reported).
+void mesh_member(Compilation& comp, std::size_t mi, const std::vector<double>& ts) {
+  const SourceModel& p = comp.p;
+  ModelDescription& d = comp.d;
+  const Member& m = p.members[mi];
+  MemberAxis ax;
+  ax.a = comp.node_ref(m.nodes[0], m.nodes_at);
+  ax.b = comp.node_ref(m.nodes[1], m.nodes_at);
+  const int mat = comp.ref(comp.ids.materials, m.material, "material");
+  const int sec = comp.ref(comp.ids.sections, m.section, "section");
+  if (ax.a < 0 || ax.b < 0 || mat < 0 || sec < 0) return;
+  const Material& ma = p.materials[static_cast<std::size_t>(mat)];
+  const Section& se = p.sections[static_cast<std::size_t>(sec)];
+  ax.na = d.nodes[static_cast<std::size_t>(ax.a)];
+  ax.nb = d.nodes[static_cast<std::size_t>(ax.b)];
+  ax.dx = ax.nb.x - ax.na.x, ax.dy = ax.nb.y - ax.na.y, ax.dz = ax.nb.z - ax.na.z;
+  ax.len = std::sqrt(ax.dx * ax.dx + ax.dy * ax.dy + ax.dz * ax.dz);
+
+  ElementSpec e = member_element(ma, se, mi);
+  set_orientation(m, ax.dx, ax.dy, ax.dz, ax.len, e);
+  e.node_i = ax.a, e.node_j = ax.b;
+  if (!check_member_geometry(comp.L, m, ax, e)) return;
+
+  const InteriorPoints in = interior_points(m.divisions, ts);
+  const int elements = static_cast<int>(in.cuts.size()) + 1;
+  MemberInfo info;
+  info.name = m.id.id;
+  info.material = ma.id.id;
+  info.section = se.id.id;
+  info.first_element = static_cast<int>(d.elements.size());
+  info.element_count = elements;
+  info.start_node = ax.a;
+  info.end_node = ax.b;
+  info.first_interior_node = static_cast<int>(d.nodes.size());
+  info.interior_node_count = elements - 1;
+  const int member = static_cast<int>(d.members.size());
+  auto& along = comp.member_nodes[mi];
+  add_elements(d, mi, e, ax, in.cuts, along);
+  add_member_points(d, member, along, ts, in.split);
+  add_end_releases(comp, m, ax.a, ax.b, info);
+  comp.member_index[mi] = member;
+  d.members.push_back(info);
+}
+
+}  // namespace
+
+void mesh_members(Compilation& comp) {
+  add_user_nodes(comp);
+  check_model_has_mass(comp);
+  comp.member_index.assign(comp.p.members.size(), -1);
+  comp.member_nodes.assign(comp.p.members.size(), {});
+  const std::vector<std::vector<double>> point_ts = member_point_fractions(comp);
+  for (std::size_t mi = 0; mi < comp.p.members.size(); ++mi)
+    mesh_member(comp, mi, point_ts[mi]);
 }
 
 }  // namespace ntn::modelc::compile
