@@ -7,7 +7,7 @@
 //    follows the energy rule beta_i = (E_i / (E_t - sum E_j))^c, F_y,i = (1 - beta_s) F_y,i-1,
 //    K_s,i = (1 - beta_s) K_s,i-1 in the sense the next excursion loads (the other keeps its
 //    strength: OpenSees' IMKBilin, for which the published Lambda were calibrated),
-//    K_u,i = (1 - beta_k) K_u,i-1, computed here with std::pow from
+//    K_u,i = (1 - beta_k) K_u,i-1 (beta_k against 2 E_t), computed here with std::pow from
 //    the energies the direction reports at each excursion's end (to rounding, 1e-12), and the
 //    direction breaks in the excursion where the test's own sum of E_j spends E_t; on this
 //    file's direction and on the example parameter set of OpenSees' IMKBilin documentation;
@@ -132,7 +132,7 @@ std::vector<double> protocol(double a, int cycles, double step = 1e-3) {
 }
 
 void follows_the_energy_rule(const Cycled& p) {
-  const double et = p.lambda * p.fy, et_k = p.lambda_k * p.fy;
+  const double et = p.lambda * p.fy, et_k = 2 * p.lambda_k * p.fy;  // K_u: against 2 E_t
   // the backbone's lines: hardening slope K_s, post-capping slope -K_c and its intercept at 0
   const double fc = p.capping * p.fy, ks0 = (fc - p.fy) / p.theta_p, kc = fc / p.theta_pc;
   const double intercept = fc + kc * (p.fy / p.k + p.theta_p);

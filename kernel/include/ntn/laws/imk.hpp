@@ -27,12 +27,14 @@
 // sign), with D that sense's rate:
 //   F_y,i = (1 - D beta_s) F_y,i-1 and K_s,i = (1 - D beta_s) K_s,i-1  (basic strength)
 //   the post-capping line's intercept at d = 0, (1 - D beta_c) of its last  (post-capping)
-// and, shared by both senses,
+// and, shared by both senses, with beta_k against 2 E_t (it deteriorates twice a cycle; the
+// capacity is still spent at E_t),
 //   K_u,i = (1 - beta_k) K_u,i-1                                          (unloading stiffness)
 // Deteriorating the loaded sense only is what OpenSees' IMKBilin does and what Lignos and
 // Krawinkler's calibrated Lambda assume: under a symmetric protocol each sense loses strength
-// once per cycle. (IMKBilin deteriorates K_u at every reversal of d against 2 E_t; here it is
-// once per excursion against E_t.)
+// once per cycle. (IMKBilin takes K_u's step at the reversal of d before the force changes sign,
+// with the energy of the excursion so far less the elastic energy it will release; here it is at
+// the sign change, with the excursion's energy: the same beta, one branch later.)
 // A force on a bound of slope s at or above K_u would not be reached by the elastic line; every
 // slope here is below k, and K_s and K_u deteriorate alike when Lambda_s = Lambda_k.
 // The force is k (d - d_p) like every law's (law.hpp): d_p = d - f / k, and the plastic work
@@ -269,8 +271,11 @@ struct Imk {
       x[P::kEnergyAt] = dissipated;
       double beta[3];
       for (std::size_t j = 0; j < 3; ++j) {
-        beta[j] = imk_beta(e > 0 ? e : 0.0, h.p[P::kReferenceEnergy + j], dissipated,
-                           h.p[P::kExponentOf + j]);
+        // K_u deteriorates at both ends of a cycle: against 2 E_t, spent at E_t (imk_beta's 1)
+        const double et = h.p[P::kReferenceEnergy + j];
+        beta[j] = j < 2 || !(et > 0) || !(dissipated < et)
+                      ? imk_beta(e > 0 ? e : 0.0, et, dissipated, h.p[P::kExponentOf + j])
+                      : imk_beta(e > 0 ? e : 0.0, 2.0 * et, dissipated, h.p[P::kExponentOf + j]);
         if (beta[j] >= 1.0) return fail(k, d, dp, dissipated, peak, x);  // capacity spent
       }
       const std::size_t i = sign > 0 ? 0 : 1;  // the sense the next excursion loads
