@@ -13,13 +13,6 @@ namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 
-// A number in an error, to six significant digits (as modal.cpp's).
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
 // Shift-invert operator for Spectra: y = (A - sigma I)^-1 x by a sparse LDL^T (AMD ordering).
 class ShiftSolve {
  public:
@@ -113,6 +106,12 @@ bool solve_sparse(const SpMat& A, int np, int want, const ModalOptions& options,
     return false;
   }
   return true;
+}
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
 }
 
 }  // namespace ntn::modal::detail

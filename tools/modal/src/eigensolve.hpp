@@ -2,12 +2,17 @@
 // standard problem A y = omega^2 y, dense (Eigen) or by shift-invert Lanczos (Spectra).
 #pragma once
 
+#include <string>
+
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
 #include "ntn/modal/modal.hpp"
 
 namespace ntn::modal::detail {
+
+// A number in a note or an error, to six significant digits.
+std::string num(double v);
 
 // Every eigenpair of A (its lower triangle read), dense; the lowest `want` kept. False, with
 // r.error, when the solver did not converge; r.solver set.

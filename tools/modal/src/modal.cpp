@@ -23,12 +23,7 @@
 namespace ntn::modal {
 namespace {
 
-// A number in a note or an error, to six significant digits.
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
+using detail::num;
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;

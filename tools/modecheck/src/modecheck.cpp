@@ -22,13 +22,9 @@
 
 namespace ntn::modecheck {
 
-namespace {
+using detail::num;
 
-std::string num(double v, const char* f = "%.6g") {
-  char b[48];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+namespace {
 
 constexpr std::array<const char*, 6> kDofNames = {"ux", "uy", "uz", "rx", "ry", "rz"};
 constexpr std::array<const char*, 3> kAxes = {"x", "y", "z"};

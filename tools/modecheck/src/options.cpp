@@ -11,17 +11,13 @@
 
 namespace ntn::modecheck {
 
-namespace {
+namespace detail {
 
-std::string num(double v, const char* f = "%.6g") {
+std::string num(double v, const char* format) {
   char b[48];
-  std::snprintf(b, sizeof b, f, v);
+  std::snprintf(b, sizeof b, format, v);
   return b;
 }
-
-}  // namespace
-
-namespace detail {
 
 double segment_samples(double fs, double df) {
   return std::ceil(fs / df * (1 - 1e-12));
@@ -50,6 +46,7 @@ std::string count(double samples) {
 
 using detail::bad_option;
 using detail::count;
+using detail::num;
 using detail::segment_samples;
 
 void validate(const Options& o) {

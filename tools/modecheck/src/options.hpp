@@ -25,6 +25,9 @@ struct OptionName {
 // every record (and std::size_t), so it is compared before any conversion.
 double segment_samples(double fs, double df);
 
+// A number as the check's messages and files write it (printf's format, %.6g by default).
+std::string num(double v, const char* format = "%.6g");
+
 // A number of samples as messages write it: whole, or %.6g from 1e15 on.
 std::string count(double samples);
 

@@ -6,16 +6,13 @@
 
 #include "ntn/modecheck/modecheck.hpp"
 #include "ntn/plot/plot.hpp"
+#include "options.hpp"
 
 namespace ntn::modecheck {
 
-namespace {
+using detail::num;
 
-std::string num(double v, const char* f) {
-  char b[48];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+namespace {
 
 std::string psd_unit(const std::string& u) {
   return u.empty() ? std::string("1/Hz") : u + "^2/Hz";

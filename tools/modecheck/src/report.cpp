@@ -5,16 +5,13 @@
 
 #include "json.hpp"  // tools/io
 #include "ntn/modecheck/modecheck.hpp"
+#include "options.hpp"
 
 namespace ntn::modecheck {
 
-namespace {
+using detail::num;
 
-std::string num(double v, const char* f = "%.6g") {
-  char b[48];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+namespace {
 
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
