@@ -273,9 +273,8 @@ struct Imk {
       for (std::size_t j = 0; j < 3; ++j) {
         // K_u deteriorates at both ends of a cycle: against 2 E_t, spent at E_t (imk_beta's 1)
         const double et = h.p[P::kReferenceEnergy + j];
-        beta[j] = j < 2 || !(et > 0) || !(dissipated < et)
-                      ? imk_beta(e > 0 ? e : 0.0, et, dissipated, h.p[P::kExponentOf + j])
-                      : imk_beta(e > 0 ? e : 0.0, 2.0 * et, dissipated, h.p[P::kExponentOf + j]);
+        const double against = j == 2 && dissipated < et ? 2.0 * et : et;
+        beta[j] = imk_beta(e > 0 ? e : 0.0, against, dissipated, h.p[P::kExponentOf + j]);
         if (beta[j] >= 1.0) return fail(k, d, dp, dissipated, peak, x);  // capacity spent
       }
       const std::size_t i = sign > 0 ? 0 : 1;  // the sense the next excursion loads
