@@ -134,16 +134,21 @@ inline std::array<double, 4> bending_terms(double E, double I, double G, double 
           (2.0 - phi) * E * I / l * s};
 }
 
+// A leaning column (Geometry::kLeaning) has the axial stiffness alone: no bending, no torsion.
 inline BeamStiffness beam_stiffness(const ElementSpec& e, double l) {
   BeamStiffness k;
   k.axial = e.E * e.A / l;
+  if (e.geometry == Geometry::kLeaning) return k;
   k.torsion = e.G * e.J / l;
   k.xy = bending_terms(e.E, e.Iz, e.G, e.shear_area_y, l);
   k.xz = bending_terms(e.E, e.Iy, e.G, e.shear_area_z, l);
   return k;
 }
 
+// A leaning column needs E, rho and A alone (its G, I and J may be 0).
 inline bool beam_properties_valid(const ElementSpec& e) {
+  if (e.geometry == Geometry::kLeaning)
+    return e.E > 0 && e.rho > 0 && e.A > 0 && e.G >= 0 && e.Iy >= 0 && e.Iz >= 0 && e.J >= 0;
   return e.E > 0 && e.G > 0 && e.rho > 0 && e.A > 0 && e.Iy > 0 && e.Iz > 0 && e.J > 0 &&
          e.shear_area_y >= 0 && e.shear_area_z >= 0;
 }
@@ -170,11 +175,9 @@ inline Matrix12 beam_local_stiffness(const BeamStiffness& k) {
   return K;
 }
 
-// Global 12x12 stiffness T^T K_L T, T = diag(R, R, R, R). Row-major.
-inline Matrix12 beam_global_stiffness(const BeamData& b) {
-  const Matrix12 KL = beam_local_stiffness(b.k);
+// A local 12x12 matrix in global axes, T^T K_L T with T = diag(R, R, R, R). Row-major.
+inline Matrix12 to_global_axes(const Matrix12& KL, const std::array<double, 9>& R) {
   Matrix12 KT{}, K{};
-  const auto& R = b.rotation;
   for (int r = 0; r < 12; ++r) {  // KT = KL T
     for (int blk = 0; blk < 4; ++blk) {
       for (int c = 0; c < 3; ++c) {
@@ -200,6 +203,11 @@ inline Matrix12 beam_global_stiffness(const BeamData& b) {
     }
   }
   return K;
+}
+
+// Global 12x12 stiffness T^T K_L T, T = diag(R, R, R, R). Row-major.
+inline Matrix12 beam_global_stiffness(const BeamData& b) {
+  return to_global_axes(beam_local_stiffness(b.k), b.rotation);
 }
 
 // HRZ lumped mass of one element end, in global axes (DESIGN §4): translations rho A l / 2;

@@ -37,6 +37,7 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::num_stiffness);
   v(&M::every_node_in_element);
   v(&M::element_slot, s.elements);
+  v(&M::geometric, s.geometric);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);
   v(&M::mass_table, mass_groups(s.nodes));
@@ -112,6 +113,7 @@ constexpr void state_members(const Sizes& s, V&& v) {
   v(&M::inputs_held);
   v(&M::inputs_out_of_range);
   v(&M::faults);
+  v(&M::geometry_bound);
   v(&M::plastic, s.hystereses);
   v(&M::dissipated, s.hystereses);
   v(&M::plastic_peak, s.hystereses);

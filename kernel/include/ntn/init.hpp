@@ -465,6 +465,23 @@ InitStatus init_time_step(const ModelSpec<S>& spec, const SpecView& v, Model<S>&
   return {};
 }
 
+// The elements with second-order geometry, in element order, each with its stable-step bound
+// (geometric_force_limit, geometry.hpp) for the step the run takes.
+template <Sizes S>
+void init_geometry(const SpecView& v, Model<S>& model) {
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < v.elements.size(); ++i) {
+    const ElementSpec& e = v.elements[i];
+    if (e.geometry == Geometry::kLinear) continue;
+    const NodeSpec& a = v.nodes[static_cast<std::size_t>(e.node_i)];
+    const NodeSpec& b = v.nodes[static_cast<std::size_t>(e.node_j)];
+    GeometricElement& ge = model.geometric[k++];
+    ge = geometric_element(e, static_cast<std::int32_t>(i), a, b);
+    ge.limit = geometric_force_limit(element_omega_max(e, a, b, v.settings.rotary_inertia), e.rho,
+                                     e.A, 1.0 / ge.inv_length, model.stable.dt_stable, model.dt);
+  }
+}
+
 }  // namespace detail
 
 // Builds the constant model from its spec, stage by stage.
@@ -482,7 +499,9 @@ template <Sizes S>
   init_slots(spec, model);
   init_laws(spec, model);
   init_channels(spec, model);
-  return init_time_step(spec, v, model);
+  if (const InitStatus st = init_time_step(spec, v, model); !st.ok()) return st;
+  init_geometry(v, model);
+  return {};
 }
 
 }  // namespace ntn

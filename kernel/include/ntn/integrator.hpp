@@ -114,6 +114,42 @@ void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
                            w.f.data());
 }
 
+// Adds the second-order part of element e's local end force `dof` at `end` (0: node i, 1: node j)
+// to `value`, as beam_local_end_forces gives the linear part: -g at node i, g at node j
+// (geometry.hpp); nothing for a linear element (not even 0.0: a -0.0 stays what it is). The
+// geometric elements are in element order: found by bisection.
+template <Sizes S>
+void add_geometric_end_force(const Model<S>& m, const State<S>& s, int element, int end, int dof,
+                             double& value) {
+  if (m.sizes.geometric == 0 || dof >= 3) return;
+  std::size_t lo = 0, hi = m.sizes.geometric;
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (m.geometric[mid].element < element) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  if (lo == m.sizes.geometric || m.geometric[lo].element != element) return;
+  const double g = geometric_force(m.geometric[lo], s.u.data()).g[dof];
+  value += end == 0 ? -g : g;
+}
+
+// F_n += the second-order forces of the elements with nonlinear geometry (geometry.hpp), in their
+// order after the element pass (so the same bits for any team), each element past its stable-step
+// bound counted in State::geometry_bound and flagged (kFaultGeometryBound). Nothing in a model of
+// linear elements.
+template <Sizes S>
+void geometric_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if (m.sizes.geometric == 0) return;
+  const std::size_t over =
+      geometric_forces(m.geometric.data(), m.sizes.geometric, s.u.data(), w.f.data());
+  if (over == 0) return;
+  s.geometry_bound += over;
+  s.faults |= kFaultGeometryBound;
+}
+
 // A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
 template <Sizes S>
 void hinge_deformation(const State<S>& s, const HingeData& h, double* d, double* d_dot) {
@@ -323,6 +359,7 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         const auto f = beam_local_end_forces(b, &s.u[static_cast<std::size_t>(6 * b.node_i)],
                                              &s.u[static_cast<std::size_t>(6 * b.node_j)]);
         value = f[static_cast<std::size_t>(6 * o.end + o.dof)];
+        add_geometric_end_force(m, s, o.element, o.end, o.dof, value);
         for (const ElementLoadSpec& l : m.element_loads) {  // the element's own load
           if (l.element != o.element) continue;
           value -= l.local[static_cast<std::size_t>(6 * o.end + o.dof)] *
@@ -517,7 +554,8 @@ template <Sizes S>
     team->run(team->self, team_element_forces<S>, &c);
     team->run(team->self, team_shared_forces<S>, &c);
   }
-  hinge_springs(m, s, w);  // hinge springs: F_n += B^T f_L (§7)
+  geometric_stage(m, s, w);  // second-order geometry: F_n += the chords' P-Delta (§4)
+  hinge_springs(m, s, w);    // hinge springs: F_n += B^T f_L (§7)
   if (fused) {
     output_accelerations(m, s, w);  // a_n where the outputs read it (S 2-4)
   } else {
@@ -568,6 +606,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
   s.tick = 0;
   s.inputs_held = s.inputs_out_of_range = 0;
   s.faults = 0;
+  s.geometry_bound = 0;
   s.plastic.fill(0.0);  // no plastic history at the start of a run
   s.dissipated.fill(0.0);
   s.plastic_peak.fill(0.0);
@@ -638,6 +677,7 @@ template <Sizes S>
   // step()'s stages up to a_0, at t = 0 and with C v_0
   detail::apply_loads(m, s, w, 0.0);
   detail::element_forces(m, s, w);
+  detail::geometric_stage(m, s, w);
   detail::hinge_springs(m, s, w);
   detail::residual_stage(m, s, w);
   detail::ntn_coupling(m, s, w);

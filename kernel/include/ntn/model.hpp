@@ -13,6 +13,7 @@
 #include "ntn/dof_pass.hpp"
 #include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
+#include "ntn/geometry.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/hinge_methods.hpp"
 #include "ntn/hysteresis.hpp"
@@ -40,6 +41,9 @@ struct Model : SizesOf<S> {
   // Element e of the file -> its place k in the model's order (block k / kBeamLanes, lane
   // k % kBeamLanes).
   Array<std::int32_t, S, S.elements> element_slot{};
+  // The elements with second-order geometry (p_delta, leaning columns), in element order: what
+  // the step adds after the element pass (geometry.hpp).
+  Array<GeometricElement, S, S.geometric> geometric{};
   Array<double, S, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
   // the hinge-summed mass (S 22-26), times 1 / mass_factor (below); 0 at supported DOFs (which stay

@@ -26,6 +26,13 @@ struct NodeSpec {
   std::array<double, kDofsPerNode> v0{};
 };
 
+// How an element's displacements enter its internal force (DESIGN §4, geometry.hpp).
+enum class Geometry : std::uint8_t {
+  kLinear,   // small displacements: F = T^T K_L T u
+  kPDelta,   // plus the chord's second-order strain: the axial force's geometric stiffness
+  kLeaning,  // a leaning column: the axial force and its P-Delta, no bending or torsion
+};
+
 // One 2-node frame element with its material and section resolved (DESIGN §4).
 struct ElementSpec {
   int node_i = 0, node_j = 0;
@@ -35,6 +42,7 @@ struct ElementSpec {
   double shear_area_z = 0;              // m^2, same along local z
   double ref_x = 0, ref_y = 0, ref_z = 1;  // orientation vector: local z lies in plane(x, ref)
   int member = 0;                          // index of the member it was meshed from (for reports)
+  Geometry geometry = Geometry::kLinear;
 };
 
 struct TimePoint {
@@ -329,6 +337,14 @@ constexpr SpecView view(const ModelSpec<S>& spec) {
           spec.settings};
 }
 
+// The elements whose geometry is not linear (Sizes::geometric).
+constexpr std::size_t geometric_elements(std::span<const ElementSpec> elements) {
+  std::size_t n = 0;
+  for (const ElementSpec& e : elements)
+    n += e.geometry != Geometry::kLinear ? 1 : 0;
+  return n;
+}
+
 // The sizes of a model given as a view (a run-time description): the counts of its arrays.
 constexpr Sizes sizes_of(const SpecView& v) {
   Sizes s;
@@ -344,6 +360,7 @@ constexpr Sizes sizes_of(const SpecView& v) {
   s.curve_points = v.curve_points.size();
   s.element_loads = v.element_loads.size();
   s.hystereses = v.hystereses.size();
+  s.geometric = geometric_elements(v.elements);
   return s;
 }
 

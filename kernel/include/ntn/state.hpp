@@ -41,6 +41,8 @@ struct State : SizesOf<S> {
   std::uint64_t inputs_held = 0;             // non-finite inputs replaced by the held value
   std::uint64_t inputs_out_of_range = 0;     // inputs outside [min, max], held likewise
   std::uint32_t faults = 0;                  // Fault bits, sticky
+  // Element-steps past the stable step's bound of second-order geometry (geometry.hpp).
+  std::uint64_t geometry_bound = 0;
   // The history of the hysteretic hinge directions (kPlastic, hysteresis.hpp), by slot
   // (HingeSpec::hysteresis): plastic deformation d_p (m or rad: the force is k (d - d_p)) and
   // energy dissipated (J).

@@ -76,6 +76,8 @@ enum Fault : std::uint32_t {
   kFaultInputHeld = 1U << 0,
   kFaultDiverged = 1U << 1,
   kFaultInputRange = 1U << 2,
+  // an element's axial force or chord rotation beyond the stable step's bound (geometry.hpp)
+  kFaultGeometryBound = 1U << 3,
 };
 
 }  // namespace ntn

@@ -36,12 +36,18 @@ constexpr double kMechanismTolerance = 1e-10;
 // least 1) separates rounding from a real motion (as the model compiler's mechanism check).
 constexpr double kRankTolerance = 1e-9;
 
-// K of the elements and of the hinges' springs, sum B^T diag(k) B (DESIGN §7), in global DOFs.
-SpMat stiffness(const SpecView& spec, const std::vector<LinearHinge>& hinges, int& bad_element) {
+// K of the elements and of the hinges' springs, sum B^T diag(k) B (DESIGN §7), in global DOFs,
+// plus the geometric stiffness K_g(N(u)) of the elements with second-order geometry at `about`
+// when it is given (6 per node; geometry.hpp).
+SpMat stiffness(const SpecView& spec, const std::vector<LinearHinge>& hinges, int& bad_element,
+                const std::vector<double>* about = nullptr) {
   Triplets t;
   t.reserve(spec.elements.size() * 144);
   bad_element =
       for_each_element_stiffness(spec, [&t](int r, int c, double v) { t.emplace_back(r, c, v); });
+  if (about != nullptr && bad_element < 0)
+    for_each_geometric_stiffness(geometric_elements(spec), *about,
+                                 [&t](int r, int c, double v) { t.emplace_back(r, c, v); });
   for (std::size_t h = 0; h < spec.hinges.size(); ++h) {
     HingeData hd;
     hd.node1 = spec.hinges[h].node1, hd.node2 = spec.hinges[h].node2;
@@ -66,6 +72,16 @@ SpMat stiffness(const SpecView& spec, const std::vector<LinearHinge>& hinges, in
   SpMat K(n, n);
   K.setFromTriplets(t.begin(), t.end());
   return K;
+}
+
+// The model's u_0 (NodeSpec::u0: the static preload and [initial] values), 6 per node: the
+// state whose axial forces the geometric stiffness of modal analysis takes.
+std::vector<double> initial_displacement(const SpecView& spec) {
+  std::vector<double> u(kDofsPerNode * spec.nodes.size(), 0.0);
+  for (std::size_t n = 0; n < spec.nodes.size(); ++n)
+    for (std::size_t k = 0; k < kDofsPerNode; ++k)
+      u[kDofsPerNode * n + k] = spec.nodes[n].u0[k];
+  return u;
 }
 
 std::string dof_names(std::uint8_t bits) {
@@ -138,7 +154,8 @@ bool assemble(const SpecView& spec, const HingeLinearization& lin, const Constra
               ModalResult& r, Assembled& a) {
   const int n = r.dofs;
   int bad_element = -1;
-  const SpMat K = stiffness(spec, lin.hinges, bad_element);
+  const std::vector<double> u0 = initial_displacement(spec);
+  const SpMat K = stiffness(spec, lin.hinges, bad_element, &u0);
   if (bad_element >= 0) {
     r.error = "element " + std::to_string(bad_element) +
               " has a bad geometry or bad properties (zero length, orientation along the member, "
@@ -445,6 +462,83 @@ void participation(const SpecView& spec, const SpMat& T, const SpMat& S,
 
 }  // namespace
 
+namespace {
+
+// K u = P in the coordinates q of the constraints (u = T q), coordinates without stiffness left
+// at zero (mechanisms the kernel holds): false and the reason when a load acts on one
+// (`check_mechanisms`) or K is not positive definite on the others (`singular`).
+bool solve_constrained(const SpMat& K, const SpMat& T, const Eigen::VectorXd& load,
+                       bool check_mechanisms, const std::string& singular, Eigen::VectorXd& u,
+                       std::string& error) {
+  const SpMat Kq = SpMat(T.transpose() * K * T);
+  const Eigen::VectorXd Pq = T.transpose() * load;
+  const Eigen::VectorXd diag = Kq.diagonal();
+  const double kmax = diag.cwiseAbs().maxCoeff();
+  const double pmax = Pq.cwiseAbs().maxCoeff();
+  std::vector<int> keep_of(static_cast<std::size_t>(Kq.cols()), -1);
+  int kept = 0;
+  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
+    if (diag(c) > kMechanismTolerance * kmax) {
+      keep_of[static_cast<std::size_t>(c)] = kept++;
+    } else if (check_mechanisms && std::abs(Pq(c)) > 1e-12 * pmax) {
+      error =
+          "a load acts on a DOF that nothing holds (a mechanism): the structure cannot "
+          "carry it statically";
+      return false;
+    }
+  }
+  Triplets t;
+  for (Eigen::Index c = 0; c < Kq.outerSize(); ++c) {
+    for (SpMat::InnerIterator it(Kq, c); it; ++it) {
+      const int i = keep_of[static_cast<std::size_t>(it.row())];
+      const int j = keep_of[static_cast<std::size_t>(it.col())];
+      if (i >= 0 && j >= 0) t.emplace_back(i, j, it.value());
+    }
+  }
+  SpMat Kr(kept, kept);
+  Kr.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd Pr(kept);
+  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
+    const int i = keep_of[static_cast<std::size_t>(c)];
+    if (i >= 0) Pr(i) = Pq(c);
+  }
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(Kr);
+  bool ok = ldlt.info() == Eigen::Success;
+  if (ok && kept > 0) {
+    // Positive definite to working precision; a pivot near zero is a rigid-body motion.
+    const Eigen::VectorXd d = ldlt.vectorD();
+    ok = d.minCoeff() > 1e-13 * d.cwiseAbs().maxCoeff();
+  }
+  if (!ok) {
+    error = singular;
+    return false;
+  }
+  const Eigen::VectorXd qr = kept > 0 ? Eigen::VectorXd(ldlt.solve(Pr)) : Eigen::VectorXd(Pr);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(Kq.cols());
+  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
+    const int i = keep_of[static_cast<std::size_t>(c)];
+    if (i >= 0) q(c) = qr(i);
+  }
+  u = T * q;
+  return true;
+}
+
+// The internal force at u of a model whose elements may have second-order geometry: K u plus
+// the step's own second-order forces (ntn::geometric_forces).
+Eigen::VectorXd internal_force(const SpMat& K, const std::vector<GeometricElement>& geometric,
+                               const Eigen::VectorXd& u) {
+  Eigen::VectorXd f = K * u;
+  geometric_forces(geometric.data(), geometric.size(), u.data(), f.data());
+  return f;
+}
+
+constexpr int kPreloadIterations = 50;
+constexpr double kPreloadTolerance = 1e-12;  // |T^T (F(u) - P)| / |T^T P|
+
+}  // namespace
+
+// With second-order geometry the equilibrium F(u) = P is nonlinear: Newton's method with the
+// tangent K + K_g(N(u)) (geometry.hpp) from u = 0, to kPreloadTolerance.
 StaticResult static_solution(const SpecView& spec, std::span<const double> load) {
   StaticResult r;
   const auto n = static_cast<Eigen::Index>(kDofsPerNode * spec.nodes.size());
@@ -474,63 +568,38 @@ StaticResult static_solution(const SpecView& spec, std::span<const double> load)
     r.error = "element " + std::to_string(bad_element) + " has a bad geometry or bad properties";
     return r;
   }
-  const SpMat& T = cm.T;
-  const SpMat Kq = SpMat(T.transpose() * K * T);
-  const Eigen::VectorXd Pq = T.transpose() * Eigen::Map<const Eigen::VectorXd>(load.data(), n);
-
-  // Coordinates without stiffness: mechanisms the kernel holds at zero. They must carry no load.
-  const Eigen::VectorXd diag = Kq.diagonal();
-  const double kmax = diag.cwiseAbs().maxCoeff();
-  const double pmax = Pq.cwiseAbs().maxCoeff();
-  std::vector<int> keep_of(static_cast<std::size_t>(Kq.cols()), -1);
-  int kept = 0;
-  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
-    if (diag(c) > kMechanismTolerance * kmax) {
-      keep_of[static_cast<std::size_t>(c)] = kept++;
-    } else if (std::abs(Pq(c)) > 1e-12 * pmax) {
-      r.error =
-          "a load acts on a DOF that nothing holds (a mechanism): the structure cannot "
-          "carry it statically";
+  const Eigen::VectorXd P = Eigen::Map<const Eigen::VectorXd>(load.data(), n);
+  const double pn = (cm.T.transpose() * P).norm();
+  const std::vector<GeometricElement> geometric = geometric_elements(spec);
+  Eigen::VectorXd u;
+  if (!solve_constrained(K, cm.T, P, true,
+                         "the stiffness is singular: the structure (supports, hinges) can move as "
+                         "a rigid body or has a mechanism that the load would move",
+                         u, r.error))
+    return r;
+  Eigen::VectorXd residual = P - internal_force(K, geometric, u);
+  for (int it = 0; !geometric.empty() && it < kPreloadIterations; ++it) {
+    if (!(pn > 0) || (cm.T.transpose() * residual).norm() <= kPreloadTolerance * pn) break;
+    const std::vector<double> about(u.data(), u.data() + u.size());
+    int bad = -1;
+    const SpMat Kt = stiffness(spec, lin.hinges, bad, &about);
+    Eigen::VectorXd du;
+    if (!solve_constrained(Kt, cm.T, residual, false,
+                           "the tangent stiffness K + K_g under the preload's axial forces is not "
+                           "positive definite: the structure buckles (P-Delta) under gravity and "
+                           "the constant loads",
+                           du, r.error))
       return r;
-    }
+    u += du;
+    residual = P - internal_force(K, geometric, u);
   }
-  Triplets t;
-  for (Eigen::Index c = 0; c < Kq.outerSize(); ++c) {
-    for (SpMat::InnerIterator it(Kq, c); it; ++it) {
-      const int i = keep_of[static_cast<std::size_t>(it.row())];
-      const int j = keep_of[static_cast<std::size_t>(it.col())];
-      if (i >= 0 && j >= 0) t.emplace_back(i, j, it.value());
-    }
-  }
-  SpMat Kr(kept, kept);
-  Kr.setFromTriplets(t.begin(), t.end());
-  Eigen::VectorXd Pr(kept);
-  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
-    const int i = keep_of[static_cast<std::size_t>(c)];
-    if (i >= 0) Pr(i) = Pq(c);
-  }
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(Kr);
-  bool ok = ldlt.info() == Eigen::Success;
-  if (ok && kept > 0) {
-    // Positive definite to working precision; a pivot near zero is a rigid-body motion.
-    const Eigen::VectorXd d = ldlt.vectorD();
-    ok = d.minCoeff() > 1e-13 * d.cwiseAbs().maxCoeff();
-  }
-  if (!ok) {
-    r.error =
-        "the stiffness is singular: the structure (supports, hinges) can move as a rigid "
-        "body or has a mechanism that the load would move";
+  r.relative_residual = pn > 0 ? (cm.T.transpose() * residual).norm() / pn : 0.0;
+  if (!geometric.empty() && !(r.relative_residual <= kPreloadTolerance)) {
+    r.error = "no static equilibrium with P-Delta after " + std::to_string(kPreloadIterations) +
+              " Newton iterations (relative residual " + num(r.relative_residual) +
+              "): the preload is at or past the structure's buckling load";
     return r;
   }
-  const Eigen::VectorXd qr = kept > 0 ? Eigen::VectorXd(ldlt.solve(Pr)) : Eigen::VectorXd(Pr);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(Kq.cols());
-  for (Eigen::Index c = 0; c < Kq.cols(); ++c) {
-    const int i = keep_of[static_cast<std::size_t>(c)];
-    if (i >= 0) q(c) = qr(i);
-  }
-  const double pn = Pq.norm();
-  r.relative_residual = pn > 0 ? (Kq * q - Pq).norm() / pn : 0.0;
-  const Eigen::VectorXd u = T * q;
   r.u.assign(u.data(), u.data() + u.size());
   return r;
 }

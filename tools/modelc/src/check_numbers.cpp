@@ -49,7 +49,9 @@ void check_element_numbers(Compilation& comp) {
     const MemberInfo& info = d.members[mi];
     const Material& ma =
         p.materials[static_cast<std::size_t>(comp.ids.materials.at(m.material.id))];
-    const Section& se = p.sections[static_cast<std::size_t>(comp.ids.sections.at(m.section.id))];
+    const Section se = m.leaning_area
+                           ? leaning_section(m)
+                           : p.sections[static_cast<std::size_t>(comp.ids.sections.at(m.section.id))];
     const std::string of = " of member " + m.id.id;
     for (int k = 0; k < info.element_count; ++k) {
       const ElementSpec& e = d.elements[static_cast<std::size_t>(info.first_element + k)];
@@ -94,7 +96,8 @@ void check_element_numbers(Compilation& comp) {
       if (!ok) break;
       const auto me = beam_end_mass(e, g, d.settings.rotary_inertia);
       ok = check_derived(L, me[0], "end mass rho A l / 2" + of, {rho, A, len(1)}, true);
-      for (std::size_t c = 3; ok && c < 6; ++c) {
+      const bool rotations = e.geometry != Geometry::kLeaning;  // a leaning column's may be 0
+      for (std::size_t c = 3; ok && rotations && c < 6; ++c) {
         Factor I{"Iy + Iz", e.Iy + e.Iz, 1, se.Iy_at, " m^4"};
         ok =
             check_derived(L, me[c], "rotational end mass rho (Iy + Iz) l / 2 + rho A l^3 / 78" + of,

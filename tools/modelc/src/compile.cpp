@@ -105,6 +105,7 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   mesh_members(comp);
   add_hinges(comp);
   add_supports(comp);
+  hold_leaning_rotations(comp);
   add_point_masses(comp);
   hold_out_of_plane(comp);
   add_loads(comp);

@@ -59,6 +59,20 @@ std::string lit(int v) {
 std::string lit(std::size_t v) {
   return std::to_string(v);
 }
+// ", .geometry = ..." for an element whose geometry is not linear (a linear one keeps the
+// default, so its header is what it was before the field existed).
+std::string geometry_field(Geometry g) {
+  switch (g) {
+    case Geometry::kLinear:
+      return "";
+    case Geometry::kPDelta:
+      return ", .geometry = ntn::Geometry::kPDelta";
+    case Geometry::kLeaning:
+      return ", .geometry = ntn::Geometry::kLeaning";
+  }
+  return "";
+}
+
 std::string lit(bool v) {
   return v ? "true" : "false";
 }
@@ -298,7 +312,8 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
        ", .inputs = " + lit(z.inputs) + ", .outputs = " + lit(z.outputs) +
        ", .hinges = " + lit(z.hinges) + ", .curves = " + lit(z.curves) +
        ", .curve_points = " + lit(z.curve_points) + ", .element_loads = " + lit(z.element_loads) +
-       ", .hystereses = " + lit(z.hystereses) + "};\n\n";
+       ", .hystereses = " + lit(z.hystereses) +
+       (z.geometric == 0 ? "" : ", .geometric = " + lit(z.geometric)) + "};\n\n";
 
   o += "inline constexpr ntn::ModelSpec<kSizes> kSpec{\n";
   array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {
@@ -314,7 +329,8 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
            ", .Iy = " + lit(e.Iy) + ", .Iz = " + lit(e.Iz) + ", .J = " + lit(e.J) +
            ", .shear_area_y = " + lit(e.shear_area_y) + ", .shear_area_z = " + lit(e.shear_area_z) +
            ", .ref_x = " + lit(e.ref_x) + ", .ref_y = " + lit(e.ref_y) +
-           ", .ref_z = " + lit(e.ref_z) + ", .member = " + lit(e.member) + "}";
+           ", .ref_z = " + lit(e.ref_z) + ", .member = " + lit(e.member) +
+           geometry_field(e.geometry) + "}";
   });
   array_init(o, "time_points", m.time_points, [](const TimePoint& p) {
     return "{.t = " + lit(p.t) + ", .value = " + lit(p.value) + "}";

@@ -225,16 +225,18 @@ void mesh_member(Compilation& comp, std::size_t mi, const std::vector<double>& t
   ax.a = comp.node_ref(m.nodes[0], m.nodes_at);
   ax.b = comp.node_ref(m.nodes[1], m.nodes_at);
   const int mat = comp.ref(comp.ids.materials, m.material, "material");
-  const int sec = comp.ref(comp.ids.sections, m.section, "section");
+  const int sec = m.leaning_area ? 0 : comp.ref(comp.ids.sections, m.section, "section");
   if (ax.a < 0 || ax.b < 0 || mat < 0 || sec < 0) return;
   const Material& ma = p.materials[static_cast<std::size_t>(mat)];
-  const Section& se = p.sections[static_cast<std::size_t>(sec)];
+  const Section se =
+      m.leaning_area ? leaning_section(m) : p.sections[static_cast<std::size_t>(sec)];
   ax.na = d.nodes[static_cast<std::size_t>(ax.a)];
   ax.nb = d.nodes[static_cast<std::size_t>(ax.b)];
   ax.dx = ax.nb.x - ax.na.x, ax.dy = ax.nb.y - ax.na.y, ax.dz = ax.nb.z - ax.na.z;
   ax.len = std::sqrt(ax.dx * ax.dx + ax.dy * ax.dy + ax.dz * ax.dz);
 
   ElementSpec e = member_element(ma, se, mi);
+  e.geometry = m.geometry.value_or(p.model.geometry);
   set_orientation(m, ax.dx, ax.dy, ax.dz, ax.len, e);
   e.node_i = ax.a, e.node_j = ax.b;
   if (!check_member_geometry(comp.L, m, ax, e)) return;
@@ -270,6 +272,30 @@ void mesh_members(Compilation& comp) {
   const std::vector<std::vector<double>> point_ts = member_point_fractions(comp);
   for (std::size_t mi = 0; mi < comp.p.members.size(); ++mi)
     mesh_member(comp, mi, point_ts[mi]);
+}
+
+// A node that only leaning columns reach has rotations that nothing resists or drives (a leaning
+// column has no bending or torsion stiffness): they are held, as a support would hold them,
+// unless a hinge joins the node in a rotation (a rigid, spring or yielding rotational direction:
+// the hinge then gives them their stiffness, and the user their support).
+void hold_leaning_rotations(Compilation& comp) {
+  ModelDescription& d = comp.d;
+  std::vector<int> leaning(d.nodes.size(), 0), other(d.nodes.size(), 0);
+  for (const ElementSpec& e : d.elements) {
+    auto& count = e.geometry == Geometry::kLeaning ? leaning : other;
+    ++count[static_cast<std::size_t>(e.node_i)], ++count[static_cast<std::size_t>(e.node_j)];
+  }
+  for (const HingeSpec& h : d.hinges) {
+    bool rotates = false;
+    for (std::size_t k = 3; k < kDofsPerNode; ++k)
+      rotates = rotates || h.behaviour[k] != HingeBehaviour::kFree;
+    if (!rotates) continue;
+    ++other[static_cast<std::size_t>(h.node1)];
+    if (h.node2 != kGround) ++other[static_cast<std::size_t>(h.node2)];
+  }
+  for (std::size_t n = 0; n < d.nodes.size(); ++n) {
+    if (leaning[n] > 0 && other[n] == 0) d.nodes[n].fixed |= 0x38;  // rx, ry, rz
+  }
 }
 
 }  // namespace ntn::modelc::compile

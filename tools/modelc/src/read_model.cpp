@@ -136,7 +136,7 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
           {"name", "title", "dt", "frame_rate", "rotary_inertia", "gravity", "gravity_function",
            "allow_unstable", "damping", "damping_velocity", "hinge_method", "clamp",
            "penalty_stiffness", "penalty_rotational_stiffness", "limit_stiffness",
-           "limit_rotational_stiffness", "plane"});
+           "limit_rotational_stiffness", "plane", "geometry"});
   t.check_unknown();
   if (auto name = t.string("name", Need::kRequired)) {
     if (is_cpp_identifier(*name)) {
@@ -189,6 +189,8 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
     m.clamp = static_cast<ClampRule>(*c);
   if (auto c = t.choice("damping_velocity", Need::kOptional, kDampingVelocities))
     m.damping_velocity = static_cast<DampingVelocity>(*c);
+  if (auto g = t.choice("geometry", Need::kOptional, kGeometries))
+    m.geometry = static_cast<Geometry>(*g);
   if (auto pl = t.choice("plane", Need::kOptional, kPlanes)) m.plane = static_cast<Plane>(*pl + 1);
   m.plane_at = t.where("plane");
   m.penalty_stiffness = t.positive("penalty_stiffness", Need::kOptional);
@@ -274,6 +276,7 @@ constexpr std::pair<std::string_view, TableReader> kTableReaders[] = {
     {"sections", read_section},
     {"nodes", read_node},
     {"members", read_member},
+    {"leaning_columns", read_leaning_column},
     {"supports", read_support},
     {"point_masses", read_point_mass},
     {"time_functions", read_time_function},
@@ -287,7 +290,8 @@ constexpr std::pair<std::string_view, TableReader> kTableReaders[] = {
 // The file's top-level keys: the tables a model file has.
 void check_top_level_keys(Reader& L, const toml::table& root) {
   Table top(L, root, "",
-            {"model", "materials", "sections", "nodes", "members", "supports", "point_masses",
+            {"model", "materials", "sections", "nodes", "members", "leaning_columns", "supports",
+             "point_masses",
              "time_functions", "loads", "member_loads", "inputs", "outputs", "curves", "hinges",
              "initial"});
   top.check_unknown();

@@ -102,7 +102,7 @@ void read_node(Reader& L, const toml::table& tt, const std::string& path, Source
 void read_member(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p) {
   Table t(L, tt, path,
           {"id", "nodes", "material", "section", "divisions", "orientation", "roll",
-           "release_start", "release_end"});
+           "release_start", "release_end", "geometry"});
   t.check_unknown();
   Member m;
   for (std::size_t e = 0; e < 2; ++e) {
@@ -117,7 +117,10 @@ void read_member(Reader& L, const toml::table& tt, const std::string& path, Sour
   auto mat = read_id(L, t, "material");
   auto sec = read_id(L, t, "section");
   auto div = t.integer("divisions", Need::kOptional, 1, kMaxDivisions);
-  bool ok = id && nodes && mat && sec && (div || !t.has("divisions"));
+  auto geometry = t.choice("geometry", Need::kOptional, kGeometries);
+  if (geometry) m.geometry = static_cast<Geometry>(*geometry);
+  bool ok = id && nodes && mat && sec && (div || !t.has("divisions")) &&
+            (geometry || !t.has("geometry"));
   if (!t.conflict("orientation", "roll")) {
     if (t.has("orientation")) {
       auto o = t.numbers("orientation", Need::kRequired, 3);
@@ -145,6 +148,24 @@ void read_member(Reader& L, const toml::table& tt, const std::string& path, Sour
   if (!ok) return;
   m.id = *id, m.nodes = *nodes, m.nodes_at = t.where("nodes"), m.material = *mat;
   m.section = *sec, m.divisions = static_cast<int>(div.value_or(1));
+  p.members.push_back(m);
+}
+
+// One [[leaning_columns]] table: a column segment that carries gravity into P-Delta without
+// bending stiffness (a member of Geometry::kLeaning, one element: it has no bending to mesh).
+void read_leaning_column(Reader& L, const toml::table& tt, const std::string& path,
+                         SourceModel& p) {
+  Table t(L, tt, path, {"id", "nodes", "material", "A"});
+  t.check_unknown();
+  auto id = read_id(L, t, "id");
+  auto nodes = t.node_ids("nodes", Need::kRequired, 2);
+  auto mat = read_id(L, t, "material");
+  auto area = t.positive("A", Need::kRequired);
+  if (!id || !nodes || !mat || !area) return;
+  Member m;
+  m.id = *id, m.nodes = *nodes, m.nodes_at = t.where("nodes"), m.material = *mat;
+  m.geometry = Geometry::kLeaning;
+  m.leaning_area = *area;
   p.members.push_back(m);
 }
 

@@ -4,17 +4,24 @@
 #pragma once
 
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "source_model.hpp"
 #include "toml_reader.hpp"
 
 namespace ntn::modelc::compile {
 
+// `geometry` of [model] and [[members]], in the order of ntn::Geometry's first values.
+inline const std::vector<std::string_view> kGeometries = {"linear", "p_delta"};
+
 // read_structure.cpp
 void read_material(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_section(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_node(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_member(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
+void read_leaning_column(Reader& L, const toml::table& tt, const std::string& path,
+                         SourceModel& p);
 void read_support(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_point_mass(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_curve(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);

@@ -85,10 +85,22 @@ struct Member {
   std::optional<std::array<double, 3>> orientation;
   Where orientation_at;
   double roll_deg = 0;
+  std::optional<Geometry> geometry;  // `geometry`; the model's default when not given
+  // A leaning column's segment ([[leaning_columns]]): its area, no section (Geometry::kLeaning).
+  std::optional<double> leaning_area;
   // start, end; held apart (a Release is six behaviours, over 2 KB): a member without
   // releases, the common case, costs two pointers
   std::array<std::shared_ptr<const Release>, 2> release;
 };
+
+// The section of a leaning column's member: its area alone, where its table gives it.
+inline Section leaning_section(const Member& m) {
+  Section s;
+  s.id = m.id;
+  s.A = m.leaning_area.value_or(0);
+  s.A_at = m.nodes_at;
+  return s;
+}
 
 struct Support {
   NodeRef node;
@@ -207,6 +219,7 @@ struct ModelTable {
   std::optional<double> penalty_stiffness, penalty_rotational_stiffness;
   std::optional<double> limit_stiffness, limit_rotational_stiffness;
   Where hinge_method_at;
+  Geometry geometry = Geometry::kLinear;  // every member's unless it says otherwise
 };
 
 // [[initial.nodes]]: a node's initial displacement and velocity (global axes, DOF order; a

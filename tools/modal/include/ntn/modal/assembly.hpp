@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ntn/beam.hpp"
+#include "ntn/geometry.hpp"
 #include "ntn/init.hpp"
 #include "ntn/model.hpp"
 #include "ntn/model_spec.hpp"
@@ -58,6 +59,38 @@ int for_each_element_stiffness(const SpecView& spec, Add&& add) {
     }
   }
   return -1;
+}
+
+// The elements with second-order geometry (geometry.hpp) as the step reads them, in element order
+// (their stable-step limits left at 0: not for a step).
+inline std::vector<GeometricElement> geometric_elements(const SpecView& spec) {
+  std::vector<GeometricElement> out;
+  for (std::size_t i = 0; i < spec.elements.size(); ++i) {
+    const ElementSpec& e = spec.elements[i];
+    if (e.geometry == Geometry::kLinear) continue;
+    out.push_back(geometric_element(e, static_cast<std::int32_t>(i),
+                                    spec.nodes[static_cast<std::size_t>(e.node_i)],
+                                    spec.nodes[static_cast<std::size_t>(e.node_j)]));
+  }
+  return out;
+}
+
+// Calls add(row, column, value) for every entry of the geometric stiffness K_g(N(u)) of the
+// elements with second-order geometry at the displacement u (6 per node: their axial forces N
+// as the step computes them, ntn::geometric_force), skipping exact zeros.
+template <class Add>
+void for_each_geometric_stiffness(const std::vector<GeometricElement>& elements,
+                                  const std::vector<double>& u, Add&& add) {
+  for (const GeometricElement& ge : elements) {
+    const Matrix12 K = geometric_stiffness(ge, geometric_force(ge, u.data()).normal);
+    const int dof[2] = {ge.dof_i, ge.dof_j};
+    for (int r = 0; r < 12; ++r) {
+      for (int c = 0; c < 12; ++c) {
+        const double v = K[static_cast<std::size_t>(r * 12 + c)];
+        if (v != 0.0) add(dof[r / 6] + r % 6, dof[c / 6] + c % 6, v);
+      }
+    }
+  }
 }
 
 }  // namespace ntn::modal
