@@ -38,11 +38,19 @@ double element_omega_max(const ElementSpec& e, const NodeSpec& a, const NodeSpec
   data.k = beam_stiffness(e, g.length);
   const Matrix12 K = beam_global_stiffness(data);
   const auto m = beam_end_mass(e, g, rotary_inertia);
+  // A DOF without stiffness in this element (a leaning column's rotations, which may have no mass
+  // either) has no frequency of its own: its row and column of A are 0.
+  std::array<bool, 12> stiff{};
+  for (int r = 0; r < 12; ++r)
+    for (int c = 0; c < 12; ++c)
+      stiff[static_cast<std::size_t>(r)] =
+          stiff[static_cast<std::size_t>(r)] || K[static_cast<std::size_t>(r * 12 + c)] != 0.0;
   Eigen::Matrix<double, 12, 12> A;  // M^-1/2 K M^-1/2, symmetric
   for (int r = 0; r < 12; ++r) {
     for (int c = 0; c < 12; ++c) {
       const double mr = m[static_cast<std::size_t>(r % 6)], mc = m[static_cast<std::size_t>(c % 6)];
-      A(r, c) = K[static_cast<std::size_t>(r * 12 + c)] / std::sqrt(mr * mc);
+      const bool both = stiff[static_cast<std::size_t>(r)] && stiff[static_cast<std::size_t>(c)];
+      A(r, c) = both ? K[static_cast<std::size_t>(r * 12 + c)] / std::sqrt(mr * mc) : 0.0;
     }
   }
   // A stiffness or mass so extreme that M^-1/2 K M^-1/2 overflows (or underflows to a division

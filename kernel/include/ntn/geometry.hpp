@@ -24,8 +24,8 @@
 // k (phi^2 + phi sqrt(phi^2 + 4)) / 2 <= k (phi + phi^2), phi^2 = s / l^2 the chord's rotation
 // squared. By the element eigenvalue theorem and Weyl's inequality on M_e^-1/2 K_e M_e^-1/2, with
 // the end translations' lumped mass m = rho A l / 2,
-//     omega_e^2(u) <= omega_e^2 + 2 (N+ + k l (phi + phi^2)) / (l m) = omega_e^2 + 4 Q / (rho A l^2),
-//     Q = N+ + k l (phi + phi^2).
+//     omega_e^2(u) <= omega_e^2 + 2 (N+ + k l (phi + phi^2)) / (l m) = omega_e^2 + 4 Q / (rho A
+//     l^2), Q = N+ + k l (phi + phi^2).
 // With dt = dt_stable / r (r >= 1), every node's bound dt^2 omega_n^2 + 2 dt eta_n < 4 still holds
 // when each element's omega_e^2 grows by at most the factor r (each node's terms then grow by at
 // most r, and dt_n >= r dt makes dt^2 omega_n^2 + 2 dt eta_n <= 4 / r). So the run is stable while
@@ -70,9 +70,9 @@ inline GeometricElement geometric_element(const ElementSpec& e, std::int32_t ind
   return ge;
 }
 
-// The largest Q = N+ + k l (phi + phi^2) for which an element of top frequency omega_e (rad/s, without
-// axial force), density rho, area A and length l keeps the step dt stable, dt_stable the model's
-// stable step (the header's bound): 0 when dt is not below dt_stable.
+// The largest Q = N+ + k l (phi + phi^2) for which an element of top frequency omega_e (rad/s,
+// without axial force), density rho, area A and length l keeps the step dt stable, dt_stable the
+// model's stable step (the header's bound): 0 when dt is not below dt_stable.
 inline double geometric_force_limit(double omega_e, double rho, double area, double length,
                                     double dt_stable, double dt) {
   if (!(dt > 0) || !(dt < dt_stable)) return 0;

@@ -600,6 +600,18 @@ StaticResult static_solution(const SpecView& spec, std::span<const double> load)
               "): the preload is at or past the structure's buckling load";
     return r;
   }
+  if (!geometric.empty()) {  // a stable equilibrium: the tangent positive definite there
+    const std::vector<double> about(u.data(), u.data() + u.size());
+    int bad = -1;
+    const SpMat Kt = stiffness(spec, lin.hinges, bad, &about);
+    Eigen::VectorXd probe;
+    if (!solve_constrained(Kt, cm.T, P, false,
+                           "the equilibrium under the preload is unstable: the tangent stiffness "
+                           "K + K_g under its axial forces is not positive definite, so the "
+                           "structure buckles (P-Delta) under gravity and the constant loads",
+                           probe, r.error))
+      return r;
+  }
   r.u.assign(u.data(), u.data() + u.size());
   return r;
 }

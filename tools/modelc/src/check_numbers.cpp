@@ -49,9 +49,9 @@ void check_element_numbers(Compilation& comp) {
     const MemberInfo& info = d.members[mi];
     const Material& ma =
         p.materials[static_cast<std::size_t>(comp.ids.materials.at(m.material.id))];
-    const Section se = m.leaning_area
-                           ? leaning_section(m)
-                           : p.sections[static_cast<std::size_t>(comp.ids.sections.at(m.section.id))];
+    const Section se =
+        m.leaning_area ? leaning_section(m)
+                       : p.sections[static_cast<std::size_t>(comp.ids.sections.at(m.section.id))];
     const std::string of = " of member " + m.id.id;
     for (int k = 0; k < info.element_count; ++k) {
       const ElementSpec& e = d.elements[static_cast<std::size_t>(info.first_element + k)];

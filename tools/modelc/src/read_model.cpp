@@ -291,9 +291,8 @@ constexpr std::pair<std::string_view, TableReader> kTableReaders[] = {
 void check_top_level_keys(Reader& L, const toml::table& root) {
   Table top(L, root, "",
             {"model", "materials", "sections", "nodes", "members", "leaning_columns", "supports",
-             "point_masses",
-             "time_functions", "loads", "member_loads", "inputs", "outputs", "curves", "hinges",
-             "initial"});
+             "point_masses", "time_functions", "loads", "member_loads", "inputs", "outputs",
+             "curves", "hinges", "initial"});
   top.check_unknown();
 }
 

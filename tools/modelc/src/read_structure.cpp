@@ -119,8 +119,8 @@ void read_member(Reader& L, const toml::table& tt, const std::string& path, Sour
   auto div = t.integer("divisions", Need::kOptional, 1, kMaxDivisions);
   auto geometry = t.choice("geometry", Need::kOptional, kGeometries);
   if (geometry) m.geometry = static_cast<Geometry>(*geometry);
-  bool ok = id && nodes && mat && sec && (div || !t.has("divisions")) &&
-            (geometry || !t.has("geometry"));
+  bool ok =
+      id && nodes && mat && sec && (div || !t.has("divisions")) && (geometry || !t.has("geometry"));
   if (!t.conflict("orientation", "roll")) {
     if (t.has("orientation")) {
       auto o = t.numbers("orientation", Need::kRequired, 3);

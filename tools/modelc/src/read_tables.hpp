@@ -20,8 +20,7 @@ void read_material(Reader& L, const toml::table& tt, const std::string& path, So
 void read_section(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_node(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_member(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
-void read_leaning_column(Reader& L, const toml::table& tt, const std::string& path,
-                         SourceModel& p);
+void read_leaning_column(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_support(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_point_mass(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
 void read_curve(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);
