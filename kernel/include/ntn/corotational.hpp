@@ -1,7 +1,7 @@
 // Two-node 3D corotational beam: the internal force under large displacements and rotations with
 // small strains, the linear element's natural stiffness (beam.hpp) acting in a frame that follows
 // the element. Formulation of Battini & Pacoste (2002), "Co-rotational beam elements with warping
-// effects in instability problems", CMAME 191, §3 without warping: corotated frame, local
+// effects in instability problems", CMAME 191, without warping: corotated frame, local
 // rotations, their variation through T_s^-1 and the frame's spin (their G matrix). Crisfield
 // (1990), "A consistent co-rotational formulation for non-linear, three-dimensional,
 // beam-elements", CMAME 81, builds the frame from the mean of the nodal rotations instead; both
@@ -100,7 +100,7 @@ inline Chord current_chord(const CorotationalBeam& b, const double* ui, const do
   return c;
 }
 
-// Corotated frame (Battini & Pacoste 2002, §3): e1 = x/l; with the nodal triads' second axes
+// Corotated frame (Battini & Pacoste 2002): e1 = x/l; with the nodal triads' second axes
 // t_i2, t_j2 (columns 1 of T_i, T_j) and their mean q = (t_i2 + t_j2)/2, e3 = e1 x q / |e1 x q|
 // and e2 = e3 x e1. Symmetric in the two nodes; needs q off the chord (deformational rotations
 // under 90 degrees about local z). |e1 x q| is near 1 while the deformational rotations are
