@@ -104,6 +104,18 @@ inline GeometricForce geometric_force(const GeometricElement& e, const double* u
   return f;
 }
 
+// The second-order part of an element's strain energy at u: k (eps l)^2 / 2 - k du^2 / 2 =
+// k (du s / l + s^2 / (4 l^2)) / 2, what the energy books add to the linear pass's (not for the
+// step).
+inline double geometric_energy(const GeometricElement& e, const double* u) {
+  const auto i = static_cast<std::size_t>(e.dof_i), j = static_cast<std::size_t>(e.dof_j);
+  const double rel[3] = {u[j] - u[i], u[j + 1] - u[i + 1], u[j + 2] - u[i + 2]};
+  double d[3];
+  beam_to_local(e.axes, e.rotation, rel, d);
+  const double h = 0.5 * (d[1] * d[1] + d[2] * d[2]) * e.inv_length;  // s / (2 l)
+  return 0.5 * e.axial * (2.0 * d[0] * h + h * h);
+}
+
 // f += the second-order forces of `count` elements at u, in their order; returns how many
 // exceeded their limit (GeometricForce::over).
 inline std::size_t geometric_forces(const GeometricElement* elements, std::size_t count,
