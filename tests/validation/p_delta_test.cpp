@@ -29,7 +29,9 @@
 
 #include "ntn/hil/energy.hpp"
 #include "ntn/kernel.hpp"
+#include "ntn/modal/modal.hpp"
 #include "ntn/modelc/load_model.hpp"
+#include "ntn/modelc/model_report.hpp"
 #include "text_model.hpp"
 
 namespace p_delta_test {
@@ -218,6 +220,18 @@ TEST(PDelta, PinnedColumnFrequencyFallsAsTheSquareRootOfOneLessPOverPcr) {
         ratio, T, measured, expected, 100 * (measured / expected - 1));
     EXPECT_NEAR(measured / expected, 1.0, 5e-3);
     EXPECT_EQ(rt->state().geometry_bound, 0U);
+    // Modal analysis about the preload (K + K_g of its axial forces) gives the same frequency as
+    // the run (1e-3: the period's reading and the central difference's dispersion at this dt).
+    ntn::modal::ModalOptions o;
+    o.modes = 1;
+    const ntn::modal::ModalResult modes = ntn::modal::modal_analysis(rt->description().view(), o);
+    ASSERT_TRUE(modes.ok()) << modes.error;
+    EXPECT_NEAR(modes.frequency(0) * T, 1.0, 1e-3);
+    if (ratio == 0.7) {  // ntn-model info says how P-Delta moves the lowest frequency
+      const std::string info = ntn::modelc::info_text(rt->description());
+      EXPECT_NE(info.find("20 p_delta element(s)"), std::string::npos) << info;
+      EXPECT_NE(info.find("Hz about the preload with P-Delta"), std::string::npos) << info;
+    }
   }
   // The discrete omega_0 against the continuous column's pi^2 / L^2 sqrt(E I / (rho A)): 1 %.
   const double omega0 = kPi * kPi / (kL * kL) * std::sqrt(kEI / (kRho * kA));

@@ -11,8 +11,10 @@
 #include "ntn/beam.hpp"
 #include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
+#include "ntn/geometry.hpp"
 #include "ntn/init.hpp"
 #include "ntn/modal/assembly.hpp"
+#include "ntn/modal/modal.hpp"
 #include "ntn/model.hpp"
 #include "ntn/modelc/model_bytes.hpp"
 
@@ -375,6 +377,56 @@ void time_step_lines(InfoText& out, const ModelDescription& m, const Sizes& z) {
   if (bounded) out.line("", "set by " + m.describe_stable_step(st));
 }
 
+// The lowest frequency (Hz) of a model's modal analysis, 0 when it has none or fails.
+double lowest_frequency(const SpecView& v) {
+  modal::ModalOptions o;
+  o.modes = 1;
+  const modal::ModalResult r = modal::modal_analysis(v, o);
+  return r.ok() && r.frequency.size() > 0 ? r.frequency(0) : 0.0;
+}
+
+// Second-order geometry (geometry.hpp): how many elements, the stable step's bound on their
+// axial force and chord rotation at the step the run takes (the smallest Q_max, as a share of the
+// element's E A), and the lowest frequency about the preload with and without the geometric
+// stiffness of its axial forces.
+void geometry_lines(InfoText& out, const ModelDescription& m, const Sizes& z) {
+  if (z.geometric == 0) return;
+  std::size_t leaning = 0;
+  double share = 1e300;
+  int governing = -1;
+  const SpecView v = m.view();
+  for (std::size_t i = 0; i < m.elements.size(); ++i) {
+    const ElementSpec& e = m.elements[i];
+    if (e.geometry == Geometry::kLinear) continue;
+    leaning += e.geometry == Geometry::kLeaning ? 1U : 0U;
+    const NodeSpec& a = m.nodes[static_cast<std::size_t>(e.node_i)];
+    const NodeSpec& b = m.nodes[static_cast<std::size_t>(e.node_j)];
+    const BeamGeometry g = beam_geometry(a, b, e);
+    const double q = geometric_force_limit(element_omega_max(e, a, b, m.settings.rotary_inertia),
+                                           e.rho, e.A, g.length, m.stable.dt_stable, m.settings.dt);
+    if (q / (e.E * e.A) < share) share = q / (e.E * e.A), governing = static_cast<int>(i);
+  }
+  out.line("geometry", std::to_string(z.geometric - leaning) + " p_delta element(s), " +
+                           std::to_string(leaning) + " leaning column(s), " +
+                           std::to_string(z.elements - z.geometric) + " linear");
+  out.line("", "the stable dt is without axial forces (compression only lowers the frequencies)");
+  out.line("",
+           "it holds while N+ + k l (phi + phi^2) <= Q_max in every element (tension, chord "
+           "rotation phi); past it the step counts and flags it");
+  out.line("", "smallest Q_max = " + f("%.3g", share) + " E A, " + m.describe_element(governing));
+  std::vector<ElementSpec> linear(m.elements.begin(), m.elements.end());
+  for (ElementSpec& e : linear)
+    e.geometry = Geometry::kLinear;
+  SpecView lv = v;
+  lv.elements = linear;
+  const double f_geo = lowest_frequency(v), f_lin = lowest_frequency(lv);
+  if (f_geo > 0 && f_lin > 0) {
+    out.line("", "lowest frequency " + f("%.6g", f_geo) + " Hz about the preload with P-Delta, " +
+                     f("%.6g", f_lin) + " Hz without (" + f("%+.3g", 100 * (f_geo / f_lin - 1)) +
+                     " %)");
+  }
+}
+
 // Whether a rigid direction has no penalty stiffness: a model without elements has no default
 // (0), and penalty cannot make its rigid directions springs unless the file gives it.
 bool lacks_penalty_stiffness(const ModelDescription& m) {
@@ -493,6 +545,7 @@ std::string info_text(const ModelDescription& m) {
     method_lines(out, m, z);
   }
   time_step_lines(out, m, z);
+  geometry_lines(out, m, z);
   if (z.hinges > 0) method_step_lines(out, m);
   frame_lines(out, m);
   memory_lines(out, z);
