@@ -577,19 +577,20 @@ StaticResult static_solution(const SpecView& spec, std::span<const double> load)
                          "a rigid body or has a mechanism that the load would move",
                          u, r.error))
     return r;
+  // The tangent K + K_g(N(u)), and what it means when it is not positive definite.
+  const auto tangent = [&](const Eigen::VectorXd& at) {
+    const std::vector<double> about(at.data(), at.data() + at.size());
+    int bad = -1;
+    return stiffness(spec, lin.hinges, bad, &about);
+  };
+  const std::string buckles =
+      "the tangent stiffness K + K_g under the preload's axial forces is not positive definite: "
+      "the structure buckles (P-Delta) under gravity and the constant loads";
   Eigen::VectorXd residual = P - internal_force(K, geometric, u);
   for (int it = 0; !geometric.empty() && it < kPreloadIterations; ++it) {
     if (!(pn > 0) || (cm.T.transpose() * residual).norm() <= kPreloadTolerance * pn) break;
-    const std::vector<double> about(u.data(), u.data() + u.size());
-    int bad = -1;
-    const SpMat Kt = stiffness(spec, lin.hinges, bad, &about);
     Eigen::VectorXd du;
-    if (!solve_constrained(Kt, cm.T, residual, false,
-                           "the tangent stiffness K + K_g under the preload's axial forces is not "
-                           "positive definite: the structure buckles (P-Delta) under gravity and "
-                           "the constant loads",
-                           du, r.error))
-      return r;
+    if (!solve_constrained(tangent(u), cm.T, residual, false, buckles, du, r.error)) return r;
     u += du;
     residual = P - internal_force(K, geometric, u);
   }
@@ -600,18 +601,11 @@ StaticResult static_solution(const SpecView& spec, std::span<const double> load)
               "): the preload is at or past the structure's buckling load";
     return r;
   }
-  if (!geometric.empty()) {  // a stable equilibrium: the tangent positive definite there
-    const std::vector<double> about(u.data(), u.data() + u.size());
-    int bad = -1;
-    const SpMat Kt = stiffness(spec, lin.hinges, bad, &about);
-    Eigen::VectorXd probe;
-    if (!solve_constrained(Kt, cm.T, P, false,
-                           "the equilibrium under the preload is unstable: the tangent stiffness "
-                           "K + K_g under its axial forces is not positive definite, so the "
-                           "structure buckles (P-Delta) under gravity and the constant loads",
-                           probe, r.error))
-      return r;
-  }
+  // A stable equilibrium: the tangent positive definite there (a straight column above P_cr is an
+  // equilibrium too).
+  Eigen::VectorXd probe;
+  if (!geometric.empty() && !solve_constrained(tangent(u), cm.T, P, false, buckles, probe, r.error))
+    return r;
   r.u.assign(u.data(), u.data() + u.size());
   return r;
 }
