@@ -5,8 +5,8 @@
 // rotations, their variation through T_s^-1 and the frame's spin (their G matrix). Crisfield
 // (1990), "A consistent co-rotational formulation for non-linear, three-dimensional,
 // beam-elements", CMAME 81, builds the frame from the mean of the nodal rotations instead; both
-// frames are symmetric in the two nodes.
-// Standalone: the step does not call it yet.
+// frames are symmetric in the two nodes. The step calls it for the elements with geometry
+// "corotational" (integrator.hpp's corotational stage), in element order.
 //
 // Conventions. A node's rotation q is its total rotation from the reference configuration,
 // spatial: a fibre t0 of the reference is Q t0 now, and a variation is a spatial spin dw,
@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "ntn/beam.hpp"
 #include "ntn/model_spec.hpp"
@@ -129,6 +130,32 @@ inline void natural_forces(const BeamStiffness& k, CorotationalLocal& n) {
   n.moment_j = {t, k.xz[3] * ti[1] + k.xz[2] * tj[1], k.xy[3] * ti[2] + k.xy[2] * tj[2]};
 }
 
+// beta times the natural forces of the deformation rates (corotational_force's damping): the
+// rates d_l' = B [v_i, w_i, v_j, w_j] with the frame, triads and G terms of the elastic force
+// (n, Ri = R_r T_i, Rj, 1/q2, eta = q1/q2, 1/l).
+inline CorotationalLocal natural_rates(const CorotationalBeam& b, const CorotationalLocal& n,
+                                       const Matrix3& Ri, const Matrix3& Rj, double inv_q2,
+                                       double eta, double inv_l, const double* vi, const double* vj,
+                                       double beta) {
+  double ti[3], tj[3], wi[3], wj[3];  // local: node i's and j's translation and spin rates
+  beam_to_local(kGeneralAxes, n.frame, vi, ti), beam_to_local(kGeneralAxes, n.frame, vi + 3, wi);
+  beam_to_local(kGeneralAxes, n.frame, vj, tj), beam_to_local(kGeneralAxes, n.frame, vj + 3, wj);
+  const double w2 = (ti[2] - tj[2]) * inv_l, w3 = (tj[1] - ti[1]) * inv_l;
+  const double w1 = eta * w2 + 0.5 * (Ri[4] * inv_q2 * wi[0] - Ri[1] * inv_q2 * wi[1] +
+                                      Rj[4] * inv_q2 * wj[0] - Rj[1] * inv_q2 * wj[1]);
+  const Vector3 si{wi[0] - w1, wi[1] - w2, wi[2] - w3}, sj{wj[0] - w1, wj[1] - w2, wj[2] - w3};
+  const Vector3 minus_i{-n.theta_i[0], -n.theta_i[1], -n.theta_i[2]};
+  const Vector3 minus_j{-n.theta_j[0], -n.theta_j[1], -n.theta_j[2]};
+  const Vector3 di = log_tangent_inverse_transpose(minus_i, si);  // T_s^-1(theta_i) (w_i - w_r)
+  const Vector3 dj = log_tangent_inverse_transpose(minus_j, sj);
+  CorotationalLocal d;
+  d.stretch = beta * (tj[0] - ti[0]);
+  d.theta_i = {beta * di[0], beta * di[1], beta * di[2]};
+  d.theta_j = {beta * dj[0], beta * dj[1], beta * dj[2]};
+  natural_forces(b.k, d);
+  return d;
+}
+
 }  // namespace detail
 
 // Internal force of one element on its two nodes, in global axes (f_int: M a = P - f_int, as
@@ -151,9 +178,22 @@ inline void natural_forces(const BeamStiffness& k, CorotationalLocal& n) {
 //     of e3 = e1 x q / |e1 x q|). So with m~_n = T_s^-T(theta_n) m_n and s = m~_i + m~_j, in
 //     local axes: node i's force (-N, s3/l, -(eta s1 + s2)/l), node j's its negative; node n's
 //     moment m~_n - s1 (eta_n2, -eta_n1, 0)/2; then rotated to global by R_r^T.
+//
+// Stiffness-proportional damping (beta > 0, `rates` given): the natural forces of the
+// deformation rates, beta f_l(d_l') with d_l' = B [v_i, w_i, v_j, w_j] (the rows of B above:
+// du_l' = e1 . (v_j - v_i), dtheta_n' = T_s^-1(theta_n) (R_r w_n - w_r), T_s^-1(theta) =
+// T_s^-T(-theta)), join the elastic ones before B^T. A rigid motion has d_l' = 0: the damping is
+// objective, as the elastic force is. The returned natural forces are the elastic ones.
+struct CorotationalRates {
+  const double* vi = nullptr;  // node i's [v, w], m/s and rad/s, global (w spatial)
+  const double* vj = nullptr;
+  double beta = 0;  // s
+};
+
 inline CorotationalLocal corotational_force(const CorotationalBeam& b, const double* ui,
                                             const double* uj, const Quaternion& qi,
-                                            const Quaternion& qj, double* fi, double* fj) {
+                                            const Quaternion& qj, double* fi, double* fj,
+                                            const CorotationalRates& rates = {}) {
   const detail::Chord c = detail::current_chord(b, ui, uj);
   const Matrix3 Ti = detail::times_transpose(rotation_matrix(qi), b.rotation);
   const Matrix3 Tj = detail::times_transpose(rotation_matrix(qj), b.rotation);
@@ -166,18 +206,27 @@ inline CorotationalLocal corotational_force(const CorotationalBeam& b, const dou
   n.theta_i = log_rotation(Ri);
   n.theta_j = log_rotation(Rj);
   detail::natural_forces(b.k, n);
-
-  const Vector3 mi = log_tangent_inverse_transpose(n.theta_i, n.moment_i);
-  const Vector3 mj = log_tangent_inverse_transpose(n.theta_j, n.moment_j);
-  const Vector3 s{mi[0] + mj[0], mi[1] + mj[1], mi[2] + mj[2]};
   // q's local components from the rotated triads: q1 = e1 . q, q2 = e2 . q (= |e1 x q|).
   const double inv_q2 = 1.0 / (0.5 * (Ri[4] + Rj[4]));
   const double eta = 0.5 * (Ri[1] + Rj[1]) * inv_q2;
   const double inv_l = c.inverse_length;
+  Vector3 moment_i = n.moment_i, moment_j = n.moment_j;
+  double axial = n.axial;
+  if (rates.beta > 0) {
+    const CorotationalLocal d =
+        detail::natural_rates(b, n, Ri, Rj, inv_q2, eta, inv_l, rates.vi, rates.vj, rates.beta);
+    axial += d.axial;
+    for (std::size_t k = 0; k < 3; ++k)
+      moment_i[k] += d.moment_i[k], moment_j[k] += d.moment_j[k];
+  }
+
+  const Vector3 mi = log_tangent_inverse_transpose(n.theta_i, moment_i);
+  const Vector3 mj = log_tangent_inverse_transpose(n.theta_j, moment_j);
+  const Vector3 s{mi[0] + mj[0], mi[1] + mj[1], mi[2] + mj[2]};
   const double shear_y = s[2] * inv_l, shear_z = (eta * s[0] + s[1]) * inv_l;
   const double half_s1 = 0.5 * s[0];
-  const double local_force_i[3] = {-n.axial, shear_y, -shear_z};
-  const double local_force_j[3] = {n.axial, -shear_y, shear_z};
+  const double local_force_i[3] = {-axial, shear_y, -shear_z};
+  const double local_force_j[3] = {axial, -shear_y, shear_z};
   const double local_moment_i[3] = {mi[0] - half_s1 * (Ri[4] * inv_q2),
                                     mi[1] + half_s1 * (Ri[1] * inv_q2), mi[2]};
   const double local_moment_j[3] = {mj[0] - half_s1 * (Rj[4] * inv_q2),
@@ -185,6 +234,71 @@ inline CorotationalLocal corotational_force(const CorotationalBeam& b, const dou
   rotate_to_global(n.frame, local_force_i, fi), rotate_to_global(n.frame, local_moment_i, fi + 3);
   rotate_to_global(n.frame, local_force_j, fj), rotate_to_global(n.frame, local_moment_j, fj + 3);
   return n;
+}
+
+// A node's six DOFs, as an index step.
+inline constexpr std::size_t kNodeDofs = static_cast<std::size_t>(kDofsPerNode);
+
+// One corotational element as the step reads it.
+struct CorotationalElement {
+  CorotationalBeam beam;
+  std::int32_t node_i = 0, node_j = 0;
+  std::int32_t element = 0;  // its index in the model file (for the outputs)
+  double limit = 0;  // N, Q_max of geometry.hpp: a tension N above it breaks the step's bound
+};
+
+// The stable step's bound (geometry.hpp) for a corotational element: the chord's rotation is the
+// frame's, so Q = N+ alone. The moments' geometric terms, of order M / l^2 against the bending
+// stiffness 12 E I / l^3 (a ratio of the deformational rotation over 12), are left out.
+inline bool corotational_over(const CorotationalElement& e, double axial) {
+  return !(e.limit - (axial > 0 ? axial : 0.0) >= 0);
+}
+
+// f += the internal forces of `count` corotational elements at (u, q), in their order, with the
+// stiffness-proportional damping of v when beta > 0; returns how many are past their bound.
+// `rotations` by node.
+inline std::size_t corotational_forces(const CorotationalElement* elements, std::size_t count,
+                                       const double* u, const double* v,
+                                       const Quaternion* rotations, double beta, double* f) {
+  std::size_t over = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const CorotationalElement& e = elements[k];
+    const auto i = static_cast<std::size_t>(e.node_i), j = static_cast<std::size_t>(e.node_j);
+    const std::size_t di = kNodeDofs * i, dj = kNodeDofs * j;
+    double fi[6], fj[6];
+    const CorotationalRates rates{v + di, v + dj, beta};
+    const CorotationalLocal n =
+        corotational_force(e.beam, u + di, u + dj, rotations[i], rotations[j], fi, fj, rates);
+    for (std::size_t c = 0; c < 6; ++c) {
+      f[di + c] += fi[c];
+      f[dj + c] += fj[c];
+    }
+    over += corotational_over(e, n.axial) ? 1 : 0;
+  }
+  return over;
+}
+
+// Element e's end forces in its corotated frame (as beam_local_end_forces gives the linear
+// element's in its local axes): [force, moment] at node i and at node j, the elastic part.
+inline void corotational_local_end_forces(const CorotationalElement& e, const double* u,
+                                          const Quaternion* rotations, double* out) {
+  const auto i = static_cast<std::size_t>(e.node_i), j = static_cast<std::size_t>(e.node_j);
+  double f[12];
+  const CorotationalLocal n = corotational_force(e.beam, u + kNodeDofs * i, u + kNodeDofs * j,
+                                                 rotations[i], rotations[j], f, f + 6);
+  for (std::size_t k = 0; k < 4; ++k)
+    rotate_to_local(n.frame, f + 3 * k, out + 3 * k);
+}
+
+// The element's strain energy: N u_l / 2 + the natural moments' (m_i . theta_i + m_j . theta_j)
+// / 2, the linear element's in its corotated frame.
+inline double corotational_energy(const CorotationalElement& e, const double* u,
+                                  const Quaternion* rotations) {
+  const auto i = static_cast<std::size_t>(e.node_i), j = static_cast<std::size_t>(e.node_j);
+  double f[12];
+  const CorotationalLocal n = corotational_force(e.beam, u + kNodeDofs * i, u + kNodeDofs * j,
+                                                 rotations[i], rotations[j], f, f + 6);
+  return 0.5 * (n.axial * n.stretch + dot(n.moment_i, n.theta_i) + dot(n.moment_j, n.theta_j));
 }
 
 // A node's rotation after a step: q_{n+1} = exp(dt omega) q_n, the increment on the left since

@@ -38,6 +38,7 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::every_node_in_element);
   v(&M::element_slot, s.elements);
   v(&M::geometric, s.geometric);
+  v(&M::corotational, s.corotational);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);
   v(&M::mass_table, mass_groups(s.nodes));
@@ -120,6 +121,7 @@ constexpr void state_members(const Sizes& s, V&& v) {
   v(&M::law_state, s.hystereses);
   v(&M::first_slip, s.hystereses);
   v(&M::slip_state, s.hystereses);
+  v(&M::rotation, s.corotational > 0 ? s.nodes : 0);
 }
 
 template <class V>
@@ -303,6 +305,8 @@ static_assert(footprint_exact<Sizes{9, 7, 1, 2, 1, 1, 5, 5, 1, 4}>());
 static_assert(footprint_exact<Sizes{5, 4, 0, 0, 0, 0, 1, 3, 2, 7}>());
 static_assert(footprint_exact<Sizes{7, 3, 0, 0, 0, 0, 0, 0, 1, 2}>());
 static_assert(footprint_exact<Sizes{4, 3, 0, 0, 0, 2, 3, 2, 0, 0, 1, 3}>());  // hystereses
+static_assert(
+    footprint_exact<Sizes{.nodes = 5, .elements = 4, .geometric = 1, .corotational = 3}>());
 
 }  // namespace detail
 

@@ -42,7 +42,11 @@ inline void spec_element_order(const SpecView& spec, std::span<OrderElement> ele
 // Lumped masses of a model of any size: out[6 n + d] (HRZ element ends plus point masses), the
 // element ends summed at each node in the model's element order (`order`, spec_element_order), so
 // that the masses, like the element blocks, do not depend on the order the file lists the
-// elements in.
+// elements in. A node that a corotational element reaches takes the largest of its three rotary
+// inertias about all three axes: lumped in global axes, an element's small torsional inertia would
+// otherwise pair with its bending stiffness once the element has turned (and the stable step,
+// taken in the reference orientation, would no longer hold); an isotropic inertia turns with
+// nothing, and makes the node's spin equation J w' = M exact (no gyroscopic term).
 inline void assemble_lumped_mass(const SpecView& spec, std::span<const std::int32_t> order,
                                  std::span<double> out) {
   for (double& m : out)
@@ -63,6 +67,14 @@ inline void assemble_lumped_mass(const SpecView& spec, std::span<const std::int3
     for (int d = 0; d < kDofsPerNode; ++d) {
       out[n * kDofsPerNode + static_cast<std::size_t>(d)] +=
           spec.nodes[n].added[static_cast<std::size_t>(d)];
+    }
+  }
+  for (const ElementSpec& e : spec.elements) {
+    if (e.geometry != Geometry::kCorotational) continue;
+    for (const int n : {e.node_i, e.node_j}) {
+      double* j = &out[static_cast<std::size_t>(kDofsPerNode * n + 3)];
+      const double largest = std::max(j[0], std::max(j[1], j[2]));
+      j[0] = j[1] = j[2] = largest;
     }
   }
 }
@@ -197,7 +209,8 @@ inline std::size_t fill_beam_blocks(const SpecView& v, std::span<const std::int3
     BeamData b;
     b.node_i = e.node_i, b.node_j = e.node_j;
     b.rotation = g.rotation;
-    b.k = beam_stiffness(e, g.length);
+    // A corotational element's force is the corotational stage's: none in the element pass.
+    if (e.geometry != Geometry::kCorotational) b.k = beam_stiffness(e, g.length);
     set_lane(blocks, rotations, stiffness, k / kBeamLanes, k % kBeamLanes, b);
     element_slot[i] = static_cast<std::int32_t>(k);
   }
@@ -277,6 +290,13 @@ InitStatus init_hinges(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<
       x *= model.mass_factor;
   }
   if constexpr (kMayHaveHinges<S>) {
+    if (sz.hinges > 0 && sz.corotational > 0) {
+      const std::span<const ElementSpec> elements(spec.elements.data(), sz.elements);
+      for (std::size_t i = 0; i < sz.hinges; ++i) {
+        if (corotational_hinge_node(spec.hinges[i], elements) >= 0)
+          return {InitError::kCorotationalHinge, static_cast<int>(i)};
+      }
+    }
     if (sz.hinges > 0) {
       for (std::size_t i = 0; i < sz.hinges; ++i) {
         (void)make_hinge_data(spec.hinges[i], spec.settings, sz.nodes, spec.curves,
@@ -465,20 +485,31 @@ InitStatus init_time_step(const ModelSpec<S>& spec, const SpecView& v, Model<S>&
   return {};
 }
 
-// The elements with second-order geometry, in element order, each with its stable-step bound
-// (geometric_force_limit, geometry.hpp) for the step the run takes.
+// The elements with second-order geometry (p_delta, leaning) and the corotational ones, each
+// kind in element order, each element with its stable-step bound (geometric_force_limit,
+// geometry.hpp) for the step the run takes.
 template <Sizes S>
 void init_geometry(const SpecView& v, Model<S>& model) {
-  std::size_t k = 0;
+  std::size_t k = 0, c = 0;
   for (std::size_t i = 0; i < v.elements.size(); ++i) {
     const ElementSpec& e = v.elements[i];
     if (e.geometry == Geometry::kLinear) continue;
     const NodeSpec& a = v.nodes[static_cast<std::size_t>(e.node_i)];
     const NodeSpec& b = v.nodes[static_cast<std::size_t>(e.node_j)];
+    const double length = beam_geometry(a, b, e).length;
+    const double limit =
+        geometric_force_limit(element_omega_max(e, a, b, v.settings.rotary_inertia), e.rho, e.A,
+                              length, model.stable.dt_stable, model.dt);
+    const auto index = static_cast<std::int32_t>(i);
+    if (e.geometry == Geometry::kCorotational) {
+      CorotationalElement& ce = model.corotational[c++];
+      (void)corotational_beam(a, b, e, ce.beam);  // init_check_elements passed it
+      ce.node_i = e.node_i, ce.node_j = e.node_j, ce.element = index, ce.limit = limit;
+      continue;
+    }
     GeometricElement& ge = model.geometric[k++];
-    ge = geometric_element(e, static_cast<std::int32_t>(i), a, b);
-    ge.limit = geometric_force_limit(element_omega_max(e, a, b, v.settings.rotary_inertia), e.rho,
-                                     e.A, 1.0 / ge.inv_length, model.stable.dt_stable, model.dt);
+    ge = geometric_element(e, index, a, b);
+    ge.limit = limit;
   }
 }
 

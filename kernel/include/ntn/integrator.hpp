@@ -118,22 +118,42 @@ void element_forces(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
 // to `value`, as beam_local_end_forces gives the linear part: -g at node i, g at node j
 // (geometry.hpp); nothing for a linear element (not even 0.0: a -0.0 stays what it is). The
 // geometric elements are in element order: found by bisection.
-template <Sizes S>
-void add_geometric_end_force(const Model<S>& m, const State<S>& s, int element, int end, int dof,
-                             double& value) {
-  if (m.sizes.geometric == 0 || dof >= 3) return;
-  std::size_t lo = 0, hi = m.sizes.geometric;
+template <class E>
+std::size_t find_element(const E* elements, std::size_t count, int element) {
+  std::size_t lo = 0, hi = count;
   while (lo < hi) {
     const std::size_t mid = lo + (hi - lo) / 2;
-    if (m.geometric[mid].element < element) {
+    if (elements[mid].element < element) {
       lo = mid + 1;
     } else {
       hi = mid;
     }
   }
-  if (lo == m.sizes.geometric || m.geometric[lo].element != element) return;
-  const double g = geometric_force(m.geometric[lo], s.u.data()).g[dof];
+  return lo < count && elements[lo].element == element ? lo : count;
+}
+
+template <Sizes S>
+void add_geometric_end_force(const Model<S>& m, const State<S>& s, int element, int end, int dof,
+                             double& value) {
+  if (m.sizes.geometric == 0 || dof >= 3) return;
+  const std::size_t k = find_element(m.geometric.data(), m.sizes.geometric, element);
+  if (k == m.sizes.geometric) return;
+  const double g = geometric_force(m.geometric[k], s.u.data()).g[dof];
   value += end == 0 ? -g : g;
+}
+
+// A corotational element's end force `dof` at `end` in its corotated frame (the element pass
+// gives it none), into `value`; false for another element.
+template <Sizes S>
+bool corotational_end_force(const Model<S>& m, const State<S>& s, int element, int end, int dof,
+                            double& value) {
+  if (m.sizes.corotational == 0) return false;
+  const std::size_t k = find_element(m.corotational.data(), m.sizes.corotational, element);
+  if (k == m.sizes.corotational) return false;
+  double f[12];
+  corotational_local_end_forces(m.corotational[k], s.u.data(), s.rotation.data(), f);
+  value = f[static_cast<std::size_t>(6 * end + dof)];
+  return true;
 }
 
 // F_n += the second-order forces of the elements with nonlinear geometry (geometry.hpp), in their
@@ -148,6 +168,39 @@ void geometric_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   if (over == 0) return;
   s.geometry_bound += over;
   s.faults |= kFaultGeometryBound;
+}
+
+// F_n += the corotational elements' internal forces at (u_n, Q_n), with their stiffness-
+// proportional damping of v_{n-1/2} (corotational.hpp), in element order after the element pass;
+// each past its bound counted as geometric_stage counts. Nothing without corotational elements.
+template <Sizes S>
+void corotational_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
+  if (m.sizes.corotational == 0) return;
+  const std::size_t over =
+      corotational_forces(m.corotational.data(), m.sizes.corotational, s.u.data(), s.v.data(),
+                          s.rotation.data(), m.beta, w.f.data());
+  if (over == 0) return;
+  s.geometry_bound += over;
+  s.faults |= kFaultGeometryBound;
+}
+
+// Q_{n+1} = exp(dt w_{n+1/2}) Q_n at every node, with the spin the step's constraint stages left
+// in v (corotational.hpp's advance_rotation). Nothing without corotational elements.
+template <Sizes S>
+void update_rotations(const Model<S>& m, State<S>& s) {
+  if (m.sizes.corotational == 0) return;
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n)
+    s.rotation[n] = advance_rotation(s.rotation[n], &s.v[kNodeDofs * n + 3], m.dt);
+}
+
+// Q_0 = exp(theta_0) from the rotational DOFs of u_0 (start()).
+template <Sizes S>
+void start_rotations(const Model<S>& m, State<S>& s) {
+  if (m.sizes.corotational == 0) return;
+  for (std::size_t n = 0; n < m.sizes.nodes; ++n) {
+    const std::size_t r = kNodeDofs * n + 3;
+    s.rotation[n] = exp_rotation({s.u[r], s.u[r + 1], s.u[r + 2]});
+  }
 }
 
 // A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
@@ -359,7 +412,8 @@ void sample_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w, double 
         const auto f = beam_local_end_forces(b, &s.u[static_cast<std::size_t>(6 * b.node_i)],
                                              &s.u[static_cast<std::size_t>(6 * b.node_j)]);
         value = f[static_cast<std::size_t>(6 * o.end + o.dof)];
-        add_geometric_end_force(m, s, o.element, o.end, o.dof, value);
+        if (!corotational_end_force(m, s, o.element, o.end, o.dof, value))
+          add_geometric_end_force(m, s, o.element, o.end, o.dof, value);
         for (const ElementLoadSpec& l : m.element_loads) {  // the element's own load
           if (l.element != o.element) continue;
           value -= l.local[static_cast<std::size_t>(6 * o.end + o.dof)] *
@@ -554,8 +608,9 @@ template <Sizes S>
     team->run(team->self, team_element_forces<S>, &c);
     team->run(team->self, team_shared_forces<S>, &c);
   }
-  geometric_stage(m, s, w);  // second-order geometry: F_n += the chords' P-Delta (§4)
-  hinge_springs(m, s, w);    // hinge springs: F_n += B^T f_L (§7)
+  geometric_stage(m, s, w);     // second-order geometry: F_n += the chords' P-Delta (§4)
+  corotational_stage(m, s, w);  // corotational elements: F_n += their forces (§4)
+  hinge_springs(m, s, w);       // hinge springs: F_n += B^T f_L (§7)
   if (fused) {
     output_accelerations(m, s, w);  // a_n where the outputs read it (S 2-4)
   } else {
@@ -585,6 +640,7 @@ template <Sizes S>
     if (!fused) book_dofs(m, s, w);
     w.books = books_total(w.group_books.data(), book_groups(m.sizes.nodes));
   }
+  update_rotations(m, s);  // corotational: Q_{n+1} from the spin v_{n+1/2}
   ++s.tick;
   if (!finite) {
     s.faults |= kFaultDiverged;
@@ -614,6 +670,7 @@ void initial_state(const Model<S>& m, State<S>& s) {
     x.fill(0.0);
   s.first_slip.fill(0);
   s.slip_state.fill(0);
+  s.rotation.fill(Quaternion{});
 }
 
 namespace detail {
@@ -673,11 +730,13 @@ template <Sizes S>
   for (auto& h : s.held_inputs)
     h = 0.0;
   detail::project_initial(m, s);  // u_0, v_0 onto the constraints
+  detail::start_rotations(m, s);  // corotational: Q_0 from u_0
   const bool accepted = detail::accept_inputs(m, s, in);
   // step()'s stages up to a_0, at t = 0 and with C v_0
   detail::apply_loads(m, s, w, 0.0);
   detail::element_forces(m, s, w);
   detail::geometric_stage(m, s, w);
+  detail::corotational_stage(m, s, w);
   detail::hinge_springs(m, s, w);
   detail::residual_stage(m, s, w);
   detail::ntn_coupling(m, s, w);

@@ -10,6 +10,7 @@
 
 #include "ntn/beam.hpp"
 #include "ntn/constraint_forest.hpp"
+#include "ntn/corotational.hpp"
 #include "ntn/dof_pass.hpp"
 #include "ntn/element_order.hpp"
 #include "ntn/element_pass.hpp"
@@ -44,6 +45,9 @@ struct Model : SizesOf<S> {
   // The elements with second-order geometry (p_delta, leaning columns), in element order: what
   // the step adds after the element pass (geometry.hpp).
   Array<GeometricElement, S, S.geometric> geometric{};
+  // The corotational elements, in element order: their force is the corotational stage's, the
+  // element pass gives them none (their stiffness there is zero).
+  Array<CorotationalElement, S, S.corotational> corotational{};
   Array<double, S, kDofs> mass{};  // kg or kg m^2, lumped (HRZ) plus point masses
   // 1/m of the accelerations a_n = (R_n - C v) / m (S 3-4): 1/mass, or under ntn_paper 1 over
   // the hinge-summed mass (S 22-26), times 1 / mass_factor (below); 0 at supported DOFs (which stay

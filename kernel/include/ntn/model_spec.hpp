@@ -28,9 +28,10 @@ struct NodeSpec {
 
 // How an element's displacements enter its internal force (DESIGN §4, geometry.hpp).
 enum class Geometry : std::uint8_t {
-  kLinear,   // small displacements: F = T^T K_L T u
-  kPDelta,   // plus the chord's second-order strain: the axial force's geometric stiffness
-  kLeaning,  // a leaning column: the axial force and its P-Delta, no bending or torsion
+  kLinear,        // small displacements: F = T^T K_L T u
+  kPDelta,        // plus the chord's second-order strain: the axial force's geometric stiffness
+  kLeaning,       // a leaning column: the axial force and its P-Delta, no bending or torsion
+  kCorotational,  // large displacements and rotations, small strains (corotational.hpp)
 };
 
 // One 2-node frame element with its material and section resolved (DESIGN §4).
@@ -337,12 +338,35 @@ constexpr SpecView view(const ModelSpec<S>& spec) {
           spec.settings};
 }
 
-// The elements whose geometry is not linear (Sizes::geometric).
+// The elements whose chord has second-order strain, p_delta and leaning (Sizes::geometric).
 constexpr std::size_t geometric_elements(std::span<const ElementSpec> elements) {
   std::size_t n = 0;
   for (const ElementSpec& e : elements)
-    n += e.geometry != Geometry::kLinear ? 1 : 0;
+    n += e.geometry == Geometry::kPDelta || e.geometry == Geometry::kLeaning ? 1 : 0;
   return n;
+}
+
+// The corotational elements (Sizes::corotational).
+constexpr std::size_t corotational_elements(std::span<const ElementSpec> elements) {
+  std::size_t n = 0;
+  for (const ElementSpec& e : elements)
+    n += e.geometry == Geometry::kCorotational ? 1 : 0;
+  return n;
+}
+
+// The hinge rule of corotational geometry: a hinge's frame and offset keep their reference
+// orientation (they do not turn with its nodes), which is right for a hinge to the ground, whose
+// axes are the ground's. A hinge between two nodes may not join a node that a corotational
+// element reaches: the first such node of h, or -1.
+constexpr int corotational_hinge_node(const HingeSpec& h, std::span<const ElementSpec> elements) {
+  if (h.node2 == kGround) return -1;
+  for (const ElementSpec& e : elements) {
+    if (e.geometry != Geometry::kCorotational) continue;
+    for (const int n : {h.node1, h.node2}) {
+      if (n == e.node_i || n == e.node_j) return n;
+    }
+  }
+  return -1;
 }
 
 // The sizes of a model given as a view (a run-time description): the counts of its arrays.
@@ -361,6 +385,7 @@ constexpr Sizes sizes_of(const SpecView& v) {
   s.element_loads = v.element_loads.size();
   s.hystereses = v.hystereses.size();
   s.geometric = geometric_elements(v.elements);
+  s.corotational = corotational_elements(v.elements);
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include "ntn/dof_pass.hpp"
 #include "ntn/laws/law.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/rotation.hpp"
 
 namespace ntn {
 
@@ -60,6 +61,10 @@ struct State : SizesOf<S> {
   // stuck, +1 / -1 at its limit in the positive / negative sense (sliding), 2 free (broken, or
   // a fixed_if released). The next step's solve starts from it.
   Array<std::int8_t, S, S.hystereses> slip_state{};
+  // In a model with corotational elements, each node's total rotation Q_n from the reference
+  // (corotational.hpp), updated multiplicatively with the step's spin, q_{n+1} = exp(dt w) q_n;
+  // the rotational DOFs of u hold the spins' sum, w dt over the steps.
+  Array<Quaternion, S, (S.corotational > 0 ? S.nodes : 0)> rotation{};
 };
 
 // The momentum clamp's workspace (clamp.hpp, DESIGN §7.1), in models with hinges: an impulse b

@@ -21,6 +21,7 @@ enum class InitError : std::uint8_t {
   kRigidCycle,           // rigid hinge directions form a cycle (`where` = the closing hinge)
   kMechanism,            // an effective mass that cannot be inverted (`where` = hinge or node)
   kStorageSizes,         // run-time storage bound for other sizes, or a model with no node
+  kCorotationalHinge,    // a hinge between nodes joins a corotational element (`where` = hinge)
 };
 
 struct [[nodiscard]] InitStatus {
@@ -61,6 +62,8 @@ constexpr const char* to_string(InitError e) {
       return "effective mass of a rigid tree cannot be inverted";
     case InitError::kStorageSizes:
       return "storage bound for other sizes, or a model without nodes";
+    case InitError::kCorotationalHinge:
+      return "hinge between two nodes at a corotational element (its axes would not turn)";
   }
   return "unknown";
 }

@@ -32,7 +32,8 @@ struct Sizes {
   std::size_t curve_points = 0;   // all curve points, concatenated
   std::size_t element_loads = 0;  // distributed loads on elements (the member loads' parts)
   std::size_t hystereses = 0;     // hysteretic hinge directions (kPlastic), each with its history
-  std::size_t geometric = 0;      // elements whose geometry is not linear (geometry.hpp)
+  std::size_t geometric = 0;      // p_delta and leaning elements (geometry.hpp)
+  std::size_t corotational = 0;   // corotational elements (corotational.hpp)
   // True only in kRunTime: the counts above are zero, the model's own are in its `sizes`.
   bool runtime = false;
 

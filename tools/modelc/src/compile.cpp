@@ -107,6 +107,7 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   add_supports(comp);
   hold_leaning_rotations(comp);
   add_point_masses(comp);
+  check_corotational_hinges(comp);
   hold_out_of_plane(comp);
   add_loads(comp);
   add_member_loads(comp);

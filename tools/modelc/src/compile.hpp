@@ -134,6 +134,7 @@ void mesh_members(Compilation& comp);
 void add_hinges(Compilation& comp);
 void add_supports(Compilation& comp);
 void hold_leaning_rotations(Compilation& comp);
+void check_corotational_hinges(Compilation& comp);
 void add_point_masses(Compilation& comp);
 void hold_out_of_plane(Compilation& comp);
 void add_loads(Compilation& comp);

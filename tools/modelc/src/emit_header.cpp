@@ -69,6 +69,8 @@ std::string geometry_field(Geometry g) {
       return ", .geometry = ntn::Geometry::kPDelta";
     case Geometry::kLeaning:
       return ", .geometry = ntn::Geometry::kLeaning";
+    case Geometry::kCorotational:
+      return ", .geometry = ntn::Geometry::kCorotational";
   }
   return "";
 }
@@ -313,7 +315,8 @@ std::string emit_header(const ModelDescription& m, const std::string& ns_name) {
        ", .hinges = " + lit(z.hinges) + ", .curves = " + lit(z.curves) +
        ", .curve_points = " + lit(z.curve_points) + ", .element_loads = " + lit(z.element_loads) +
        ", .hystereses = " + lit(z.hystereses) +
-       (z.geometric == 0 ? "" : ", .geometric = " + lit(z.geometric)) + "};\n\n";
+       (z.geometric == 0 ? "" : ", .geometric = " + lit(z.geometric)) +
+       (z.corotational == 0 ? "" : ", .corotational = " + lit(z.corotational)) + "};\n\n";
 
   o += "inline constexpr ntn::ModelSpec<kSizes> kSpec{\n";
   array_init(o, "nodes", m.nodes, [](const NodeSpec& n) {

@@ -298,4 +298,30 @@ void hold_leaning_rotations(Compilation& comp) {
   }
 }
 
+namespace {
+
+// "node 12", or "a node inside a member" for a node the meshing made.
+std::string node_text(const ModelDescription& d, int n) {
+  const int id = d.node_ids[static_cast<std::size_t>(n)];
+  return id == kGeneratedNode ? "a node inside a member" : "node " + std::to_string(id);
+}
+
+}  // namespace
+
+// A hinge between two nodes may not join a corotational element's node (the kernel's
+// corotational_hinge_node): its axes and offset would keep their reference orientation.
+void check_corotational_hinges(Compilation& comp) {
+  ModelDescription& d = comp.d;
+  for (std::size_t i = 0; i < d.hinges.size(); ++i) {
+    const int n = corotational_hinge_node(d.hinges[i], d.elements);
+    if (n < 0) continue;
+    comp.L.error(comp.hinge_at[i],
+                 "hinge '" + d.hinge_info[i].name + "' joins " + node_text(d, n) +
+                     " of a member with geometry = \"corotational\": a hinge's axes and offset "
+                     "do not turn with its nodes, so only hinges to the ground may meet "
+                     "corotational members; give the members at this joint geometry = "
+                     "\"p_delta\", or join them without a hinge");
+  }
+}
+
 }  // namespace ntn::modelc::compile

@@ -390,7 +390,7 @@ double lowest_frequency(const SpecView& v) {
 // element's E A), and the lowest frequency about the preload with and without the geometric
 // stiffness of its axial forces.
 void geometry_lines(InfoText& out, const ModelDescription& m, const Sizes& z) {
-  if (z.geometric == 0) return;
+  if (z.geometric == 0 && z.corotational == 0) return;
   std::size_t leaning = 0;
   double share = 1e300;
   int governing = -1;
@@ -408,11 +408,18 @@ void geometry_lines(InfoText& out, const ModelDescription& m, const Sizes& z) {
   }
   out.line("geometry", std::to_string(z.geometric - leaning) + " p_delta element(s), " +
                            std::to_string(leaning) + " leaning column(s), " +
-                           std::to_string(z.elements - z.geometric) + " linear");
+                           std::to_string(z.corotational) + " corotational, " +
+                           std::to_string(z.elements - z.geometric - z.corotational) + " linear");
   out.line("", "the stable dt is without axial forces (compression only lowers the frequencies)");
   out.line("",
            "it holds while N+ + k l (phi + phi^2) <= Q_max in every element (tension, chord "
-           "rotation phi); past it the step counts and flags it");
+           "rotation phi; a corotational element's chord turns freely: phi = 0); past it the "
+           "step counts and flags it");
+  if (z.corotational > 0) {
+    out.line("",
+             "corotational: rotary inertia made isotropic at their nodes; preload and modes "
+             "about it with the p_delta tangent (the same at small displacements)");
+  }
   out.line("", "smallest Q_max = " + f("%.3g", share) + " E A, " + m.describe_element(governing));
   std::vector<ElementSpec> linear(m.elements.begin(), m.elements.end());
   for (ElementSpec& e : linear)

@@ -189,8 +189,7 @@ void read_model_table(Reader& L, const toml::table& root, ModelTable& m) {
     m.clamp = static_cast<ClampRule>(*c);
   if (auto c = t.choice("damping_velocity", Need::kOptional, kDampingVelocities))
     m.damping_velocity = static_cast<DampingVelocity>(*c);
-  if (auto g = t.choice("geometry", Need::kOptional, kGeometries))
-    m.geometry = static_cast<Geometry>(*g);
+  if (auto g = t.choice("geometry", Need::kOptional, kGeometries)) m.geometry = kGeometryOf[*g];
   if (auto pl = t.choice("plane", Need::kOptional, kPlanes)) m.plane = static_cast<Plane>(*pl + 1);
   m.plane_at = t.where("plane");
   m.penalty_stiffness = t.positive("penalty_stiffness", Need::kOptional);

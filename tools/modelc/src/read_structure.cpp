@@ -118,7 +118,7 @@ void read_member(Reader& L, const toml::table& tt, const std::string& path, Sour
   auto sec = read_id(L, t, "section");
   auto div = t.integer("divisions", Need::kOptional, 1, kMaxDivisions);
   auto geometry = t.choice("geometry", Need::kOptional, kGeometries);
-  if (geometry) m.geometry = static_cast<Geometry>(*geometry);
+  if (geometry) m.geometry = kGeometryOf[*geometry];
   bool ok =
       id && nodes && mat && sec && (div || !t.has("divisions")) && (geometry || !t.has("geometry"));
   if (!t.conflict("orientation", "roll")) {

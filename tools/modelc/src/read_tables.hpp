@@ -13,7 +13,9 @@
 namespace ntn::modelc::compile {
 
 // `geometry` of [model] and [[members]], in the order of ntn::Geometry's first values.
-inline const std::vector<std::string_view> kGeometries = {"linear", "p_delta"};
+inline const std::vector<std::string_view> kGeometries = {"linear", "p_delta", "corotational"};
+inline constexpr Geometry kGeometryOf[] = {Geometry::kLinear, Geometry::kPDelta,
+                                           Geometry::kCorotational};
 
 // read_structure.cpp
 void read_material(Reader& L, const toml::table& tt, const std::string& path, SourceModel& p);

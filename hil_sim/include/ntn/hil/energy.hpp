@@ -288,8 +288,9 @@ class EnergyBalance : public EnergyTotals {
 
   // The elements' staggered strain energy 1/2 u_n^T K u_{n+1}, u_n = u_{n+1} - dt v_{n+1/2}
   // (after start(): u_{-1}^T K u_0): K u_{n+1} by the element pass without damping; plus the
-  // second-order part of the elements with nonlinear geometry at u_{n+1} (geometry.hpp; its
-  // step-to-step work differs from that change by O(dt^2), which the viscous account then holds).
+  // second-order part of the elements with nonlinear geometry and the corotational elements'
+  // strain energy at u_{n+1} (geometry.hpp, corotational.hpp; their step-to-step work differs from
+  // that change by O(dt^2), which the viscous account then holds).
   double element_energy(const Model<S>& m, const State<S>& s) {
     element_forces_into(m.element_pass, m.beam_arrays(), m.sizes.elements, m.every_node_in_element,
                         m.dofs(), s.u.data(), s.v.data(), 0.0, work_.data());
@@ -298,6 +299,8 @@ class EnergyBalance : public EnergyTotals {
       e += 0.5 * (s.u[j] - m.dt * s.v[j]) * work_[j];
     for (std::size_t k = 0; k < m.sizes.geometric; ++k)  // second-order geometry, at u_{n+1}
       e += geometric_energy(m.geometric[k], s.u.data());
+    for (std::size_t k = 0; k < m.sizes.corotational; ++k)  // corotational, at u_{n+1}, Q_{n+1}
+      e += corotational_energy(m.corotational[k], s.u.data(), s.rotation.data());
     return e;
   }
 
