@@ -116,14 +116,15 @@ std::optional<ModelDescription> compile_model(DiagnosticSink& sink, const Source
   if (sink.failed()) return std::nullopt;
 
   // Pass 3: rigid cycles (topology only), then mass from the kernel's lumped mass, curves
-  // against the limit stiffness, effective mass, and the time step; each check needs the ones
-  // before it.
+  // against the limit stiffness, effective mass, the static preload (before the damping: Rayleigh
+  // damping from modes takes them about the preload, as modal analysis does), and the time step;
+  // each check needs the ones before it.
   using Stage = void (*)(Compilation&);
   for (const Stage stage :
        {check_rigid_cycles, check_element_numbers, assemble_mass, check_nodes_have_mass,
         check_force_numbers, set_hinge_stiffness, check_curve_branches, check_kernel_accepts_hinges,
-        check_effective_mass, check_hinge_spring_numbers, set_damping_from_modes, choose_time_step,
-        static_preload}) {
+        check_effective_mass, check_hinge_spring_numbers, static_preload, set_damping_from_modes,
+        choose_time_step}) {
     stage(comp);
     if (sink.failed()) return std::nullopt;
   }
