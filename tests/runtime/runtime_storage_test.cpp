@@ -26,6 +26,7 @@
 #include "every_key_model.hpp"
 #include "frame3d_model.hpp"
 #include "hinged_beam_model.hpp"
+#include "mast_model.hpp"
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/energy.hpp"
 #include "ntn/hil/gate.hpp"
@@ -200,7 +201,7 @@ void expect_frame_same(std::int64_t steps) {
 // frame3d's 26 blocks (members of 4 elements, four kinds of member) share a few.
 TEST(RuntimeStorage, InfoCountsTheStiffnessEntriesInitShares) {
   for (const char* name : {"frame3d.toml", "cantilever.toml", "hinged_beam.toml",
-                           "portal_plastic.toml", "portal_slip.toml"}) {
+                           "portal_plastic.toml", "portal_slip.toml", "mast.toml"}) {
     ntn::modelc::LoadResult r = ntn::modelc::load_model(NTN_CONFIG_DIR "/" + std::string(name));
     ASSERT_TRUE(r.ok()) << name;
     const std::string info = ntn::modelc::info_text(*r.model);
@@ -250,6 +251,10 @@ TEST(RuntimeStorage, PortalPlasticConfig) {
 }
 TEST(RuntimeStorage, PortalSlipConfig) {
   expect_file_same(ntn::models::portal_slip::kSpec, NTN_CONFIG_DIR "/portal_slip.toml", kSeconds);
+}
+// Corotational members: the nodes' rotations in State, the corotational stage.
+TEST(RuntimeStorage, MastConfig) {
+  expect_file_same(ntn::models::mast::kSpec, NTN_CONFIG_DIR "/mast.toml", kSeconds);
 }
 #ifndef NTN_SANITIZE
 // No members: one node, a point mass and a hinge (no element blocks in either storage).
