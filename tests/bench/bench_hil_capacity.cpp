@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <span>
 #include <string>
@@ -23,6 +24,7 @@
 #include "ntn/hil/clock.hpp"
 #include "ntn/hil/loop.hpp"
 #include "ntn/hil/worker_team.hpp"
+#include "ntn/runtime_storage.hpp"
 
 namespace ntn::bench {
 namespace {
@@ -38,6 +40,9 @@ struct Options {
   bool screen = true;  // skip the real-time run when a short virtual-clock trial cannot hold
   int threads = 1;     // workers of the multi-core step (the loop's thread is one)
   int spin = 1 << 10;  // pauses a waiting worker spins before it yields and sleeps
+  // Every element's geometry: linear runs the compiled frames; p_delta and corotational run them
+  // in run-time storage (one block bound before init, as ntn-hil run does).
+  Geometry geometry = Geometry::kLinear;
 };
 
 struct Row {
@@ -82,6 +87,12 @@ double frac(std::int64_t ns, double period) {
   return static_cast<double>(ns) / (period * 1e9);
 }
 
+// The loop over one model at row.substeps per frame: the virtual-clock screen, then the real-time
+// run; `fresh` puts the state back at rest.
+template <Sizes S, class Fresh>
+void run_model(const Options& o, hil::WorkerTeam& workers, Model<S>& model, State<S>& state,
+               Scratch<S>& scratch, TeamWork<S>& work, Fresh fresh, Row& row);
+
 template <Grid G>
 Row run_size(const Options& o, hil::WorkerTeam& workers) {
   constexpr Sizes S = sizes_of(G);
@@ -95,6 +106,31 @@ Row run_size(const Options& o, hil::WorkerTeam& workers) {
   row.substeps = static_cast<int>(std::ceil(o.period / (kDtFraction * row.dt_stable) - 1e-12));
   row.dt = o.period / row.substeps;
   spec.settings.dt = row.dt;
+  if (o.geometry != Geometry::kLinear) {
+    // The same frame in run-time storage with every element's geometry set (the corotational
+    // nodes' isotropic rotary inertia can only lengthen the stable step).
+    std::vector<ElementSpec> elements(spec.elements.begin(), spec.elements.end());
+    for (ElementSpec& e : elements)
+      e.geometry = o.geometry;
+    SpecView v = view(spec);
+    v.elements = elements;
+    const Sizes z = ntn::sizes_of(v);
+    static RunTimeParts parts;
+    std::vector<std::byte> block(runtime_block_bytes(z) + kRunTimeBlockAlign);
+    void* at = block.data();
+    std::size_t space = block.size();
+    std::align(kRunTimeBlockAlign, runtime_block_bytes(z), at, space);
+    if (!runtime_bind(parts, z, {.team = o.threads > 1},
+                      std::span<std::byte>(static_cast<std::byte*>(at), runtime_block_bytes(z))) ||
+        !init(runtime_spec(v), parts.model, parts.init_work).ok()) {
+      std::fprintf(stderr, "run-time storage with geometry: binding or init failed\n");
+      std::exit(2);
+    }
+    run_model(
+        o, workers, parts.model, parts.state, parts.scratch, parts.team_work,
+        [&] { initial_state(parts.model, parts.state); }, row);
+    return row;
+  }
   auto& model = static_instance<Model<S>>();
   const InitStatus st = init(spec, model, static_instance<InitWorkspace<S>>());
   if (!st.ok()) {
@@ -103,10 +139,17 @@ Row run_size(const Options& o, hil::WorkerTeam& workers) {
     std::exit(2);
   }
   auto& state = static_instance<State<S>>();
-  auto& scratch = static_instance<Scratch<S>>();
+  run_model(
+      o, workers, model, state, static_instance<Scratch<S>>(), static_instance<TeamWork<S>>(),
+      [&] { state = State<S>{}; }, row);
+  return row;
+}
+
+template <Sizes S, class Fresh>
+void run_model(const Options& o, hil::WorkerTeam& workers, Model<S>& model, State<S>& state,
+               Scratch<S>& scratch, TeamWork<S>& work, Fresh fresh, Row& row) {
   // The multi-core step: the workers were made before the first size, the partition is this
   // model's (none with one thread: the single-core step).
-  auto& work = static_instance<TeamWork<S>>();
   const Team team = workers.team();
   const Team* team_ptr = o.threads > 1 && prepare_team(model, o.threads, work) ? &team : nullptr;
   hil::LoopConfig config;
@@ -122,17 +165,17 @@ Row run_size(const Options& o, hil::WorkerTeam& workers) {
     hil::LoopConfig vc = config;
     vc.frames = static_cast<std::int64_t>(std::llround(1.0 / o.period));
     vt.reserve(vc.frames);
-    state = State<S>{};
+    fresh();
     (void)hil::run_loop(model, state, scratch, vclock, source, sink, nullptr, vc, no_alarms, vt,
                         static_cast<State<S>*>(nullptr), team_ptr, &work);
     row.screen50 = frac(hil::percentile(vt.compute_ns, 50), o.period);
-    if (row.screen50 > 0.5) return row;  // p50 > 0.5 already: p99.9 <= 0.5 cannot hold
+    if (row.screen50 > 0.5) return;  // p50 > 0.5 already: p99.9 <= 0.5 cannot hold
   }
 
   config.frames = static_cast<std::int64_t>(std::llround(o.duration / o.period));
   hil::FrameTimes times;
   times.reserve(config.frames);
-  state = State<S>{};
+  fresh();
   hil::RealClock clock;
   const hil::LoopResult r =
       hil::run_loop(model, state, scratch, clock, source, sink, nullptr, config, no_alarms, times,
@@ -147,7 +190,6 @@ Row run_size(const Options& o, hil::WorkerTeam& workers) {
   }
   row.overruns = times.overruns;
   row.longest_late = times.max_late_frames;
-  return row;
 }
 
 std::string loadavg() {
@@ -220,6 +262,11 @@ int main(int argc, char** argv) {
                  "pauses a waiting worker spins before it sleeps (large: never sleeps in a run)")
       ->check(ntn::cli::NonNegative());
   app.add_option("--max-elements", o.max_elements, "skip larger frames");
+  std::string geometry = "linear";
+  app.add_option("--geometry", geometry,
+                 "every element's geometry: linear (compiled), p_delta or corotational (run-time "
+                 "storage)")
+      ->check(ntn::cli::IsMember({"linear", "p_delta", "corotational"}));
   bool no_fifo = false, no_mlock = false, no_screen = false;
   app.add_flag("--no-fifo", no_fifo, "do not ask for SCHED_FIFO");
   app.add_flag("--no-mlock", no_mlock, "do not mlockall");
@@ -227,6 +274,9 @@ int main(int argc, char** argv) {
                "run every size in real time, even when a 1 s virtual-clock trial has p50 > 0.5");
   if (const auto code = ntn::cli::parse(app, argc, argv)) return *code;
   o.fifo = !no_fifo, o.mlock = !no_mlock, o.screen = !no_screen;
+  o.geometry = geometry == "p_delta"        ? ntn::Geometry::kPDelta
+               : geometry == "corotational" ? ntn::Geometry::kCorotational
+                                            : ntn::Geometry::kLinear;
 
   for (const std::string& w :
        ntn::hil::apply_real_time({o.fifo, o.priority, o.mlock, o.cpu, 1, 0}).warnings)
@@ -235,10 +285,11 @@ int main(int argc, char** argv) {
   ntn::hil::WorkerTeam workers({o.threads, o.cpu, o.spin});
   for (const std::string& w : workers.warnings())
     std::fprintf(stderr, "warning: %s\n", w.c_str());
-  std::printf("# period %g ms, %g s per size, %s inputs, SCHED_FIFO %s, mlockall %s, %d thread%s\n",
-              o.period * 1e3, o.duration, o.held ? "held" : "sine ground-motion",
-              o.fifo ? "asked" : "off", o.mlock ? "asked" : "off", o.threads,
-              o.threads == 1 ? "" : "s");
+  std::printf(
+      "# period %g ms, %g s per size, %s inputs, SCHED_FIFO %s, mlockall %s, %d thread%s, "
+      "geometry %s\n",
+      o.period * 1e3, o.duration, o.held ? "held" : "sine ground-motion", o.fifo ? "asked" : "off",
+      o.mlock ? "asked" : "off", o.threads, o.threads == 1 ? "" : "s", geometry.c_str());
   std::printf("# load average before: %s\n", loadavg().c_str());
   print_header();
   std::vector<Row> rows;

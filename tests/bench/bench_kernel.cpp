@@ -633,6 +633,75 @@ void bm_peer(benchmark::State& bs) {
   if (!(diff < 1e-9)) fail(bs, "the peer disagrees with the kernel");
 }
 
+// The same frame in run-time storage with every element's geometry set to `kGeometry`
+// (geometry.hpp, corotational.hpp): linear, p_delta or corotational, in the same run, per
+// element-step. One block bound before init; the frame under gravity and the held ground
+// acceleration from rest.
+template <Grid G, Geometry kGeometry>
+RunTimeParts& geometry_runtime_of() {
+  static constexpr Sizes S = sizes_of(G);
+  static RunTimeParts* const parts = [] {
+    (void)model_of<G>();  // builds the spec
+    const ModelSpec<S>& spec = static_instance<ModelSpec<S>>();
+    static std::vector<ElementSpec> elements(spec.elements.begin(), spec.elements.end());
+    for (ElementSpec& e : elements)
+      e.geometry = kGeometry;
+    SpecView v = view(spec);
+    v.elements = elements;
+    const Sizes z = ntn::sizes_of(v);
+    const std::size_t bytes = runtime_block_bytes(z);
+    auto* p = new RunTimeParts;
+    auto* block =
+        static_cast<std::byte*>(::operator new (bytes, std::align_val_t{kRunTimeBlockAlign}));
+    if (!runtime_bind(*p, z, {}, std::span<std::byte>(block, bytes)) ||
+        !init(runtime_spec(v), p->model, p->init_work).ok()) {
+      std::fprintf(stderr, "run-time storage with geometry: binding or init failed\n");
+      std::abort();
+    }
+    return p;
+  }();
+  return *parts;
+}
+
+template <Grid G, Geometry kGeometry>
+void bm_step_geometry(benchmark::State& bs) {
+  static constexpr Sizes S = sizes_of(G);
+  RunTimeParts& p = geometry_runtime_of<G, kGeometry>();
+  const std::span<const double> in(kGround);
+  initial_state(p.model, p.state);
+  (void)start(p.model, p.state, p.scratch, in);
+  for (int k = 0; k < kWarmupSteps; ++k)
+    (void)step(p.model, p.state, p.scratch, in);
+  bool diverged = false;
+  const std::uint64_t allocs_before = g_allocations.load(std::memory_order_relaxed);
+  for (auto _ : bs) {
+    diverged |= step(p.model, p.state, p.scratch, in) == StepStatus::kDiverged;
+  }
+  const std::uint64_t allocs = g_allocations.load(std::memory_order_relaxed) - allocs_before;
+  if (allocs != 0) fail(bs, "heap allocation in the timed loop");
+  if (diverged) fail(bs, "the step diverged");
+  if (p.state.geometry_bound != 0) fail(bs, "past the geometry bound");
+  const double element_steps = static_cast<double>(bs.iterations()) * S.elements;
+  bs.counters["elements"] = S.elements;
+  bs.counters["ns_per_element_step"] =
+      benchmark::Counter(element_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bs.counters["allocs"] = static_cast<double>(allocs);
+}
+
+template <Grid G>
+void register_geometry() {
+  const std::string n = std::to_string(element_count(G));
+  benchmark::RegisterBenchmark(("step/geometry:linear/elements:" + n).c_str(),
+                               bm_step_geometry<G, Geometry::kLinear>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/geometry:p_delta/elements:" + n).c_str(),
+                               bm_step_geometry<G, Geometry::kPDelta>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("step/geometry:corotational/elements:" + n).c_str(),
+                               bm_step_geometry<G, Geometry::kCorotational>)
+      ->Unit(benchmark::kMicrosecond);
+}
+
 // The benchmark frames: ~10, ~100, ~1 000, ~10 000, ~30 000 and ~100 000 elements.
 inline constexpr Grid kFrame12{.nx = 1, .ny = 1, .storeys = 1, .col_div = 1, .beam_div = 2};
 inline constexpr Grid kFrame104{.nx = 2, .ny = 1, .storeys = 4, .col_div = 2, .beam_div = 2};
@@ -712,6 +781,9 @@ int main(int argc, char** argv) {
   register_frame<kScaling1064>();
   register_frame<kScaling10101>();
   register_frame<kScaling101065>();
+  register_geometry<kFrame104>();
+  register_geometry<kFrame975>();
+  register_geometry<kScaling1064>();
   register_peer<kFrame975>();
   register_peer<kFrame9900>();
   register_peer<kScaling1064>();
