@@ -151,11 +151,11 @@ bool tie_constraints(const SpecView& spec, const ModalOptions& options, ModalRes
 
 // 2. K (elements, hinge springs) and the lumped mass as the kernel assembles them, in q.
 bool assemble(const SpecView& spec, const HingeLinearization& lin, const ConstraintMap& cm,
-              ModalResult& r, Assembled& a) {
+              bool geometric, ModalResult& r, Assembled& a) {
   const int n = r.dofs;
   int bad_element = -1;
   const std::vector<double> u0 = initial_displacement(spec);
-  const SpMat K = stiffness(spec, lin.hinges, bad_element, &u0);
+  const SpMat K = stiffness(spec, lin.hinges, bad_element, geometric ? &u0 : nullptr);
   if (bad_element >= 0) {
     r.error = "element " + std::to_string(bad_element) +
               " has a bad geometry or bad properties (zero length, orientation along the member, "
@@ -639,7 +639,7 @@ ModalResult modal_analysis(const SpecView& spec, const ModalOptions& options) {
   ConstraintMap cm;
   if (!tie_constraints(spec, options, r, lin, cm)) return r;
   Assembled a;
-  if (!assemble(spec, lin, cm, r, a)) return r;
+  if (!assemble(spec, lin, cm, options.geometric, r, a)) return r;
   laps.lap(r.seconds.assembly);
 
   MassReduction red;

@@ -378,9 +378,10 @@ void time_step_lines(InfoText& out, const ModelDescription& m, const Sizes& z) {
 }
 
 // The lowest frequency (Hz) of a model's modal analysis, 0 when it has none or fails.
-double lowest_frequency(const SpecView& v) {
+double lowest_frequency(const SpecView& v, bool geometric = true) {
   modal::ModalOptions o;
   o.modes = 1;
+  o.geometric = geometric;
   const modal::ModalResult r = modal::modal_analysis(v, o);
   return r.ok() && r.frequency.size() > 0 ? r.frequency(0) : 0.0;
 }
@@ -421,12 +422,7 @@ void geometry_lines(InfoText& out, const ModelDescription& m, const Sizes& z) {
              "about it with the p_delta tangent (the same at small displacements)");
   }
   out.line("", "smallest Q_max = " + f("%.3g", share) + " E A, " + m.describe_element(governing));
-  std::vector<ElementSpec> linear(m.elements.begin(), m.elements.end());
-  for (ElementSpec& e : linear)
-    e.geometry = Geometry::kLinear;
-  SpecView lv = v;
-  lv.elements = linear;
-  const double f_geo = lowest_frequency(v), f_lin = lowest_frequency(lv);
+  const double f_geo = lowest_frequency(v), f_lin = lowest_frequency(v, false);
   if (f_geo > 0 && f_lin > 0) {
     out.line("", "lowest frequency " + f("%.6g", f_geo) + " Hz about the preload with P-Delta, " +
                      f("%.6g", f_lin) + " Hz without (" + f("%+.3g", 100 * (f_geo / f_lin - 1)) +

@@ -34,6 +34,9 @@ struct ModalOptions {
   int lanczos_vectors = 0;          // sparse: Spectra's ncv; 0 = max(2 modes + 1, 20)
   bool penalty_as_springs = false;  // rigid hinge directions as the model's penalty springs
                                     // (what `penalty` integrates) instead of exact ties
+  // The geometric stiffness of the preload's axial forces (p_delta, leaning and corotational
+  // elements); false: K alone, the frequencies of the same model without second-order geometry.
+  bool geometric = true;
 };
 
 // DOFs removed as a mechanism: zero effective mass and no stiffness (the kernel holds them at
