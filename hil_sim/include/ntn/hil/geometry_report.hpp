@@ -20,17 +20,20 @@ inline constexpr const char* kGeometryBoundMeaning =
     "the step left its stable bound for the axial forces and chord rotations reached: results "
     "past it are not valid";
 
+// The names of State::faults' bits, in bit order.
+struct FaultName {
+  std::uint32_t bit;
+  const char* name;
+};
+inline constexpr FaultName kFaultNames[] = {{kFaultInputHeld, "input_held"},
+                                            {kFaultDiverged, "diverged"},
+                                            {kFaultInputRange, "input_range"},
+                                            {kFaultGeometryBound, "geometry_bound"}};
+
 // The names of State::faults' bits, as a JSON array: ["diverged", "geometry_bound"].
 inline std::string fault_names_json(std::uint32_t faults) {
-  static constexpr struct {
-    std::uint32_t bit;
-    const char* name;
-  } kNames[] = {{kFaultInputHeld, "input_held"},
-                {kFaultDiverged, "diverged"},
-                {kFaultInputRange, "input_range"},
-                {kFaultGeometryBound, "geometry_bound"}};
   std::string out = "[";
-  for (const auto& f : kNames) {
+  for (const FaultName& f : kFaultNames) {
     if ((faults & f.bit) == 0) continue;
     out += std::string(out.size() > 1 ? ", " : "") + "\"" + f.name + "\"";
   }
