@@ -26,6 +26,7 @@
 #include "hil_run.hpp"
 #include "hil_summary.hpp"
 #include "ntn/hil/clock.hpp"
+#include "ntn/hil/geometry_report.hpp"
 #include "ntn/hil/loop.hpp"
 #include "ntn/hil/model_info.hpp"
 #include "ntn/hil/record_source.hpp"
@@ -367,9 +368,18 @@ int hil_execute(const HilOptions& o, const ModelInfo& info, const ModelSpec<S>& 
   const FrameStats stats = frame_stats(run.times);
   if (!o.quiet) print_summary(o, info, store, run, stats);
   if (run.outcome.result.stopped) print_stopped(run, stop_signal);
+  // Said on stderr too, with --quiet: the run's results past the bound are not valid.
+  if (const std::int64_t k = run.outcome.result.geometry_bound_frame; k >= 0) {
+    std::fprintf(stderr,
+                 "warning: past the stable step's bound of second-order geometry from t = %.3f s "
+                 "(%llu element evaluations); %s\n",
+                 static_cast<double>(k) * run.config.period,
+                 static_cast<unsigned long long>(store.state.geometry_bound),
+                 ntn::hil::kGeometryBoundMeaning);
+  }
   std::printf("  output hash %016llx\n", static_cast<unsigned long long>(hash_value));
   if (!o.json_path.empty()) {
-    if (auto e = write_summary_json(o, info, run, stats, hash_value, stop_signal))
+    if (auto e = write_summary_json(o, info, store, run, stats, hash_value, stop_signal))
       write_errors.push_back(*e);
   }
   for (const std::string& e : write_errors)

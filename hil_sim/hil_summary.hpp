@@ -15,6 +15,7 @@
 #include "hil_options.hpp"
 #include "hil_replay.hpp"
 #include "hil_run.hpp"
+#include "ntn/hil/geometry_report.hpp"
 #include "ntn/hil/model_info.hpp"
 #include "ntn/hil/yield_report.hpp"
 #include "ntn/kernel.hpp"
@@ -192,6 +193,9 @@ void print_summary(const HilOptions& o, const ModelInfo& info, const HilStorage<
   print_input_counters(run.gate.counters());
   print_alarms_and_peaks(info, run);
   print_yielded(info, store);
+  const std::string geometry = ntn::hil::geometry_bound_text(
+      store.model, store.state, run.outcome.result.geometry_bound_frame, run.config.period);
+  if (!geometry.empty()) std::printf("  geometry %s\n", geometry.c_str());
   print_divergence(run.outcome.result, run.config.period);
   print_sender(run);
 }
@@ -232,8 +236,9 @@ inline std::string json_number(double x) {
 // The summary as JSON (--summary-json): the error of writing it, or nullopt.
 template <Sizes S>
 std::optional<std::string> write_summary_json(const HilOptions& o, const ModelInfo& info,
-                                              const HilRun<S>& run, const FrameStats& t,
-                                              std::uint64_t hash_value, const char* stop_signal) {
+                                              const HilStorage<S>& store, const HilRun<S>& run,
+                                              const FrameStats& t, std::uint64_t hash_value,
+                                              const char* stop_signal) {
   const ntn::hil::LoopResult& result = run.outcome.result;
   const auto& gc = run.gate.counters();
   const double period_ns = run.config.period * 1e9;
@@ -289,8 +294,11 @@ std::optional<std::string> write_summary_json(const HilOptions& o, const ModelIn
      << ", \"last_good_frame\": "
      << (result.diverged_frame >= 0 ? result.diverged_frame - 1 : result.frames - 1)
      << ", \"state_restored\": " << (result.state_restored ? "true" : "false") << "}"
-     << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"output_hash\": \""
-     << std::hex << hash_value << std::dec << "\"\n}\n";
+     << ",\n  \"diverged_frame\": " << result.diverged_frame << ",\n  \"geometry_bound\": "
+     << ntn::hil::geometry_bound_json(store.model, store.state, result.geometry_bound_frame,
+                                      run.config.period)
+     << ",\n  \"faults\": " << ntn::hil::fault_names_json(store.state.faults)
+     << ",\n  \"output_hash\": \"" << std::hex << hash_value << std::dec << "\"\n}\n";
   return ntn::cli::close_output(js, "--summary-json", o.json_path);
 }
 

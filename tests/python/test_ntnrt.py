@@ -113,6 +113,44 @@ def test_run_summary_of_a_yielding_frame(el_centro):
         assert p["abs"] >= np.max(np.abs(r["outputs"][name]))
 
 
+# A p_delta bar pulled past the stable step's bound of second-order geometry at 0.114 s (frame 113;
+# tests/tools/past_geometry_bound.toml).
+PAST_BOUND = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools",
+                          "past_geometry_bound.toml")
+
+
+def test_run_summary_geometry_bound_and_faults(tmp_path):
+    # The bound and the fault bits in the summary, as ntn-run's JSON has them: past the bound from
+    # its frame on (a run to 0.2 s), inside it (to 0.1 s); a model without second-order geometry.
+    model = ntnrt.load(PAST_BOUND)
+    for seconds, past in ((0.2, True), (0.1, False)):
+        s = model.run(inputs={}, duration=seconds)["summary"]
+        out = str(tmp_path / f"summary_{seconds}.json")
+        subprocess.run([NTN_RUN, PAST_BOUND, "--duration", str(seconds), "--summary-json", out,
+                        "-q"], check=True, capture_output=True)
+        with open(out) as f:
+            cli = json.load(f)
+        bound = s["geometry_bound"]
+        assert {k: bound[k] for k in ("elements", "evaluations", "first_frame")} == \
+            {k: cli["geometry_bound"][k] for k in ("elements", "evaluations", "first_frame")}
+        assert s["faults"] == cli["faults"]
+        assert bound["elements"] == 1
+        if past:
+            assert 110 <= bound["first_frame"] <= 116  # the pull reaches Q_max at 0.1138 s
+            assert bound["evaluations"] > 0
+            assert bound["first_time_s"] == pytest.approx(cli["geometry_bound"]["first_time_s"],
+                                                          rel=1e-8)
+            assert s["faults"] == ["geometry_bound"]
+        else:
+            assert bound["evaluations"] == 0 and bound["first_frame"] == -1
+            assert bound["first_time_s"] is None and cli["geometry_bound"]["first_time_s"] is None
+            assert s["faults"] == []
+    linear = ntnrt.load(os.path.join(CONFIG, "cantilever.toml")).run(inputs={}, duration=0.01)
+    assert linear["summary"]["geometry_bound"] == {"elements": 0, "evaluations": 0,
+                                                  "first_frame": -1, "first_time_s": None}
+    assert linear["summary"]["faults"] == []
+
+
 ENERGY_CHANNELS = ("external", "kinetic", "elastic", "viscous", "hysteretic", "friction",
                    "impacts", "fracture", "residual")
 

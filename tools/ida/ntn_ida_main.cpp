@@ -17,7 +17,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -54,7 +56,7 @@ struct Options {
   std::vector<std::string> edps;
   std::string input;
   double tail = 10;
-  double collapse_drift = 0.10;
+  std::string collapse_drift = "0.1";  // a drift ratio, or "none"
   int threads = 1;
   bool resume = false;
   bool no_plots = false;
@@ -128,7 +130,9 @@ std::string study_key(const Options& o, const Study& study) {
     k << " " << v;
   k << "\nfirst " << p.first << " increment " << p.increment << " resolution " << p.resolution
     << " max " << p.max << " runs " << p.runs << "\ninput " << o.input << " tail " << o.tail
-    << " collapse_drift " << o.collapse_drift << "\nedp";
+    << " collapse_drift " << study.config().collapse_drift
+    << "\ncollapse: drift above the limit, diverged, past the geometry bound (the run ends there)"
+    << "\nedp";
   for (const auto& c : study.columns())
     k << " " << c.name;
   k << "\n";
@@ -262,8 +266,16 @@ void add_options(ntn::cli::App& app, Options& o) {
       ->check(ntn::cli::NonNegative(1e4))
       ->capture_default_str();
   app.add_option("--collapse-drift", o.collapse_drift,
-                 "a peak storey drift ratio above this is a collapse")
-      ->check(ntn::cli::Positive(10))
+                 "a peak storey drift ratio above this is a collapse; none: only a run that "
+                 "diverged or passed the stable step's bound of second-order geometry is")
+      ->check(ntn::cli::Validator(
+          [](std::string& text) -> std::string {
+            if (text == "none") return {};
+            const std::optional<double> v = ntn::cli::parse_double(text);
+            if (v && *v > 0 && *v <= 10) return {};
+            return "wants a drift ratio in (0, 10] or none, got '" + text + "'";
+          },
+          "(0, 10] or none"))
       ->capture_default_str();
   app.add_option("--threads", o.threads, "kernel workers per run")
       ->check(ntn::cli::Integer(1, 64))
@@ -283,7 +295,9 @@ int make_config(const Options& o, int rank, ntn::ida::StudyConfig& config) {
   config.damping = o.damping;
   config.plan = o.plan;
   config.tail = o.tail;
-  config.collapse_drift = o.collapse_drift;
+  config.collapse_drift = o.collapse_drift == "none"
+                              ? std::numeric_limits<double>::infinity()
+                              : ntn::cli::parse_double(o.collapse_drift).value_or(0.1);
   config.edps = o.edps;
   config.threads = o.threads;
   if (!o.scales.empty()) {

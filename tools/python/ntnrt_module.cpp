@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "ntn/hil/geometry_report.hpp"
 #include "ntn/hil/loaded_model.hpp"
 #include "ntn/modal/modal.hpp"
 #include "ntn/modecheck/modecheck.hpp"
@@ -513,6 +514,20 @@ class PyModel {
     out["plastic_directions"] = ntn::hil::plastic_directions(m_->model());
     out["simulated_s"] = static_cast<double>(r.steps) * dt();
     out["wall_s"] = r.wall;
+    // The stable step's bound of second-order geometry and the state's fault bits, as ntn-run's
+    // JSON has them (geometry_bound_json, fault_names_json).
+    const std::int64_t first = r.loop.geometry_bound_frame;
+    py::dict bound;
+    bound["elements"] = m_->model().sizes.geometric;
+    bound["evaluations"] = r.geometry_bound;
+    bound["first_frame"] = first;
+    bound["first_time_s"] =
+        first >= 0 ? py::cast(static_cast<double>(first) * frame_period()) : py::none();
+    out["geometry_bound"] = bound;
+    py::list faults;
+    for (const ntn::hil::FaultName& f : ntn::hil::kFaultNames)
+      if ((m_->state().faults & f.bit) != 0) faults.append(f.name);
+    out["faults"] = faults;
     return out;
   }
 

@@ -5,6 +5,7 @@
 // run itself is run_simulate.hpp (simulate), its summary run_summary.hpp.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "cli.hpp"  // tools/io
 #include "ntn/hil/csv_sink.hpp"
 #include "ntn/hil/energy.hpp"
+#include "ntn/hil/geometry_report.hpp"
 #include "ntn/hil/record_source.hpp"
 #include "ntn/hil/sampling.hpp"
 #include "ntn/hil/stop_signals.hpp"
@@ -203,6 +205,16 @@ int run_model(const RunOptions& options, const ModelInfo& info, const ModelSpec<
 
   const detail::RunReport<S> report{opt, info, spec, store, in.records, run, sampling, steps};
   if (!opt.quiet) detail::print_summary(report);
+  // Said on stderr too, with --quiet: the run's results past the bound are not valid.
+  if (run.geometry_bound > 0) {
+    std::fprintf(stderr,
+                 "warning: past the stable step's bound of second-order geometry from t = %.3f s "
+                 "(%llu element evaluations); %s\n",
+                 static_cast<double>(std::max<std::int64_t>(run.loop.geometry_bound_frame, 0)) *
+                     spec.settings.frame_period,
+                 static_cast<unsigned long long>(run.geometry_bound),
+                 ntn::hil::kGeometryBoundMeaning);
+  }
   std::printf("  output hash %s\n", run.hash);
   if (!opt.json_path.empty()) {
     if (auto e = detail::write_summary_json(report)) {

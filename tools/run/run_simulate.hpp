@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -200,11 +202,16 @@ struct RunRequest {
   bool csv_energy = false;
   // Not null: the run ends after the frame in which *stop became non-zero (LoopConfig::stop).
   const volatile std::sig_atomic_t* stop = nullptr;
+  // The run ends after the first frame past the stable step's bound of second-order geometry
+  // (LoopConfig::stop_at_geometry_bound; ntn-ida): else it goes on, counted (geometry_bound).
+  bool stop_at_geometry_bound = false;
 };
 
 // What a run gives: the loop's result, the output hash (every output of every step, then the
 // final state: XXH3), per channel the peak |value| and its time and the value at the last step,
-// the energy balance. Not an error: a run that diverged (`diverged`, the loop's safe state).
+// the energy balance. Not an error: a run that diverged (`diverged`, the loop's safe state), and
+// one whose elements passed the stable step's bound of second-order geometry (`geometry_bound`,
+// from loop.geometry_bound_frame on: its results past that frame are not valid).
 struct RunResult {
   std::string error;  // not empty: the run could not be set up
   std::vector<std::string> warnings;
@@ -212,6 +219,9 @@ struct RunResult {
   std::int64_t steps = 0;  // kernel steps taken
   double wall = 0;         // s, at least 1 ns
   bool diverged = false;
+  // Element evaluations past the bound of second-order geometry (State::geometry_bound, with
+  // kFaultGeometryBound in State::faults when not 0).
+  std::uint64_t geometry_bound = 0;
   char hash[17] = {};  // 16 hex digits
   std::vector<detail::Peak> peaks;
   std::vector<double> last;
@@ -244,6 +254,7 @@ RunResult simulate(RunStorage<S> store, const ModelSpec<S>& spec, const ModelInf
   config.kinetic_limit = std::numeric_limits<double>::infinity();
   config.stop_at_divergence = true;
   config.stop = request.stop;
+  config.stop_at_geometry_bound = request.stop_at_geometry_bound;
   std::vector<hil::Alarm> alarms(z.outputs);
   for (std::size_t c = 0; c < alarms.size(); ++c) {
     alarms[c].enabled = info.alarm_limits[c] > 0;
@@ -293,6 +304,7 @@ RunResult simulate(RunStorage<S> store, const ModelSpec<S>& spec, const ModelInf
       std::max(1e-9, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   out.steps = sink.steps;
   out.diverged = out.loop.diverged_frame >= 0;
+  out.geometry_bound = store.state.geometry_bound;
   std::snprintf(out.hash, sizeof out.hash, "%016llx",
                 static_cast<unsigned long long>(hash.finish(store.state)));
   out.peaks = std::move(sink.peaks);

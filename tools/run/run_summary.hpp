@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli.hpp"  // tools/io
+#include "ntn/hil/geometry_report.hpp"
 #include "ntn/hil/sampling.hpp"
 #include "ntn/hil/stop_signals.hpp"
 #include "ntn/hil/yield_report.hpp"
@@ -156,11 +157,15 @@ void print_energy_and_yielding(const RunReport<S>& r) {
   }
 }
 
-// How the run ended: inputs held, diverged, stopped; where the response went.
+// How the run ended: inputs held, the bound of second-order geometry, diverged, stopped; where
+// the response went.
 template <Sizes S>
 void print_ending(const RunReport<S>& r) {
   const ntn::hil::LoopResult& result = r.run.loop;
   const std::int64_t per_frame = r.store.model.substeps.count;
+  const std::string geometry = ntn::hil::geometry_bound_text(
+      r.store.model, r.store.state, result.geometry_bound_frame, r.spec.settings.frame_period);
+  if (!geometry.empty()) std::printf("  geometry    %s\n", geometry.c_str());
   if (result.input_held_frames > 0)
     std::printf("  inputs held %llu frames had an input the gate refused (last good value held)\n",
                 static_cast<unsigned long long>(result.input_held_frames));
@@ -204,7 +209,11 @@ std::optional<std::string> write_summary_json(const RunReport<S>& r) {
      << "\",\n  \"steps\": " << run.steps << ",\n  \"simulated_s\": " << fmt("%.17g", simulated)
      << ",\n  \"wall_s\": " << fmt("%.6g", run.wall)
      << ",\n  \"real_time_factor\": " << fmt("%.6g", simulated / run.wall)
-     << ",\n  \"diverged\": " << (run.diverged ? "true" : "false") << ",\n  \"stopped_by\": "
+     << ",\n  \"diverged\": " << (run.diverged ? "true" : "false") << ",\n  \"geometry_bound\": "
+     << ntn::hil::geometry_bound_json(r.store.model, r.store.state, run.loop.geometry_bound_frame,
+                                      r.spec.settings.frame_period)
+     << ",\n  \"faults\": " << ntn::hil::fault_names_json(r.store.state.faults)
+     << ",\n  \"stopped_by\": "
      << (run.loop.stopped ? "\"" + std::string(ntn::hil::stop_signal_name()) + "\""
                           : std::string("null"))
      << ",\n  \"output_hash\": \"" << run.hash << "\",\n  \"peaks\": {";

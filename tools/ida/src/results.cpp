@@ -170,7 +170,16 @@ pl::Figure ida_figure(const Study& study, const std::vector<RunRow>& sorted, dou
   pl::Panel& p = fig.panels.emplace_back();
   p.x_label = "peak storey drift [%]";
   p.y_label = im_label;
-  const double limit = 100 * study.config().collapse_drift;
+  // Without a drift limit (--collapse-drift none) the flatlines go out to the largest drift of a
+  // run that did not diverge (a diverged run's peaks are the state's blowing up).
+  double limit = 100 * study.config().collapse_drift;
+  if (!std::isfinite(limit)) {
+    limit = 0;
+    for (const RunRow& row : sorted)
+      if (!row.error() && row.status != "diverged" && std::isfinite(row.peak_drift))
+        limit = std::max(limit, 100 * row.peak_drift);
+    if (!(limit > 0)) limit = 10;
+  }
   p.x_range = {0.0, 1.1 * limit};
   p.y_range.min = 0.0;
   add_fractile_curves(p, add_record_curves(p, sorted, records, limit), top, limit);
@@ -385,14 +394,16 @@ Written write_results(const Study& study, const std::vector<RunRow>& rows, const
 }
 
 std::string summary_text(const Study& study, const std::vector<RunRow>& rows) {
-  std::size_t collapsed = 0, diverged = 0, errors = 0;
+  std::size_t collapsed = 0, diverged = 0, past_bound = 0, errors = 0;
   for (const RunRow& row : rows) {
     collapsed += row.collapse ? 1 : 0;
     diverged += row.status == "diverged" ? 1 : 0;
+    past_bound += row.status == "geometry_bound" ? 1 : 0;
     errors += row.error() ? 1 : 0;
   }
   std::string s = "runs " + std::to_string(rows.size()) + " (" + std::to_string(collapsed) +
-                  " collapsed, " + std::to_string(diverged) + " of them diverged; " +
+                  " collapsed, of them " + std::to_string(diverged) + " diverged and " +
+                  std::to_string(past_bound) + " past the geometry bound; " +
                   std::to_string(errors) + " could not run)\n";
   const std::vector<Fragility> fr = fragilities(capacities(study, rows));
   for (const Fragility& f : fr) {

@@ -266,7 +266,9 @@ std::unique_ptr<Study> Study::open(const StudyConfig& config, std::vector<std::s
   s->has_drifts_ = has.drifts;
   if (const auto e = demand_columns(d, config.edps, has, s->columns_)) return refuse(*e, 2);
   if (!s->has_drifts_)
-    notes.push_back("the model has no drift output: a run collapses only when it diverges");
+    notes.push_back(
+        "the model has no drift output: a run collapses only when it diverges or passes the "
+        "stable step's bound of second-order geometry");
 
   if (config.measure == Measure::kSaT1 && config.period > 0) {
     s->period_ = config.period;
@@ -319,6 +321,7 @@ RunRow Study::run(std::size_t r, double im) {
   run::RunRequest request;
   request.steps = static_cast<std::int64_t>(std::ceil(seconds / m.model().dt - 1e-9));
   request.threads = config_.threads;
+  request.stop_at_geometry_bound = true;  // nothing past it is a result
   const run::RunStorage<kRunTime> storage{m.model(),   m.init_work(), m.state(),
                                           m.scratch(), m.team_work(), &m.loop_buffers()};
   const run::RunResult res = run::simulate(storage, spec, m.info(), feed, request);
@@ -348,8 +351,12 @@ RunRow Study::run(std::size_t r, double im) {
   for (const hil::YieldedDirection& y : hil::yielded_directions(m.model(), m.state()))
     level = std::max(level, y.level);
 
-  row.collapse = res.diverged || row.peak_drift > config_.collapse_drift;
-  row.status = res.diverged ? "diverged" : "ok";
+  // Collapse (FEMA P695 counts a run whose analysis fails as one): a divergence, a run past the
+  // bound of second-order geometry (it ended in the frame that passed it: a divergence in that
+  // frame is said as such), or a drift above the limit.
+  const bool past_bound = !res.diverged && res.loop.geometry_bound_frame >= 0;
+  row.collapse = res.diverged || past_bound || row.peak_drift > config_.collapse_drift;
+  row.status = res.diverged ? "diverged" : past_bound ? "geometry_bound" : "ok";
   using Kind = EdpColumn::Kind;
   for (std::size_t k = 0; k < columns_.size(); ++k) {
     const EdpColumn& col = columns_[k];

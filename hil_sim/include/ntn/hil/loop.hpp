@@ -52,6 +52,9 @@ struct LoopConfig {
   // When given and non-zero after a frame (a signal handler sets it), the loop ends after that
   // frame, its outputs given to the sink and recorded, and says so in LoopResult::stopped.
   const volatile std::sig_atomic_t* stop = nullptr;
+  // End the run after the first frame in which an element passed the stable step's bound of
+  // second-order geometry (LoopResult::geometry_bound_frame): nothing after it is a result.
+  bool stop_at_geometry_bound = false;
 };
 
 // A limit alarm on one output channel: on when |value| > limit, off again when
@@ -90,6 +93,9 @@ struct LoopResult {
   bool state_restored = false;  // the state was put back to the end of the last good frame
   std::uint64_t input_held_frames = 0;
   bool stopped = false;  // ended early by LoopConfig::stop (`frames` says after how many)
+  // The first frame after whose steps State::geometry_bound was not 0 (an element past the stable
+  // step's bound of second-order geometry, ntn/geometry.hpp; start() counts in frame 0), or -1.
+  std::int64_t geometry_bound_frame = -1;
 };
 
 // The deadline of frame 0 a source asks for on the real clock, or -1 (the loop then starts one
@@ -234,6 +240,9 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
           break;
         }
       }
+      // Before a divergence puts the state back: the bound may have been passed on the way.
+      if (result.geometry_bound_frame < 0 && state.geometry_bound != 0)
+        result.geometry_bound_frame = k;
       // The frame's check (divergence.hpp): T above the limit, or T not finite.
       const double kinetic = kinetic_energy(model, state);
       if (!diverged && (!(kinetic <= result.kinetic_limit) || !(kinetic - kinetic == 0))) {
@@ -291,6 +300,7 @@ LoopResult run_loop(const Model<S>& model, State<S>& state, Scratch<S>& scratch,
     }
     ++result.frames;
     if (diverged && config.stop_at_divergence) break;
+    if (config.stop_at_geometry_bound && result.geometry_bound_frame >= 0) break;
     if (config.stop != nullptr && *config.stop != 0) {
       result.stopped = result.frames < config.frames;
       break;

@@ -3,9 +3,11 @@
 // (ntn::hil::LoadedModel, the run of ntn-run), the record scaled so that its intensity measure
 // (PGA or Sa(T1)) equals the intensity. A run gives the engineering demands (peak storey drift,
 // residual drift, peak floor acceleration, the hinges' performance level, any output's peak) and
-// whether the frame collapsed (a drift past the limit, or a run that diverged: the kernel's safe
-// state). A record's runs depend on its own earlier runs only (trace.hpp), so a record's result
-// is the same whatever process traces it; ntn-ida spreads the records over MPI processes.
+// whether the frame collapsed (a drift past the limit, a run that diverged: the kernel's safe
+// state, or one that passed the stable step's bound of second-order geometry: under P-Delta the
+// sidesway, whose results past the bound are not valid, so the run ends there). A record's runs
+// depend on its own earlier runs only (trace.hpp), so a record's result is the same whatever
+// process traces it; ntn-ida spreads the records over MPI processes.
 #pragma once
 
 #include <cstdint>
@@ -36,7 +38,7 @@ struct StudyConfig {
   double damping = 0.05;  // for Sa
   TracePlan plan;
   double tail = 10;               // s of free vibration after each record (residual drift)
-  double collapse_drift = 0.10;   // a peak storey drift ratio above this is a collapse
+  double collapse_drift = 0.10;   // a peak storey drift ratio above this is a collapse (+inf: none)
   std::vector<std::string> edps;  // the demand columns; empty: the standard ones the model has
   int threads = 1;                // workers per run (the kernel's team)
 };
@@ -64,9 +66,11 @@ struct RunRow {
   double im = 0;     // g
   double scale = 0;  // the factor the record was multiplied by
   bool collapse = false;
-  double peak_drift = 0;      // the largest |drift ratio| of any storey (NaN: the model has none)
-  std::vector<double> edps;   // one per column
-  std::string status = "ok";  // "ok", "diverged" or "error: ..."
+  double peak_drift = 0;     // the largest |drift ratio| of any storey (NaN: the model has none)
+  std::vector<double> edps;  // one per column
+  // "ok", "diverged", "geometry_bound" (past the stable step's bound of second-order geometry:
+  // the run ended after that frame) or "error: ..."
+  std::string status = "ok";
   std::int64_t steps = 0;
   std::string hash;    // ntn-run's output hash of the run
   double seconds = 0;  // wall time of the run (not written to the results)
