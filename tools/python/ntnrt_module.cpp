@@ -518,7 +518,7 @@ class PyModel {
     // JSON has them (geometry_bound_json, fault_names_json).
     const std::int64_t first = r.loop.geometry_bound_frame;
     py::dict bound;
-    bound["elements"] = m_->model().sizes.geometric;
+    bound["elements"] = ntn::hil::bounded_elements(m_->model());
     bound["evaluations"] = r.geometry_bound;
     bound["first_frame"] = first;
     bound["first_time_s"] =

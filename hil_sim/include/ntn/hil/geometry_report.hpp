@@ -1,8 +1,8 @@
 // The stable step's bound of second-order geometry in a run, for the run and loop summaries: the
-// step holds while every p_delta element's Q = N+ + k l (phi + phi^2) stays under its bound
-// (ntn/geometry.hpp); past it the kernel counts the element evaluations (State::geometry_bound)
-// and sets kFaultGeometryBound, and the loop says in which frame it was first passed
-// (LoopResult::geometry_bound_frame).
+// step holds while every p_delta, leaning and corotational element's Q = N+ + k l (phi + phi^2)
+// stays under its bound (ntn/geometry.hpp); past it the kernel counts the element evaluations
+// (State::geometry_bound) and sets kFaultGeometryBound, and the loop says in which frame it was
+// first passed (LoopResult::geometry_bound_frame).
 #pragma once
 
 #include <cstdint>
@@ -40,17 +40,24 @@ inline std::string fault_names_json(std::uint32_t faults) {
   return out + "]";
 }
 
+// The elements the bound is checked in: p_delta, leaning and corotational.
+template <Sizes S>
+std::size_t bounded_elements(const Model<S>& m) {
+  return static_cast<std::size_t>(m.sizes.geometric + m.sizes.corotational);
+}
+
 // The summary's line for the bound, after its label: empty for a model without second-order
 // geometry; else whether it held, or from when it did not and how many evaluations were past it.
 template <Sizes S>
 std::string geometry_bound_text(const Model<S>& m, const State<S>& s, std::int64_t first_frame,
                                 double period) {
-  if (m.sizes.geometric == 0) return {};
+  const std::size_t n = bounded_elements(m);
+  if (n == 0) return {};
   char text[320];
   if (first_frame < 0 && s.geometry_bound == 0) {
     std::snprintf(text, sizeof text,
-                  "the stable step's bound held in the %zu element%s with second-order geometry",
-                  static_cast<std::size_t>(m.sizes.geometric), m.sizes.geometric == 1 ? "" : "s");
+                  "the stable step's bound held in the %zu element%s with second-order geometry", n,
+                  n == 1 ? "" : "s");
   } else {
     std::snprintf(text, sizeof text,
                   "PAST the stable step's bound from the frame at t = %.3f s (%llu element "
@@ -69,7 +76,7 @@ std::string geometry_bound_json(const Model<S>& m, const State<S>& s, std::int64
   char t[40] = "null";
   if (first_frame >= 0)
     std::snprintf(t, sizeof t, "%.9g", static_cast<double>(first_frame) * period);
-  return "{\"elements\": " + std::to_string(m.sizes.geometric) +
+  return "{\"elements\": " + std::to_string(bounded_elements(m)) +
          ", \"evaluations\": " + std::to_string(s.geometry_bound) +
          ", \"first_frame\": " + std::to_string(first_frame) + ", \"first_time_s\": " + t + "}";
 }
