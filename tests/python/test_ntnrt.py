@@ -90,6 +90,22 @@ def test_run_equals_the_command_line(frame3d, el_centro, tmp_path):
                        element_pass="scalar")["hash"] == FRAME3D_EL_CENTRO
 
 
+def test_corotational_mast_equals_the_command_line(el_centro):
+    # Corotational members (the nodes' rotations in the run's State) and a yielding base plate,
+    # the first 10 s of El Centro: the command line's bits, on one and two threads; the stable
+    # step's bound held.
+    path = os.path.join(CONFIG, "mast.toml")
+    model = ntnrt.load(path)
+    r = model.run(inputs={"ag_x": el_centro}, duration=10.0)
+    assert r["hash"] == cli_hash([NTN_RUN, path, "--input", "ag_x=" + EL_CENTRO,
+                                  "--duration", "10"])
+    assert model.run(inputs={"ag_x": el_centro}, duration=10.0, threads=2)["hash"] == r["hash"]
+    s = r["summary"]
+    assert s["geometry_bound"]["elements"] == 12 and s["geometry_bound"]["evaluations"] == 0
+    assert s["faults"] == []
+    assert 0.05 < s["peaks"]["head_ux"]["abs"] < 1.0  # m: the head's sway
+
+
 def test_run_summary_of_a_yielding_frame(el_centro):
     model = ntnrt.load(os.path.join(CONFIG, "portal_plastic.toml"))
     r = model.run(inputs={"ag_x": el_centro})
