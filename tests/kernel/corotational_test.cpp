@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "ntn/beam.hpp"
@@ -664,6 +666,36 @@ TEST(Corotational, DampingIsViscousInTheNaturalDeformationRates) {
     EXPECT_NEAR(power / expected, 1.0, 1e-6);
     (void)n;
   }
+}
+
+// The frame's range is part of the bound: an element whose nodes turn about its local z by +-70
+// degrees against the chord (q2 = cos 70 = 0.34) is counted as past it, one at +-40 degrees
+// (q2 = 0.77) is not, a tension past its limit is; the force there is still finite.
+TEST(Corotational, AFrameNearItsDegenerateFootingIsPastTheBound) {
+  ntn::CorotationalElement e;
+  e.beam = make_beam(kXi, kXj, kRef, kRect);
+  e.node_i = 0, e.node_j = 1;
+  e.limit = 1e300;
+  const Vector3 z{e.beam.rotation[6], e.beam.rotation[7], e.beam.rotation[8]};  // local z
+  const double u[12] = {};
+  for (const auto& [degrees, over] : {std::pair{40.0, false}, std::pair{70.0, true}}) {
+    const double a = degrees * std::numbers::pi / 180;
+    const Quaternion q[2] = {axis_angle(z, a), axis_angle(z, -a)};
+    double f[12] = {};
+    EXPECT_EQ(ntn::corotational_forces(&e, 1, u, u, q, 0.0, f), over ? 1U : 0U) << degrees;
+    for (const double x : f)
+      EXPECT_TRUE(std::isfinite(x)) << degrees;
+  }
+  // Tension: the chord stretched by 1e-3 of its length against a limit of half its force.
+  const Quaternion q[2] = {};
+  const Vector3 x = minus(kXj, kXi);
+  const double s = 1e-3;
+  const double u2[12] = {0, 0, 0, 0, 0, 0, s * x[0], s * x[1], s * x[2], 0, 0, 0};
+  e.limit = 0.5 * e.beam.k.axial * s * e.beam.length;
+  double f[12] = {};
+  EXPECT_EQ(ntn::corotational_forces(&e, 1, u2, u, q, 0.0, f), 1U);
+  e.limit = 2.0 * e.beam.k.axial * s * e.beam.length;
+  EXPECT_EQ(ntn::corotational_forces(&e, 1, u2, u, q, 0.0, f), 0U);
 }
 
 // ---- Mattiasson's cantilever: a tip load P perpendicular to the axis, P L^2/EI = 1..10 ----

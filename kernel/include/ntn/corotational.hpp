@@ -41,6 +41,7 @@ struct CorotationalLocal {
   Vector3 theta_i{}, theta_j{};    // deformational rotations (x, y, z local), rad
   double axial = 0;                // N = EA/l0 u_l, tension positive, N
   Vector3 moment_i{}, moment_j{};  // (T, M_y, M_z) conjugate to theta_i, theta_j, N m
+  double q2 = 1;                   // |e1 x q|: the frame's footing, 1 undeformed (below)
 };
 
 inline ElementCheck corotational_beam(const NodeSpec& a, const NodeSpec& b, const ElementSpec& e,
@@ -207,7 +208,8 @@ inline CorotationalLocal corotational_force(const CorotationalBeam& b, const dou
   n.theta_j = log_rotation(Rj);
   detail::natural_forces(b.k, n);
   // q's local components from the rotated triads: q1 = e1 . q, q2 = e2 . q (= |e1 x q|).
-  const double inv_q2 = 1.0 / (0.5 * (Ri[4] + Rj[4]));
+  n.q2 = 0.5 * (Ri[4] + Rj[4]);
+  const double inv_q2 = 1.0 / n.q2;
   const double eta = 0.5 * (Ri[1] + Rj[1]) * inv_q2;
   const double inv_l = c.inverse_length;
   Vector3 moment_i = n.moment_i, moment_j = n.moment_j;
@@ -249,9 +251,14 @@ struct CorotationalElement {
 
 // The stable step's bound (geometry.hpp) for a corotational element: the chord's rotation is the
 // frame's, so Q = N+ alone. The moments' geometric terms, of order M / l^2 against the bending
-// stiffness 12 E I / l^3 (a ratio of the deformational rotation over 12), are left out.
-inline bool corotational_over(const CorotationalElement& e, double axial) {
-  return !(e.limit - (axial > 0 ? axial : 0.0) >= 0);
+// stiffness 12 E I / l^3 (a ratio of the deformational rotation over 12), are left out. And the
+// frame's own range: it needs q off the chord, |e1 x q| = q2 > 0 (deformational rotations about
+// local z under 90 degrees); below kCorotationalFooting (rotations near 60 degrees, far past small
+// strains in any element) the element is counted as past its bound before its frame degenerates.
+inline constexpr double kCorotationalFooting = 0.5;
+
+inline bool corotational_over(const CorotationalElement& e, const CorotationalLocal& n) {
+  return !(e.limit - (n.axial > 0 ? n.axial : 0.0) >= 0 && n.q2 >= kCorotationalFooting);
 }
 
 // f += the internal forces of `count` corotational elements at (u, q), in their order, with the
@@ -273,7 +280,7 @@ inline std::size_t corotational_forces(const CorotationalElement* elements, std:
       f[di + c] += fi[c];
       f[dj + c] += fj[c];
     }
-    over += corotational_over(e, n.axial) ? 1 : 0;
+    over += corotational_over(e, n) ? 1 : 0;
   }
   return over;
 }
