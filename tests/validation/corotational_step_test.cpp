@@ -9,9 +9,11 @@
 // 3. a free 3D frame thrown spinning (1 rad/s about a skew axis) and translating for 10 s: its
 //    strain energy stays that of its centrifugal load, where the same frame with linear geometry
 //    tears itself apart within the first turn (objectivity);
-// 4. a hinge between two nodes may not meet a corotational member (its axes would not turn); a
-//    support's may;
-// 5. the same bits on a repeat run and with a team of two workers.
+// 4. a hinge between two nodes may not meet a corotational member (its axes would not turn): an
+//    error at its key, where the same release at p_delta members loads (a hinge to the ground
+//    may: config/mast.toml's base plate);
+// 5. the same bits on a repeat run (teams of 1-3: determinism.paths_and_threads_mast);
+// 6. the energy books close through large rotations, with alpha and with Rayleigh damping.
 #include <gtest/gtest.h>
 
 #include <array>
