@@ -497,6 +497,21 @@ void bm_step(benchmark::State& bs) {
   }
 }
 
+// A model given as a view in run-time storage: one block bound before init, kept for the run.
+RunTimeParts* bind_runtime(const SpecView& v) {
+  const Sizes z = ntn::sizes_of(v);
+  const std::size_t bytes = runtime_block_bytes(z);
+  auto* p = new RunTimeParts;
+  auto* block =
+      static_cast<std::byte*>(::operator new (bytes, std::align_val_t{kRunTimeBlockAlign}));
+  if (!runtime_bind(*p, z, {}, std::span<std::byte>(block, bytes)) ||
+      !init(runtime_spec(v), p->model, p->init_work).ok()) {
+    std::fprintf(stderr, "run-time storage: binding or init failed\n");
+    std::abort();
+  }
+  return p;
+}
+
 // The same frame in run-time storage: the spec of model_of<G>() given as a view,
 // one block bound before init. Its state after `kCheckSteps` steps from rest equals the compiled
 // model's bit for bit (else the benchmark fails).
@@ -505,18 +520,7 @@ RunTimeParts& runtime_of() {
   static constexpr Sizes S = sizes_of(G);
   static RunTimeParts* const parts = [] {
     (void)model_of<G>();  // builds the spec
-    const SpecView v = view(static_instance<ModelSpec<S>>());
-    const Sizes z = ntn::sizes_of(v);
-    const std::size_t bytes = runtime_block_bytes(z);
-    auto* p = new RunTimeParts;
-    auto* block =
-        static_cast<std::byte*>(::operator new (bytes, std::align_val_t{kRunTimeBlockAlign}));
-    if (!runtime_bind(*p, z, {}, std::span<std::byte>(block, bytes)) ||
-        !init(runtime_spec(v), p->model, p->init_work).ok()) {
-      std::fprintf(stderr, "run-time storage: binding or init failed\n");
-      std::abort();
-    }
-    return p;
+    return bind_runtime(view(static_instance<ModelSpec<S>>()));
   }();
   return *parts;
 }
@@ -648,17 +652,7 @@ RunTimeParts& geometry_runtime_of() {
       e.geometry = kGeometry;
     SpecView v = view(spec);
     v.elements = elements;
-    const Sizes z = ntn::sizes_of(v);
-    const std::size_t bytes = runtime_block_bytes(z);
-    auto* p = new RunTimeParts;
-    auto* block =
-        static_cast<std::byte*>(::operator new (bytes, std::align_val_t{kRunTimeBlockAlign}));
-    if (!runtime_bind(*p, z, {}, std::span<std::byte>(block, bytes)) ||
-        !init(runtime_spec(v), p->model, p->init_work).ok()) {
-      std::fprintf(stderr, "run-time storage with geometry: binding or init failed\n");
-      std::abort();
-    }
-    return p;
+    return bind_runtime(v);
   }();
   return *parts;
 }

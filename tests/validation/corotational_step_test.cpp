@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "ntn/hil/energy.hpp"
+#include "books_run.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modelc/load_model.hpp"
 #include "text_model.hpp"
@@ -449,31 +449,6 @@ TEST(Corotational, ARepeatRunHasTheSameBits) {
 // elements' damping on their natural deformation rates, the elastic account their strain energy
 // at u_{n+1}, Q_{n+1}: energy.hpp). Rayleigh: beta = 1e-4 s, under the stable step's 2 / omega_max
 // margin.
-double books_residual(Rt& rt, double seconds) {
-  ntn::Model<ntn::kRunTime>& m = rt.model();
-  ntn::State<ntn::kRunTime>& s = rt.state();
-  ntn::Scratch<ntn::kRunTime>& w = rt.scratch();
-  m.books = true;
-  ntn::initial_state(m, s);
-  const std::vector<double> none;
-  EXPECT_EQ(ntn::start(m, s, w, std::span<const double>(none)), ntn::StepStatus::kOk);
-  ntn::hil::EnergyBalance<ntn::kRunTime> books;
-  books.reserve(m.dofs());
-  books.begin(m, s);
-  const long steps = std::lround(seconds / m.dt);
-  for (long n = 0; n < steps; ++n) {
-    EXPECT_EQ(ntn::step(m, s, w, std::span<const double>(none)), ntn::StepStatus::kOk);
-    books.after_step(m, s, w);
-  }
-  const ntn::hil::EnergyAccounts a = books.accounts(m, s);
-  std::printf(
-      "  external %.6g J = kinetic %.4g + elastic %.6g + viscous %.6g; residual %.2e of the "
-      "input\n",
-      a.external, a.kinetic, a.elastic, a.viscous, a.relative_residual());
-  m.books = false;
-  return a.relative_residual();
-}
-
 TEST(Corotational, EnergyBooksCloseThroughLargeRotations) {
   const std::string alpha = cantilever(5 * kEI / 16.0, "corotational");
   std::string rayleigh = alpha;
@@ -485,8 +460,8 @@ TEST(Corotational, EnergyBooksCloseThroughLargeRotations) {
   const auto r = load(rayleigh);
   ASSERT_NE(a, nullptr);
   ASSERT_NE(r, nullptr);
-  EXPECT_LE(std::abs(books_residual(*a, 4.0)), 1e-10);
-  EXPECT_LE(std::abs(books_residual(*r, 4.0)), 1e-10);
+  EXPECT_LE(std::abs(ntn_test::books_residual(*a, 4.0)), 1e-10);
+  EXPECT_LE(std::abs(ntn_test::books_residual(*r, 4.0)), 1e-10);
 }
 
 }  // namespace corotational_step_test

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "books_run.hpp"
 #include "ntn/hil/energy.hpp"
 #include "ntn/kernel.hpp"
 #include "ntn/modal/modal.hpp"
@@ -546,30 +547,6 @@ TEST(PDelta, PortalMechanismLoadIsReducedByPDelta) {
 // strain energy plus the second-order part at u_{n+1} (energy.hpp), the viscous account taking the
 // rest of the elements' work (beta K's, and the O(dt^2) between the second-order part's change and
 // its work).
-double books_residual(Rt& rt, double seconds) {
-  ntn::Model<ntn::kRunTime>& m = rt.model();
-  ntn::State<ntn::kRunTime>& s = rt.state();
-  ntn::Scratch<ntn::kRunTime>& w = rt.scratch();
-  ntn::initial_state(m, s);
-  std::vector<double> none;
-  EXPECT_EQ(ntn::start(m, s, w, std::span<const double>(none)), ntn::StepStatus::kOk);
-  ntn::hil::EnergyBalance<ntn::kRunTime> books;
-  books.reserve(m.dofs());
-  books.begin(m, s);
-  const long steps = std::lround(seconds / m.dt);
-  for (long n = 0; n < steps; ++n) {
-    EXPECT_EQ(ntn::step(m, s, w, std::span<const double>(none)), ntn::StepStatus::kOk);
-    books.after_step(m, s, w);
-  }
-  const ntn::hil::EnergyAccounts a = books.accounts(m, s);
-  std::printf(
-      "  external %.6g J = kinetic %.4g + elastic %.6g + viscous %.6g + hysteretic %.6g; "
-      "residual %.2e of the input\n",
-      a.external, a.kinetic, a.elastic, a.viscous, a.hysteretic, a.relative_residual());
-  m.books = false;
-  return a.relative_residual();
-}
-
 TEST(PDelta, EnergyBooksCloseThroughTheMechanism) {
   std::string alpha = portal("p_delta", true);
   const std::string rayleigh = "[model.damping]\nratio = 0.02\nmodes = [1, 2]\n";
@@ -580,8 +557,8 @@ TEST(PDelta, EnergyBooksCloseThroughTheMechanism) {
   const auto r = load(portal("p_delta", true));
   ASSERT_NE(a, nullptr);
   ASSERT_NE(r, nullptr);
-  EXPECT_LE(std::abs(books_residual(*a, 36.0)), 1e-10);
-  EXPECT_LE(std::abs(books_residual(*r, 36.0)), 1e-10);
+  EXPECT_LE(std::abs(ntn_test::books_residual(*a, 36.0)), 1e-10);
+  EXPECT_LE(std::abs(ntn_test::books_residual(*r, 36.0)), 1e-10);
 }
 
 // 4. A bar of 1 m fixed at one end, pulled at the other: its stable-step bound at the step the
