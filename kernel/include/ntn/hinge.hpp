@@ -10,6 +10,7 @@
 
 #include "ntn/hysteresis.hpp"
 #include "ntn/model_spec.hpp"
+#include "ntn/rotation.hpp"
 
 namespace ntn {
 
@@ -117,14 +118,64 @@ struct HingeData {
   std::uint8_t plastic = 0;   // bit d: direction d is hysteretic (kPlastic; kRigidPlastic
                               // under penalty: a bilinear spring of the penalty stiffness)
   std::uint8_t slip = 0;      // bit d: a rigid-plastic direction held by the slip stage (slip.hpp)
+  bool turns = false;         // it turns with its nodes (hinge_turns, model_spec.hpp)
   std::array<std::int32_t, kDofsPerNode> history{};  // kPlastic, kRigidPlastic: its history slot
 };
 
+// A hinge's geometry as the step uses it: `frame` maps the nodes' translations to the hinge's
+// (rows: hinge axes x, y, z in global), `spin` their rotations, and `arm` is the lever arm from
+// node 1 to node 2's point. In linear kinematics spin = frame and arm = e (hinge_pose); a hinge
+// that turns with its nodes has them from its nodes' motion now (hinge_turned).
+struct HingePose {
+  Matrix3 frame{};
+  Matrix3 spin{};
+  Vector3 arm{};
+};
+
+inline HingePose hinge_pose(const HingeData& h) {
+  return {h.frame, h.frame, h.eccentricity};
+}
+
+// The rows of a turning hinge (corotational geometry) and its relative displacement d, from its
+// nodes' translations u1, u2 and total rotations q1, q2 (State::rotation). Node 1's rotation Q1
+// carries the hinge's axes and offset: T = T0 Q1^T, e = Q1 e0 (T0, e0 the reference's, e0 =
+// X2 - X1). The translations are measured from node 1's rigid link, d_t = T (e0 + u2 - u1 -
+// Q1 e0), and the rotations are node 2's relative to node 1 in node 1's axes, d_r = T0 psi with
+// psi = log(Q1^T Q2). Their variations over the nodes' velocities and spins w (spatial) are
+// d_t' = T (u2' - u1' - w1 x r), r = e0 + u2 - u1 the arm now (the frame's own turning moves
+// the gap with it), and d_r' = T0 T_s^-1(psi) Q1^T (w2 - w1) (rotation.hpp's T_s: the relative
+// rotation's spin in node 1's axes is Q1^T (w2 - w1)). So the pose is frame = T, spin =
+// T0 T_s^-1(psi) Q1^T, arm = r, and hinge_scatter's B^T f is the forces' exact virtual work:
+// the energy of a spring is a function of d alone, and a rigid motion of both nodes leaves d
+// unchanged (objective). At the reference (Q = 1, u = 0) it is hinge_pose's.
+inline HingePose hinge_turned(const HingeData& h, const Quaternion& q1, const Quaternion& q2,
+                              const double* u1, const double* u2, double* d) {
+  const Vector3& e0 = h.eccentricity;
+  const Vector3 r{e0[0] + (u2[0] - u1[0]), e0[1] + (u2[1] - u1[1]), e0[2] + (u2[2] - u1[2])};
+  const Vector3 e = rotate(q1, e0);
+  const Vector3 gap{r[0] - e[0], r[1] - e[1], r[2] - e[2]};
+  const Vector3 psi = log_rotation(product(conjugate(q1), q2));
+  HingePose p;
+  p.arm = r;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Vector3 t0{h.frame[3 * k], h.frame[3 * k + 1], h.frame[3 * k + 2]};
+    const Vector3 t = rotate(q1, t0);
+    const Vector3 s = rotate(q1, log_tangent_inverse_transpose(psi, t0));
+    for (std::size_t c = 0; c < 3; ++c)
+      p.frame[3 * k + c] = t[c], p.spin[3 * k + c] = s[c];
+    d[k] = dot(t, gap);
+    d[k + 3] = dot(t0, psi);
+  }
+  return p;
+}
+
 // Relative displacement in the hinge frame (DESIGN §7):
-// d_L = T [u2 - u1 - phi1 x e ; phi2 - phi1]; the ground has u2 = phi2 = 0.
-inline void hinge_relative(const HingeData& h, const double* x1, const double* x2, double* d) {
-  const auto& R = h.frame;
-  const auto& e = h.eccentricity;
+// d_L = T [u2 - u1 - phi1 x e ; phi2 - phi1]; the ground has u2 = phi2 = 0. With a pose, the
+// same rows at the pose's frame, spin and arm (a turning hinge's rates, hinge_turned).
+inline void hinge_relative(const HingePose& p, const double* x1, const double* x2, double* d) {
+  const auto& R = p.frame;
+  const auto& S = p.spin;
+  const auto& e = p.arm;
   // the motion of node 1's rigid link at node 2's point: u1 + phi1 x e
   const double w[3] = {x1[0] + (x1[4] * e[2] - x1[5] * e[1]), x1[1] + (x1[5] * e[0] - x1[3] * e[2]),
                        x1[2] + (x1[3] * e[1] - x1[4] * e[0])};
@@ -137,26 +188,32 @@ inline void hinge_relative(const HingeData& h, const double* x1, const double* x
     d[r] = R[static_cast<std::size_t>(3 * r)] * g[0] +
            R[static_cast<std::size_t>(3 * r + 1)] * g[1] +
            R[static_cast<std::size_t>(3 * r + 2)] * g[2];
-    d[r + 3] = R[static_cast<std::size_t>(3 * r)] * g[3] +
-               R[static_cast<std::size_t>(3 * r + 1)] * g[4] +
-               R[static_cast<std::size_t>(3 * r + 2)] * g[5];
+    d[r + 3] = S[static_cast<std::size_t>(3 * r)] * g[3] +
+               S[static_cast<std::size_t>(3 * r + 1)] * g[4] +
+               S[static_cast<std::size_t>(3 * r + 2)] * g[5];
   }
+}
+
+inline void hinge_relative(const HingeData& h, const double* x1, const double* x2, double* d) {
+  hinge_relative(hinge_pose(h), x1, x2, d);
 }
 
 // Adds the internal force B^T f_L of a hinge force f_L (force on node 1, hinge frame) to the
 // nodes' internal force vectors: node 1 gets -[F ; e x F + M], node 2 gets [F ; M] with
-// F = T^T f_t, M = T^T f_r (so the force acting on node 1 is +F, on node 2 -F).
-inline void hinge_scatter(const HingeData& h, const double* f_local, double* f1, double* f2) {
-  const auto& R = h.frame;
-  const auto& e = h.eccentricity;
+// F = T^T f_t, M = T^T f_r (so the force acting on node 1 is +F, on node 2 -F). With a pose,
+// M = spin^T f_r and the arm for e.
+inline void hinge_scatter(const HingePose& p, const double* f_local, double* f1, double* f2) {
+  const auto& R = p.frame;
+  const auto& S = p.spin;
+  const auto& e = p.arm;
   double F[3], M[3];
   for (int c = 0; c < 3; ++c) {
     F[c] = R[static_cast<std::size_t>(c)] * f_local[0] +
            R[static_cast<std::size_t>(3 + c)] * f_local[1] +
            R[static_cast<std::size_t>(6 + c)] * f_local[2];
-    M[c] = R[static_cast<std::size_t>(c)] * f_local[3] +
-           R[static_cast<std::size_t>(3 + c)] * f_local[4] +
-           R[static_cast<std::size_t>(6 + c)] * f_local[5];
+    M[c] = S[static_cast<std::size_t>(c)] * f_local[3] +
+           S[static_cast<std::size_t>(3 + c)] * f_local[4] +
+           S[static_cast<std::size_t>(6 + c)] * f_local[5];
   }
   const double exF[3] = {e[1] * F[2] - e[2] * F[1], e[2] * F[0] - e[0] * F[2],
                          e[0] * F[1] - e[1] * F[0]};
@@ -170,6 +227,10 @@ inline void hinge_scatter(const HingeData& h, const double* f_local, double* f1,
       f2[c + 3] += M[c];
     }
   }
+}
+
+inline void hinge_scatter(const HingeData& h, const double* f_local, double* f1, double* f2) {
+  hinge_scatter(hinge_pose(h), f_local, f1, f2);
 }
 
 // Spring and dashpot force on node 1 in the hinge frame, for the directions in `springs`:

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <span>
 
+#include "ntn/dashpot.hpp"
 #include "ntn/hinge.hpp"
 #include "ntn/model_spec.hpp"
 #include "ntn/ntn_exact.hpp"
@@ -60,6 +61,53 @@ inline bool make_hinge_data(const HingeSpec& spec, const Settings& settings, std
         [&](std::size_t k) { return method.rigid_direction(settings, k, h); },
         [&](std::size_t k) { return method.slip_direction(settings, k, h); });
   });
+}
+
+// What a hinge that turns with its nodes (HingeData::turns) may not hold: the stages whose rows
+// are built once at init keep the reference axes (the forest's matrices, ntn_paper's hinge-frame
+// masses, the clamp's, the slips' and the central dashpots' directions). The forest's rows do
+// not depend on the axes where a block's directions are all coupled or none is (the coupled
+// space is then all of it or nothing) and a coupled translation has no offset; a spring's rows
+// are the pose's in every stage (hinge_turned).
+enum class TurnRefusal : std::uint8_t {
+  kNone,
+  kPartCoupled,       // ntn_exact: some of a block's three directions coupled, not all
+  kEccentricCoupled,  // ntn_exact: coupled translations of an eccentric hinge (its arm turns)
+  kPaperCoupled,      // ntn_paper: a coupled direction
+  kStop,              // a curve with a rigid branch (the clamp)
+  kSlip,              // a rigid-plastic direction held by the slip stage
+  kCentralDashpot,    // a dashpot under damping_velocity = "central" (the dashpot stage)
+};
+
+struct TurnCheck {
+  TurnRefusal why = TurnRefusal::kNone;
+  int direction = -1;  // the direction that breaks it (0..5), the first
+  constexpr bool ok() const { return why == TurnRefusal::kNone; }
+};
+
+inline TurnCheck turning_hinge_check(const HingeData& h, const Settings& settings) {
+  for (int k = 0; k < static_cast<int>(kDofsPerNode); ++k) {
+    const auto uk = static_cast<std::size_t>(k);
+    if ((h.branches >> k) & 1U) return {TurnRefusal::kStop, k};
+    if ((h.slip >> k) & 1U) return {TurnRefusal::kSlip, k};
+    if (settings.damping_velocity == DampingVelocity::kCentral && has_dashpot(h, uk))
+      return {TurnRefusal::kCentralDashpot, k};
+    if (!((h.rigid >> k) & 1U)) continue;
+    if (settings.hinge_method == HingeMethod::kNtnPaper) return {TurnRefusal::kPaperCoupled, k};
+  }
+  for (int block = 0; block < 2; ++block) {
+    const unsigned bits = (static_cast<unsigned>(h.rigid) >> (3 * block)) & 7U;
+    if (bits != 0 && bits != 7U) {
+      int k = 3 * block;
+      while (((bits >> (k - 3 * block)) & 1U) != 0)
+        ++k;  // the first direction of the block left free
+      return {TurnRefusal::kPartCoupled, k};
+    }
+  }
+  const auto& e = h.eccentricity;
+  if ((h.rigid & 7U) != 0 && (e[0] != 0 || e[1] != 0 || e[2] != 0))
+    return {TurnRefusal::kEccentricCoupled, 0};
+  return {};
 }
 
 namespace detail {

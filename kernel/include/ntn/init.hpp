@@ -290,17 +290,15 @@ InitStatus init_hinges(const ModelSpec<S>& spec, Model<S>& model, InitWorkspace<
       x *= model.mass_factor;
   }
   if constexpr (kMayHaveHinges<S>) {
-    if (sz.hinges > 0 && sz.corotational > 0) {
+    if (sz.hinges > 0) {
       const std::span<const ElementSpec> elements(spec.elements.data(), sz.elements);
       for (std::size_t i = 0; i < sz.hinges; ++i) {
-        if (corotational_hinge_node(spec.hinges[i], elements) >= 0)
-          return {InitError::kCorotationalHinge, static_cast<int>(i)};
-      }
-    }
-    if (sz.hinges > 0) {
-      for (std::size_t i = 0; i < sz.hinges; ++i) {
+        HingeData& h = model.hinges[i];
         (void)make_hinge_data(spec.hinges[i], spec.settings, sz.nodes, spec.curves,
-                              spec.curve_points, model.hinges[i]);
+                              spec.curve_points, h);
+        h.turns = sz.corotational > 0 && corotational_hinge_node(spec.hinges[i], elements) >= 0;
+        if (h.turns && !turning_hinge_check(h, spec.settings).ok())
+          return {InitError::kCorotationalHinge, static_cast<int>(i)};
       }
       model.curve_points = spec.curve_points;
       model.num_edges = model.num_roots = model.held_dofs = 0;

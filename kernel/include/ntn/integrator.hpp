@@ -203,14 +203,34 @@ void start_rotations(const Model<S>& m, State<S>& s) {
   }
 }
 
-// A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7).
+// A hinge's pose at t_n (hinge.hpp) and its relative displacement d_L = B u_n: a hinge that
+// turns with its nodes from their translations and rotations Q_n (hinge_turned), any other from
+// its constant rows (DESIGN §7).
 template <Sizes S>
-void hinge_deformation(const State<S>& s, const HingeData& h, double* d, double* d_dot) {
+HingePose hinge_pose_at(const State<S>& s, const HingeData& h, double* d) {
   const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
   const bool ground = h.node2 == kGround;
   const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+  if constexpr (kMayTurnHinges<S>) {
+    if (h.turns) {
+      return hinge_turned(h, s.rotation[static_cast<std::size_t>(h.node1)],
+                          s.rotation[static_cast<std::size_t>(h.node2)], &s.u[i1], &s.u[i2], d);
+    }
+  }
   hinge_relative(h, &s.u[i1], ground ? nullptr : &s.u[i2], d);
-  hinge_relative(h, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
+  return hinge_pose(h);
+}
+
+// A hinge's relative displacement d_L = B u_n and its rate from v_{n-1/2} (DESIGN §7), and its
+// pose.
+template <Sizes S>
+HingePose hinge_deformation(const State<S>& s, const HingeData& h, double* d, double* d_dot) {
+  const HingePose p = hinge_pose_at(s, h, d);
+  const auto i1 = static_cast<std::size_t>(kDofsPerNode * h.node1);
+  const bool ground = h.node2 == kGround;
+  const auto i2 = ground ? 0 : static_cast<std::size_t>(kDofsPerNode * h.node2);
+  hinge_relative(p, &s.v[i1], ground ? nullptr : &s.v[i2], d_dot);
+  return p;
 }
 
 // Spring and dashpot force f_L of one hinge (force on node 1, hinge frame), with the plastic
@@ -232,7 +252,7 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
       const HingeData& h =
           m.hinges[static_cast<std::size_t>(m.spring_hinges[static_cast<std::size_t>(i)])];
       double d[6], d_dot[6], f[6];
-      hinge_deformation(s, h, d, d_dot);
+      const HingePose pose = hinge_deformation(s, h, d, d_dot);
       if constexpr (S.runtime || S.hystereses > 0) {
         for (std::size_t k = 0; h.plastic != 0 && k < kDofsPerNode; ++k) {
           if (!((h.plastic >> k) & 1U)) continue;
@@ -244,7 +264,7 @@ void hinge_springs(const Model<S>& m, State<S>& s, Scratch<S>& w) {
       }
       hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
       const bool ground = h.node2 == kGround;
-      hinge_scatter(h, f, &w.f[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+      hinge_scatter(pose, f, &w.f[static_cast<std::size_t>(kDofsPerNode * h.node1)],
                     ground ? nullptr : &w.f[static_cast<std::size_t>(kDofsPerNode * h.node2)]);
     }
   }
@@ -289,11 +309,8 @@ void slip_normals(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
 
 template <Sizes S>
 double hinge_displacement(const Model<S>& m, const State<S>& s, int hinge, int k) {
-  const HingeData& h = m.hinges[static_cast<std::size_t>(hinge)];
-  const bool ground = h.node2 == kGround;
   double d[6];
-  hinge_relative(h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
-                 ground ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)], d);
+  hinge_pose_at(s, m.hinges[static_cast<std::size_t>(hinge)], d);
   return d[k];
 }
 
@@ -315,7 +332,8 @@ double hinge_velocity(const Model<S>& m, const State<S>& s, const Scratch<S>& w,
     v2[c] = ground ? 0.0
                    : velocity_at_tn(m, s, w, static_cast<std::size_t>(kDofsPerNode * h.node2) + c);
   }
-  hinge_relative(h, v1, ground ? nullptr : v2, d_dot);
+  double d[6];
+  hinge_relative(hinge_pose_at(s, h, d), v1, ground ? nullptr : v2, d_dot);
   return d_dot[k];
 }
 
@@ -492,7 +510,8 @@ void constraint_outputs(const Model<S>& m, const State<S>& s, Scratch<S>& w) {
                            : corrected_velocity(
                                  m, s, w, static_cast<std::size_t>(kDofsPerNode * h.node2) + q);
           }
-          hinge_relative(h, v1, ground ? nullptr : v2, d_dot);
+          double d[6];
+          hinge_relative(hinge_pose_at(s, h, d), v1, ground ? nullptr : v2, d_dot);
           w.outputs[c] = d_dot[o.dof] * o.scale;
           break;
         }

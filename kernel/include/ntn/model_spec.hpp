@@ -354,10 +354,11 @@ constexpr std::size_t corotational_elements(std::span<const ElementSpec> element
   return n;
 }
 
-// The hinge rule of corotational geometry: a hinge's frame and offset keep their reference
-// orientation (they do not turn with its nodes), which is right for a hinge to the ground, whose
-// axes are the ground's. A hinge between two nodes may not join a node that a corotational
-// element reaches: the first such node of h, or -1.
+// The hinges that turn with their nodes (corotational geometry): a hinge between two nodes either
+// of which a corotational element reaches. Its axes and offset follow node 1's rotation and its
+// rotations are node 2's relative to node 1 (hinge.hpp's hinge_turned); what it may hold is
+// turning_hinge_check's (hinge_methods.hpp). A hinge to the ground keeps the ground's axes. The
+// first such node of h, or -1.
 constexpr int corotational_hinge_node(const HingeSpec& h, std::span<const ElementSpec> elements) {
   if (h.node2 == kGround) return -1;
   for (const ElementSpec& e : elements) {

@@ -21,7 +21,8 @@ enum class InitError : std::uint8_t {
   kRigidCycle,           // rigid hinge directions form a cycle (`where` = the closing hinge)
   kMechanism,            // an effective mass that cannot be inverted (`where` = hinge or node)
   kStorageSizes,         // run-time storage bound for other sizes, or a model with no node
-  kCorotationalHinge,    // a hinge between nodes joins a corotational element (`where` = hinge)
+  kCorotationalHinge,    // a hinge that turns with its nodes holds what cannot turn yet
+                         // (turning_hinge_check; `where` = hinge)
 };
 
 struct [[nodiscard]] InitStatus {
@@ -63,7 +64,7 @@ constexpr const char* to_string(InitError e) {
     case InitError::kStorageSizes:
       return "storage bound for other sizes, or a model without nodes";
     case InitError::kCorotationalHinge:
-      return "hinge between two nodes at a corotational element (its axes would not turn)";
+      return "hinge at a corotational element holds a direction whose rows cannot turn";
   }
   return "unknown";
 }

@@ -120,6 +120,9 @@ template <Sizes S>
 inline constexpr bool kMayHaveHinges = S.runtime || S.hinges > 0;
 template <Sizes S>
 inline constexpr bool kMayHaveHystereses = S.runtime || (S.hinges > 0 && S.hystereses > 0);
+// A model whose hinges may turn with their nodes (corotational geometry, HingeData::turns).
+template <Sizes S>
+inline constexpr bool kMayTurnHinges = S.runtime || (S.hinges > 0 && S.corotational > 0);
 
 // What a step takes its inputs as: the std::array of the model's channels (compiled storage), a
 // span of them (run-time storage; one of another length holds every channel).

@@ -12,6 +12,7 @@
 
 #include "messages.hpp"
 #include "ntn/beam.hpp"
+#include "ntn/hinge_methods.hpp"
 #include "roll.hpp"
 
 namespace ntn::modelc::compile {
@@ -308,19 +309,59 @@ std::string node_text(const ModelDescription& d, int n) {
 
 }  // namespace
 
-// A hinge between two nodes may not join a corotational element's node (the kernel's
-// corotational_hinge_node): its axes and offset would keep their reference orientation.
+// A hinge that turns with its nodes (the kernel's corotational_hinge_node) may hold only what
+// turns with them (turning_hinge_check): the reason, and what the user can do instead.
 void check_corotational_hinges(Compilation& comp) {
   ModelDescription& d = comp.d;
+  static const char* const kDirection[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
   for (std::size_t i = 0; i < d.hinges.size(); ++i) {
     const int n = corotational_hinge_node(d.hinges[i], d.elements);
     if (n < 0) continue;
-    comp.L.error(comp.hinge_at[i],
-                 "hinge '" + d.hinge_info[i].name + "' joins " + node_text(d, n) +
-                     " of a member with geometry = \"corotational\": a hinge's axes and offset "
-                     "do not turn with its nodes, so only hinges to the ground may meet "
-                     "corotational members; give the members at this joint geometry = "
-                     "\"p_delta\", or join them without a hinge");
+    HingeData h;
+    if (!make_hinge_data(d.hinges[i], d.settings, d.nodes.size(), d.curves, d.curve_points, h))
+      continue;  // a bad hinge: its own checks say why
+    const TurnCheck c = turning_hinge_check(h, d.settings);
+    if (c.ok()) continue;
+    const std::string dir = kDirection[static_cast<std::size_t>(c.direction)];
+    std::string why;
+    switch (c.why) {
+      case TurnRefusal::kPartCoupled:
+        why = "its coupled directions cover part of a block (" + dir +
+              " is not coupled), and ntn_exact's rows of such a block are built once in the "
+              "reference axes; couple all three of the block or none (springs turn), or use "
+              "hinge_method = \"penalty\"";
+        break;
+      case TurnRefusal::kEccentricCoupled:
+        why =
+            "its translations are coupled across an offset, whose lever arm turns; join the "
+            "nodes at one point, or give the translations springs";
+        break;
+      case TurnRefusal::kPaperCoupled:
+        why = "ntn_paper's hinge-frame masses are built once in the reference axes (" + dir +
+              " is coupled); use hinge_method = \"ntn_exact\" or \"penalty\"";
+        break;
+      case TurnRefusal::kStop:
+        why = dir +
+              "'s curve has a rigid branch (a stop), whose direction is built once in the "
+              "reference axes; give the curve a finite slope there";
+        break;
+      case TurnRefusal::kSlip:
+        why = dir +
+              " is rigid-plastic, held by the slip stage in the reference axes; give it a "
+              "plastic spring (plastic = k) instead";
+        break;
+      case TurnRefusal::kCentralDashpot:
+        why = dir +
+              "'s dashpot acts at v_n through directions built once in the reference "
+              "axes; set damping_velocity = \"lagged\"";
+        break;
+      case TurnRefusal::kNone:
+        break;
+    }
+    comp.L.error(comp.hinge_at[i], "hinge '" + d.hinge_info[i].name + "' joins " + node_text(d, n) +
+                                       " of a member with geometry = \"corotational\", so its "
+                                       "axes turn with its nodes, but " +
+                                       why);
   }
 }
 

@@ -175,6 +175,30 @@ class EnergyBalance : public EnergyTotals {
     hinge_relative(h, x1, h.node2 == kGround ? nullptr : x2, d);
   }
 
+  // A hinge's pose (hinge.hpp) and its d = B u for node translations u1, u2 (u2 unused for the
+  // ground): a hinge that turns with its nodes at their rotations now (`before`: false) or at
+  // t_n, Q_n = exp(-dt w_{n+1/2}) Q_{n+1} (true: to rounding the step's Q_n).
+  static HingePose pose(const Model<S>& m, const State<S>& s, const HingeData& h, const double* u1,
+                        const double* u2, bool before, double* d) {
+    if constexpr (kMayTurnHinges<S>) {
+      if (h.turns) {
+        Quaternion q[2];
+        for (std::size_t k = 0; k < 2; ++k) {
+          const auto node = static_cast<std::size_t>(k == 0 ? h.node1 : h.node2);
+          q[k] = s.rotation[node];
+          if (!before) continue;
+          const double* w = &s.v[static_cast<std::size_t>(kDofsPerNode) * node + 3];
+          q[k] =
+              renormalized(product(exp_rotation({-m.dt * w[0], -m.dt * w[1], -m.dt * w[2]}), q[k]));
+        }
+        return hinge_turned(h, q[0], q[1], u1, u2, d);
+      }
+    }
+    (void)m, (void)s, (void)before;
+    relative(h, u1, u2, d);
+    return hinge_pose(h);
+  }
+
   // u_n = u_{n+1} - dt v_{n+1/2} and v_{n-1/2} at the six DOFs of `node` (v unused without a
   // step's scratch: w null).
   static void node_before(const Model<S>& m, const State<S>& s, const Scratch<S>* w, int node,
@@ -202,11 +226,12 @@ class EnergyBalance : public EnergyTotals {
       const HingeData& h = m.hinges[hi];
       node_delta(m, s, w, h.node1, d1);
       node_delta(m, s, w, h.node2, d2);
-      relative(h, d1, d2, bd);
       node_before(m, s, &w, h.node1, u1, v1);
       node_before(m, s, &w, h.node2, u2, v2);
-      relative(h, u1, u2, d);
-      relative(h, v1, v2, d_dot);
+      const HingePose p = pose(m, s, h, u1, u2, true, d);  // at t_n, as the spring stage's
+      const double* none = h.node2 == kGround ? nullptr : d2;
+      hinge_relative(p, d1, none, bd);
+      hinge_relative(p, v1, h.node2 == kGround ? nullptr : v2, d_dot);
       hinge_spring_force(h, m.curve_points, s.plastic, d, d_dot, f);
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if (!((h.springs >> k) & 1U)) continue;
@@ -267,11 +292,10 @@ class EnergyBalance : public EnergyTotals {
       if (h.plastic == 0) continue;
       node_before(m, s, nullptr, h.node1, u1, v1);
       node_before(m, s, nullptr, h.node2, u2, v2);
-      relative(h, u1, u2, before);
-      relative(
-          h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
-          h.node2 == kGround ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)],
-          now);
+      pose(m, s, h, u1, u2, true, before);
+      pose(m, s, h, &s.u[static_cast<std::size_t>(kDofsPerNode * h.node1)],
+           h.node2 == kGround ? nullptr : &s.u[static_cast<std::size_t>(kDofsPerNode * h.node2)],
+           false, now);
       for (std::size_t k = 0; k < kDofsPerNode; ++k) {
         if (!((h.plastic >> k) & 1U)) continue;
         const auto slot = static_cast<std::size_t>(h.history[k]);
