@@ -55,10 +55,12 @@ HWY_INLINE void to_global(const V* R, const V* l, V* g) {
 // makes: a hand-made BeamData's).
 enum class Axes : std::uint8_t { kGeneral, kUniform, kMixed };
 
-HWY_INLINE Axes block_axes(const BeamBlock& blk) {
-  const AxisMap m = blk.axes[0];
+using BlockAxes = std::array<AxisMap, kBeamLanes>;
+
+HWY_INLINE Axes block_axes(const BlockAxes& axes) {
+  const AxisMap m = axes[0];
   for (std::size_t l = 1; l < kBeamLanes; ++l) {
-    if (blk.axes[l] != m) return Axes::kMixed;
+    if (axes[l] != m) return Axes::kMixed;
   }
   if (m == kGeneralAxes) return Axes::kGeneral;
   return right_handed(m) ? Axes::kUniform : Axes::kMixed;
@@ -98,11 +100,11 @@ HWY_INLINE void pick_global(const V* l, V* g) {
 // [first, first + Lanes): aligned 1.0 in the lanes with an AxisMap (the others take the full
 // products), axis[k] the global axis of local axis k (0.0, 1.0 or 2.0), sign[k] -0.0 where local
 // axis k is negated, else +0.0.
-HWY_INLINE void lane_axes(const BeamBlock& blk, std::size_t first, V& aligned, V* axis, V* sign) {
+HWY_INLINE void lane_axes(const BlockAxes& axes, std::size_t first, V& aligned, V* axis, V* sign) {
   const D d;
   alignas(64) double al[kBeamLanes], ax[3][kBeamLanes], sg[3][kBeamLanes];
   for (std::size_t l = 0; l < kBeamLanes; ++l) {
-    const AxisMap m = blk.axes[l];
+    const AxisMap m = axes[l];
     al[l] = m == kGeneralAxes ? 0.0 : 1.0;
     for (std::size_t k = 0; k < 3; ++k) {
       ax[k][l] = static_cast<double>(axis_of(m, k));
@@ -158,7 +160,7 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
     for (std::size_t e = 0; e < 12; e += 3)
       to_local(R, ug + e, dl + e);
     if constexpr (kAxes == Axes::kMixed) {
-      lane_axes(blk, first, aligned, axis, sign);
+      lane_axes(blk.axes, first, aligned, axis, sign);
       for (std::size_t e = 0; e < 12; e += 3)
         repick_local(aligned, axis, sign, ug + e, dl + e);
     }
@@ -207,29 +209,64 @@ constexpr unsigned right_handed_signs() {
   return right_handed(aligned_axes(kA0, kA1, kLow)) ? kLow : kLow | 4U;
 }
 
-// A uniform block's lane_forces for its permutation kA0, kA1 and its negated axes: the four
-// right-handed choices (block_axes), each a case of its own. (A switch on the x and y signs
-// alone, with z's implied, measured as slow as the runtime signs on Zen 5.)
-template <std::size_t kA0, std::size_t kA1>
-HWY_INLINE void uniform_forces(const BeamBlock& blk, const BeamRotations& rot,
-                               const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
+// fn.template operator()<Axes::kUniform, kA0, kA1, kNeg>() for a uniform block of map m with the
+// permutation kA0, kA1: the four right-handed choices of its negated axes (block_axes), each a case
+// of its own. (A switch on the x and y signs alone, with z's implied, measured as slow as the
+// runtime signs on Zen 5.)
+template <std::size_t kA0, std::size_t kA1, class Fn>
+HWY_INLINE void with_uniform_axes(AxisMap m, Fn&& fn) {
   constexpr unsigned kNeg[4] = {
       right_handed_signs<kA0, kA1, 0>(), right_handed_signs<kA0, kA1, 1>(),
       right_handed_signs<kA0, kA1, 2>(), right_handed_signs<kA0, kA1, 3>()};
-  switch (negated_axes(blk.axes[0])) {
+  switch (negated_axes(m)) {
     case kNeg[0]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[0]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[0]>();
       return;
     case kNeg[1]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[1]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[1]>();
       return;
     case kNeg[2]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[2]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[2]>();
       return;
     case kNeg[3]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[3]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[3]>();
       return;
     default:  // left-handed: block_axes sends these to the mixed path
+      return;
+  }
+}
+
+// fn.template operator()<kAxes, kA0, kA1, kNeg>() for the block's kind of axes (block_axes) and, in
+// a uniform block, its pick as template arguments (lane_forces).
+template <class Fn>
+HWY_INLINE void with_axes(const BlockAxes& axes, Fn&& fn) {
+  switch (block_axes(axes)) {
+    case Axes::kUniform:
+      switch (3 * axis_of(axes[0], 0) + axis_of(axes[0], 1)) {
+        case 1:
+          with_uniform_axes<0, 1>(axes[0], fn);
+          return;
+        case 2:
+          with_uniform_axes<0, 2>(axes[0], fn);
+          return;
+        case 3:
+          with_uniform_axes<1, 0>(axes[0], fn);
+          return;
+        case 5:
+          with_uniform_axes<1, 2>(axes[0], fn);
+          return;
+        case 6:
+          with_uniform_axes<2, 0>(axes[0], fn);
+          return;
+        default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
+          with_uniform_axes<2, 1>(axes[0], fn);
+          return;
+      }
+    case Axes::kGeneral:
+      fn.template operator()<Axes::kGeneral, 0, 1, 0>();
+      return;
+    case Axes::kMixed:
+      fn.template operator()<Axes::kMixed, 0, 1, 0>();
       return;
   }
 }
@@ -237,35 +274,11 @@ HWY_INLINE void uniform_forces(const BeamBlock& blk, const BeamRotations& rot,
 // lane_forces for the block's kind of axes.
 HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
                             const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
-  switch (block_axes(blk)) {
-    case Axes::kUniform:
-      switch (3 * axis_of(blk.axes[0], 0) + axis_of(blk.axes[0], 1)) {
-        case 1:
-          uniform_forces<0, 1>(blk, rot, st, first, ug, g);
-          return;
-        case 2:
-          uniform_forces<0, 2>(blk, rot, st, first, ug, g);
-          return;
-        case 3:
-          uniform_forces<1, 0>(blk, rot, st, first, ug, g);
-          return;
-        case 5:
-          uniform_forces<1, 2>(blk, rot, st, first, ug, g);
-          return;
-        case 6:
-          uniform_forces<2, 0>(blk, rot, st, first, ug, g);
-          return;
-        default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
-          uniform_forces<2, 1>(blk, rot, st, first, ug, g);
-          return;
-      }
-    case Axes::kGeneral:
-      lane_forces<Axes::kGeneral>(blk, rot, st, first, ug, g);
-      return;
-    case Axes::kMixed:
-      lane_forces<Axes::kMixed>(blk, rot, st, first, ug, g);
-      return;
-  }
+  with_axes(
+      blk.axes, [&]<Axes kAxes, std::size_t kA0, std::size_t kA1, unsigned kNeg>()
+                    __attribute__((always_inline)) {
+                      lane_forces<kAxes, kA0, kA1, kNeg>(blk, rot, st, first, ug, g);
+                    });
 }
 
 // Any vector width: the displacements gathered DOF by DOF, the end forces stored lane by lane
