@@ -4,9 +4,12 @@
 // order: IEEE products, sums and negations lane by lane (the build has -ffp-contract=off, and
 // Highway's Mul/Add/Sub/Neg are never fused), and the picks and sign flips of an aligned element
 // (beam.hpp, AxisMap) where beam_force picks, so each lane's forces are the scalar path's bits.
-// The end forces are then added to the nodes lane by lane, in the model's element order.
+// The end forces are then added to the nodes lane by lane, in the model's element order. The
+// second-order chord forces (geometry.hpp) are computed the same way: geometric_force and
+// beam_to_global in the lanes of a GeometricBlock, then added element by element.
 
 #include "ntn/element_pass.hpp"
+#include "ntn/geometry.hpp"
 
 #if !defined(NTN_SIMD)
 
@@ -17,6 +20,8 @@ const char* element_pass_target() {
 }  // namespace ntn
 
 #else
+
+#include <algorithm>
 
 #include "hwy_baseline.hpp"  // before Highway's headers
 
@@ -55,10 +60,12 @@ HWY_INLINE void to_global(const V* R, const V* l, V* g) {
 // makes: a hand-made BeamData's).
 enum class Axes : std::uint8_t { kGeneral, kUniform, kMixed };
 
-HWY_INLINE Axes block_axes(const BeamBlock& blk) {
-  const AxisMap m = blk.axes[0];
+using BlockAxes = std::array<AxisMap, kBeamLanes>;
+
+HWY_INLINE Axes block_axes(const BlockAxes& axes) {
+  const AxisMap m = axes[0];
   for (std::size_t l = 1; l < kBeamLanes; ++l) {
-    if (blk.axes[l] != m) return Axes::kMixed;
+    if (axes[l] != m) return Axes::kMixed;
   }
   if (m == kGeneralAxes) return Axes::kGeneral;
   return right_handed(m) ? Axes::kUniform : Axes::kMixed;
@@ -98,11 +105,11 @@ HWY_INLINE void pick_global(const V* l, V* g) {
 // [first, first + Lanes): aligned 1.0 in the lanes with an AxisMap (the others take the full
 // products), axis[k] the global axis of local axis k (0.0, 1.0 or 2.0), sign[k] -0.0 where local
 // axis k is negated, else +0.0.
-HWY_INLINE void lane_axes(const BeamBlock& blk, std::size_t first, V& aligned, V* axis, V* sign) {
+HWY_INLINE void lane_axes(const BlockAxes& axes, std::size_t first, V& aligned, V* axis, V* sign) {
   const D d;
   alignas(64) double al[kBeamLanes], ax[3][kBeamLanes], sg[3][kBeamLanes];
   for (std::size_t l = 0; l < kBeamLanes; ++l) {
-    const AxisMap m = blk.axes[l];
+    const AxisMap m = axes[l];
     al[l] = m == kGeneralAxes ? 0.0 : 1.0;
     for (std::size_t k = 0; k < 3; ++k) {
       ax[k][l] = static_cast<double>(axis_of(m, k));
@@ -158,7 +165,7 @@ HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
     for (std::size_t e = 0; e < 12; e += 3)
       to_local(R, ug + e, dl + e);
     if constexpr (kAxes == Axes::kMixed) {
-      lane_axes(blk, first, aligned, axis, sign);
+      lane_axes(blk.axes, first, aligned, axis, sign);
       for (std::size_t e = 0; e < 12; e += 3)
         repick_local(aligned, axis, sign, ug + e, dl + e);
     }
@@ -207,29 +214,64 @@ constexpr unsigned right_handed_signs() {
   return right_handed(aligned_axes(kA0, kA1, kLow)) ? kLow : kLow | 4U;
 }
 
-// A uniform block's lane_forces for its permutation kA0, kA1 and its negated axes: the four
-// right-handed choices (block_axes), each a case of its own. (A switch on the x and y signs
-// alone, with z's implied, measured as slow as the runtime signs on Zen 5.)
-template <std::size_t kA0, std::size_t kA1>
-HWY_INLINE void uniform_forces(const BeamBlock& blk, const BeamRotations& rot,
-                               const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
+// fn.template operator()<Axes::kUniform, kA0, kA1, kNeg>() for a uniform block of map m with the
+// permutation kA0, kA1: the four right-handed choices of its negated axes (block_axes), each a case
+// of its own. (A switch on the x and y signs alone, with z's implied, measured as slow as the
+// runtime signs on Zen 5.)
+template <std::size_t kA0, std::size_t kA1, class Fn>
+HWY_INLINE void with_uniform_axes(AxisMap m, Fn&& fn) {
   constexpr unsigned kNeg[4] = {
       right_handed_signs<kA0, kA1, 0>(), right_handed_signs<kA0, kA1, 1>(),
       right_handed_signs<kA0, kA1, 2>(), right_handed_signs<kA0, kA1, 3>()};
-  switch (negated_axes(blk.axes[0])) {
+  switch (negated_axes(m)) {
     case kNeg[0]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[0]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[0]>();
       return;
     case kNeg[1]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[1]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[1]>();
       return;
     case kNeg[2]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[2]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[2]>();
       return;
     case kNeg[3]:
-      lane_forces<Axes::kUniform, kA0, kA1, kNeg[3]>(blk, rot, st, first, ug, g);
+      fn.template operator()<Axes::kUniform, kA0, kA1, kNeg[3]>();
       return;
     default:  // left-handed: block_axes sends these to the mixed path
+      return;
+  }
+}
+
+// fn.template operator()<kAxes, kA0, kA1, kNeg>() for the block's kind of axes (block_axes) and, in
+// a uniform block, its pick as template arguments (lane_forces, chord_forces).
+template <class Fn>
+HWY_INLINE void with_axes(const BlockAxes& axes, Fn&& fn) {
+  switch (block_axes(axes)) {
+    case Axes::kUniform:
+      switch (3 * axis_of(axes[0], 0) + axis_of(axes[0], 1)) {
+        case 1:
+          with_uniform_axes<0, 1>(axes[0], fn);
+          return;
+        case 2:
+          with_uniform_axes<0, 2>(axes[0], fn);
+          return;
+        case 3:
+          with_uniform_axes<1, 0>(axes[0], fn);
+          return;
+        case 5:
+          with_uniform_axes<1, 2>(axes[0], fn);
+          return;
+        case 6:
+          with_uniform_axes<2, 0>(axes[0], fn);
+          return;
+        default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
+          with_uniform_axes<2, 1>(axes[0], fn);
+          return;
+      }
+    case Axes::kGeneral:
+      fn.template operator()<Axes::kGeneral, 0, 1, 0>();
+      return;
+    case Axes::kMixed:
+      fn.template operator()<Axes::kMixed, 0, 1, 0>();
       return;
   }
 }
@@ -237,35 +279,11 @@ HWY_INLINE void uniform_forces(const BeamBlock& blk, const BeamRotations& rot,
 // lane_forces for the block's kind of axes.
 HWY_INLINE void lane_forces(const BeamBlock& blk, const BeamRotations& rot,
                             const BeamStiffnessBlock& st, std::size_t first, const V* ug, V* g) {
-  switch (block_axes(blk)) {
-    case Axes::kUniform:
-      switch (3 * axis_of(blk.axes[0], 0) + axis_of(blk.axes[0], 1)) {
-        case 1:
-          uniform_forces<0, 1>(blk, rot, st, first, ug, g);
-          return;
-        case 2:
-          uniform_forces<0, 2>(blk, rot, st, first, ug, g);
-          return;
-        case 3:
-          uniform_forces<1, 0>(blk, rot, st, first, ug, g);
-          return;
-        case 5:
-          uniform_forces<1, 2>(blk, rot, st, first, ug, g);
-          return;
-        case 6:
-          uniform_forces<2, 0>(blk, rot, st, first, ug, g);
-          return;
-        default:  // 7: axis_map() codes a permutation of x, y, z, so nothing else
-          uniform_forces<2, 1>(blk, rot, st, first, ug, g);
-          return;
-      }
-    case Axes::kGeneral:
-      lane_forces<Axes::kGeneral>(blk, rot, st, first, ug, g);
-      return;
-    case Axes::kMixed:
-      lane_forces<Axes::kMixed>(blk, rot, st, first, ug, g);
-      return;
-  }
+  with_axes(
+      blk.axes, [&]<Axes kAxes, std::size_t kA0, std::size_t kA1, unsigned kNeg>()
+                    __attribute__((always_inline)) {
+                      lane_forces<kAxes, kA0, kA1, kNeg>(blk, rot, st, first, ug, g);
+                    });
 }
 
 // Any vector width: the displacements gathered DOF by DOF, the end forces stored lane by lane
@@ -503,7 +521,139 @@ HWY_INLINE void split_transpose(const BeamArrays& a, std::size_t first, std::siz
   }
 }
 
+// geometric_force (geometry.hpp) of a block's 4 lanes from their chord's relative translation
+// rel = u_j - u_i (one vector per global axis): g on node j, in global axes (beam_to_global), and
+// the lanes whose Q is above their limit (`over`).
+template <Axes kAxes, std::size_t kA0 = 0, std::size_t kA1 = 1, unsigned kNeg = 0>
+HWY_INLINE hn::Mask<D> chord_forces(const GeometricBlock& blk, const BeamRotations& rot,
+                                    const V* rel, V* g) {
+  const D d;
+  [[maybe_unused]] V R[9];     // the rotation, for the full products
+  [[maybe_unused]] V aligned;  // a mixed block's lanes (lane_axes)
+  [[maybe_unused]] V axis[3];  // ...
+  [[maybe_unused]] V sign[3];  // ... and the sign bits of its picks
+  V dl[3];                     // beam_to_local
+  if constexpr (kAxes == Axes::kUniform) {
+    pick_local<kA0, kA1, kNeg>(rel, dl);
+  } else {
+    for (std::size_t k = 0; k < 9; ++k)
+      R[k] = hn::Load(d, rot.rotation[k].data());
+    to_local(R, rel, dl);
+    if constexpr (kAxes == Axes::kMixed) {
+      lane_axes(blk.axes, 0, aligned, axis, sign);
+      repick_local(aligned, axis, sign, rel, dl);
+    }
+  }
+  const V axial = hn::Load(d, blk.axial.data());
+  const V inv_length = hn::Load(d, blk.inv_length.data());
+  const V s = hn::Add(hn::Mul(dl[1], dl[1]), hn::Mul(dl[2], dl[2]));
+  const V stretch = hn::Mul(axial, hn::Mul(hn::Mul(hn::Set(d, 0.5), s), inv_length));
+  const V normal = hn::Add(hn::Mul(axial, dl[0]), stretch);
+  const V string = hn::Mul(normal, inv_length);
+  const V gl[3] = {stretch, hn::Mul(string, dl[1]), hn::Mul(string, dl[2])};
+  const V tension = hn::IfThenElseZero(hn::Gt(normal, hn::Zero(d)), normal);  // N+
+  const V y =
+      hn::Sub(hn::Sub(hn::Load(d, blk.limit.data()), tension), hn::Mul(hn::Set(d, 2.0), stretch));
+  const auto within =
+      hn::And(hn::Ge(y, hn::Zero(d)), hn::Le(hn::Mul(hn::Mul(axial, axial), s), hn::Mul(y, y)));
+  if constexpr (kAxes == Axes::kUniform) {
+    pick_global<kA0, kA1, kNeg>(gl, g);
+  } else {
+    to_global(R, gl, g);
+    if constexpr (kAxes == Axes::kMixed) repick_global(aligned, axis, sign, gl, g);
+  }
+  return hn::Not(within);
+}
+
+// Block b's chord forces (chord_forces, its kind of axes kAxes...) into its elements' rows of
+// `rows`, (g_x, g_y, g_z, 0.0). The loads and stores of u, F and the rows here and in
+// chords_transpose take 2 DOFs (x, y or z, rx) or 1, not 4: F takes the translations' sums alone,
+// and none crosses a cache line (4 DOFs from a node's first, 48 bytes a node, would at every other
+// node). Returns how many of its elements (of `count` in all) are past their limit.
+template <Axes kAxes, std::size_t kA0, std::size_t kA1, unsigned kNeg>
+HWY_INLINE std::size_t chord_rows(const GeometricArrays& a, std::size_t b, std::size_t count,
+                                  const double* u, double* rows) {
+  const D d;
+  const hn::Half<D> dh;
+  const GeometricBlock& blk = a.blocks[b];
+  const std::size_t lanes = std::min(kBeamLanes, count - b * kBeamLanes);
+  hn::Vec<hn::Half<D> > xy[4], z[4];  // u_j - u_i lane by lane: (x, y) and (z, rx)
+  for (std::size_t l = 0; l < 4; ++l) {
+    const double* ui = u + blk.dof_i[l];
+    const double* uj = u + blk.dof_j[l];
+    xy[l] = hn::Sub(hn::LoadU(dh, uj), hn::LoadU(dh, ui));
+    z[l] = hn::Sub(hn::LoadU(dh, uj + 2), hn::LoadU(dh, ui + 2));
+  }
+  // lanes 0 and 2 in one vector, 1 and 3 in another, then interleaved (as load_end)
+  const V xy02 = hn::Combine(d, xy[2], xy[0]), xy13 = hn::Combine(d, xy[3], xy[1]);
+  const V z02 = hn::Combine(d, z[2], z[0]), z13 = hn::Combine(d, z[3], z[1]);
+  const V rel[3] = {hn::InterleaveLower(d, xy02, xy13), hn::InterleaveUpper(d, xy02, xy13),
+                    hn::InterleaveLower(d, z02, z13)};
+  V g[3];
+  const auto past = chord_forces<kAxes, kA0, kA1, kNeg>(blk, a.rotations[b], rel, g);
+  // back lane by lane: (g_x, g_y) of lanes 0, 2 in `gxy02`'s halves, 1, 3 in gxy13's; (g_z, 0.0)
+  const V gxy02 = hn::InterleaveLower(d, g[0], g[1]), gxy13 = hn::InterleaveUpper(d, g[0], g[1]);
+  const V gz02 = hn::InterleaveLower(d, g[2], hn::Zero(d));
+  const V gz13 = hn::InterleaveUpper(d, g[2], hn::Zero(d));
+  const hn::Vec<hn::Half<D> > out_xy[4] = {hn::LowerHalf(dh, gxy02), hn::LowerHalf(dh, gxy13),
+                                           hn::UpperHalf(dh, gxy02), hn::UpperHalf(dh, gxy13)};
+  const hn::Vec<hn::Half<D> > out_z[4] = {hn::LowerHalf(dh, gz02), hn::LowerHalf(dh, gz13),
+                                          hn::UpperHalf(dh, gz02), hn::UpperHalf(dh, gz13)};
+  for (std::size_t l = 0; l < lanes; ++l) {
+    double* row = rows + 4 * static_cast<std::size_t>(blk.slot[l]);
+    hn::StoreU(out_xy[l], dh, row);
+    hn::StoreU(out_z[l], dh, row + 2);
+  }
+  return hn::CountTrue(d, hn::And(past, hn::FirstN(d, lanes)));
+}
+
+// geometric_forces over the blocks: each element's g into its row (chord_rows), the blocks taken
+// in runs of the same axes (the model's order makes them long), each run by the code of its kind;
+// then f += g on node j and -g on node i element by element in element order, as
+// geometric_forces adds them. Returns how many elements are past their limit.
+HWY_INLINE std::size_t chords_transpose(const GeometricArrays& a, const GeometricElement* elements,
+                                        std::size_t count, const double* u, double* f,
+                                        double* rows) {
+  const hn::Half<D> dh;
+  const std::size_t num_blocks = beam_blocks(count);
+  std::size_t over = 0;
+  for (std::size_t b = 0; b < num_blocks;) {
+    const BlockAxes& axes = a.blocks[b].axes;
+    std::size_t end = b + 1;
+    while (end < num_blocks && a.blocks[end].axes == axes)
+      ++end;
+    with_axes(
+        axes, [&]<Axes kAxes, std::size_t kA0, std::size_t kA1, unsigned kNeg>()
+                  __attribute__((always_inline)) {
+                    for (; b < end; ++b)
+                      over += chord_rows<kAxes, kA0, kA1, kNeg>(a, b, count, u, rows);
+                  });
+    b = end;  // (with_axes takes every kind of block)
+  }
+  for (std::size_t k = 0; k < count; ++k) {  // element order, as geometric_forces
+    const double* row = rows + 4 * k;
+    const auto gxy = hn::LoadU(dh, row);
+    double* fj = f + elements[k].dof_j;
+    double* fi = f + elements[k].dof_i;
+    hn::StoreU(hn::Add(hn::LoadU(dh, fj), gxy), dh, fj);
+    fj[2] += row[2];
+    hn::StoreU(hn::Sub(hn::LoadU(dh, fi), gxy), dh, fi);
+    fi[2] -= row[2];
+  }
+  return over;
+}
+
 #endif  // HWY_TARGET != HWY_SCALAR
+
+std::size_t GeometricForces(const GeometricArrays& a, const GeometricElement* elements,
+                            std::size_t count, const double* u, double* f, double* rows) {
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (hn::MaxLanes(D()) == kBeamLanes)
+    return chords_transpose(a, elements, count, u, f, rows);
+#endif
+  (void)a, (void)rows;
+  return ntn::geometric_forces(elements, count, u, f);  // vectors of another width: the reference
+}
 
 template <bool kFirst>
 HWY_INLINE void element_forces_on(const BeamArrays& a, std::size_t elements, const double* u,
@@ -574,6 +724,7 @@ namespace detail {
 HWY_EXPORT(ElementForces);
 HWY_EXPORT(ElementForcesFirst);
 HWY_EXPORT(ElementForcesSplit);
+HWY_EXPORT(GeometricForces);
 HWY_EXPORT(Target);
 
 void element_forces_simd(const BeamArrays& a, std::size_t elements, const double* u,
@@ -590,6 +741,11 @@ void element_forces_split_simd(const BeamArrays& a, std::size_t first, std::size
                                const std::uint8_t* direct, const double* u, const double* v,
                                double beta, double* f, double* fe) {
   HWY_DYNAMIC_DISPATCH(ElementForcesSplit)(a, first, last, direct, u, v, beta, f, fe);
+}
+
+std::size_t geometric_forces_simd(const GeometricArrays& a, const GeometricElement* elements,
+                                  std::size_t count, const double* u, double* f, double* rows) {
+  return HWY_DYNAMIC_DISPATCH(GeometricForces)(a, elements, count, u, f, rows);
 }
 
 // Unqualified names only in HWY_DYNAMIC_DISPATCH: where the build's own instruction set is the

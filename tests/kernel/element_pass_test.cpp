@@ -2,7 +2,8 @@
 // reference's bits on every instruction set this CPU has, for any element count (partial last
 // blocks), shared nodes (the sums' order), stiffness-proportional damping, and exact and negative
 // zeros (the sign of zero is part of the bits); and both give beam_force()'s forces element by
-// element. Then whole runs: the same states step after step.
+// element. The second-order chord forces likewise (geometry.hpp). Then whole runs: the same states
+// step after step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "ntn/element_pass.hpp"
+#include "ntn/geometry.hpp"
 #include "ntn/integrator.hpp"
 #include "support/every_target.hpp"
 #include "support/frames.hpp"
@@ -467,6 +469,114 @@ TEST_F(EveryTarget, ForcesIntoGiveTheScalarBits) {
       EXPECT_GT(std::count_if(raw.begin(), raw.end(), [](double x) { return std::signbit(x); }), 0);
     }
   });
+}
+
+// The second-order chord forces (geometry.hpp) of random elements: the lanes of the SIMD pass
+// (uniform, general and mixed blocks, partial last blocks, in element order or another) give
+// geometric_forces' bits and count,
+// from an F of +0.0, -0.0 (the rotational DOFs' -0.0 untouched) or random values, with
+// displacements of -0.0 and a NaN at node 0 (the padded lanes read it, and count nothing). A NaN's
+// sign is the compiler's, not the source's (it may swap a product's operands: the scalar reference
+// built for SSE4 differs from the test's own there), so NaNs compare as NaN, all else by its bits.
+struct Chords {
+  std::vector<ntn::GeometricElement> elements;
+  std::vector<ntn::GeometricBlock> blocks;
+  std::vector<BeamRotations> rotations;
+  std::vector<double> u;
+};
+
+Chords random_chords(std::size_t count, int nodes, std::uint64_t seed) {
+  const Elements e = random_elements(count, nodes, seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> mag(5.0, 10.0);
+  Chords c;
+  for (std::size_t k = 0; k < count; ++k) {
+    const BeamData& b = e.beams[k];
+    ntn::GeometricElement g;
+    g.dof_i = ntn::kDofsPerNode * b.node_i, g.dof_j = ntn::kDofsPerNode * b.node_j;
+    g.element = static_cast<std::int32_t>(k);
+    g.rotation = b.rotation, g.axes = b.axes;
+    g.axial = std::pow(10.0, mag(rng));
+    g.inv_length = 1.0 / (0.5 + static_cast<double>(rng() % 8));
+    g.limit = rng() % 4 == 0 ? 0.0 : 1e-2 * g.axial;  // some past it
+    c.elements.push_back(g);
+  }
+  // The blocks in another order than the elements (the model's, in a model): here a random one.
+  std::vector<std::int32_t> order(count);
+  for (std::size_t k = 0; k < count; ++k)
+    order[k] = static_cast<std::int32_t>(k);
+  std::shuffle(order.begin(), order.end(), rng);
+  if (seed % 2 == 0) std::sort(order.begin(), order.end());
+  c.blocks.resize(ntn::beam_blocks(count));
+  c.rotations.resize(ntn::beam_blocks(count));
+  ntn::fill_geometric_blocks(c.elements.data(), count, order, c.blocks.data(), c.rotations.data());
+  c.u = e.u;
+  return c;
+}
+
+::testing::AssertionResult same_bits_or_nan(const std::vector<double>& a,
+                                            const std::vector<double>& b) {
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    if (std::isnan(a[j]) && std::isnan(b[j])) continue;
+    if (std::bit_cast<std::uint64_t>(a[j]) != std::bit_cast<std::uint64_t>(b[j])) {
+      return ::testing::AssertionFailure() << "DOF " << j << ": " << a[j] << " vs " << b[j];
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+struct ChordForces {
+  std::vector<double> f;
+  std::size_t over = 0;
+};
+
+ChordForces chord_forces(const Chords& c, ntn::ElementPass path, const std::vector<double>& f0) {
+  ChordForces out{f0, 0};
+  std::vector<double> rows(4 * c.elements.size());
+  out.over = ntn::geometric_forces(path, {c.blocks.data(), c.rotations.data()}, c.elements.data(),
+                                   c.elements.size(), c.u.data(), out.f.data(), rows.data());
+  return out;
+}
+
+TEST_F(EveryTarget, GeometricPassGivesTheScalarBits) {
+  int general = 0, uniform = 0, mixed = 0, past = 0;
+  each_target([&](std::int64_t t) {
+    for (const std::size_t n : kCounts) {
+      Chords c = random_chords(n, n < 8 ? 3 : 40, 700 + n);
+      for (const ntn::GeometricBlock& blk : c.blocks) {
+        const bool same = std::count(blk.axes.begin(), blk.axes.end(), blk.axes[0]) == 4;
+        (!same ? mixed : blk.axes[0] == ntn::kGeneralAxes ? general : uniform) += 1;
+      }
+      std::mt19937_64 rng(n);
+      std::vector<double> noise(c.u.size());
+      for (double& x : noise)
+        x = pick(rng);
+      for (int variant = 0; variant < 3; ++variant) {
+        if (variant == 1) {
+          for (std::size_t j = 0; j < c.u.size(); j += 3)
+            c.u[j] = -0.0;
+        }
+        if (variant == 2) c.u[1] = std::numeric_limits<double>::quiet_NaN();
+        for (const std::vector<double>& f0 :
+             {std::vector<double>(c.u.size(), 0.0), std::vector<double>(c.u.size(), -0.0), noise}) {
+          const ChordForces simd = chord_forces(c, ntn::ElementPass::kSimd, f0);
+          const ChordForces scalar = chord_forces(c, ntn::ElementPass::kScalar, f0);
+          EXPECT_TRUE(same_bits_or_nan(simd.f, scalar.f))
+              << hwy::TargetName(t) << ", " << n << " elements, variant " << variant;
+          if (variant < 2) {
+            EXPECT_TRUE(same_bits(simd.f, scalar.f));
+          }
+          EXPECT_EQ(simd.over, scalar.over)
+              << hwy::TargetName(t) << ", " << n << " elements, variant " << variant;
+          past += scalar.over > 0 ? 1 : 0;
+        }
+      }
+    }
+  });
+  EXPECT_GT(general, 0);
+  EXPECT_GT(uniform, 0);
+  EXPECT_GT(mixed, 0);
+  EXPECT_GT(past, 0);
 }
 
 TEST(ElementPass, DispatchTakesAVectorSetWhereTheCpuHasOne) {

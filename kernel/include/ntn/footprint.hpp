@@ -38,6 +38,8 @@ constexpr void model_members(const Sizes& s, V&& v) {
   v(&M::every_node_in_element);
   v(&M::element_slot, s.elements);
   v(&M::geometric, s.geometric);
+  v(&M::geometric_blocks, beam_blocks(s.geometric));
+  v(&M::geometric_rotations, beam_blocks(s.geometric));
   v(&M::corotational, s.corotational);
   v(&M::mass, dofs);
   v(&M::inv_mass, dofs);
@@ -147,6 +149,7 @@ constexpr void scratch_members(const Sizes& s, V&& v) {
   v(&M::load_g);
   v(&M::p_slot, s.loads + s.inputs);
   v(&M::f, dofs);
+  v(&M::geometric_rows, 4 * s.geometric);
   v(&M::a, dofs);
   v(&M::r, s.hinges > 0 ? dofs : 0);
   v(&M::outputs, s.outputs);

@@ -15,7 +15,11 @@
 //
 // The step adds g after the element pass (the same bits for any team size: one pass in element
 // order). A leaning column (Geometry::kLeaning) has the axial stiffness alone (beam_stiffness):
-// the linear pass gives k du, this pass the rest.
+// the linear pass gives k du, this pass the rest. Two paths compute the pass, as the element
+// pass's (element_pass.hpp): geometric_forces() element by element, the reference, and the SIMD
+// one (kernel/src/element_pass.cpp), geometric_force's and beam_to_global's operations in the same
+// order for kBeamLanes elements at a time (GeometricBlock, in the model's order), their g then
+// added element by element in element order: the same bits.
 //
 // The stable step (time_step.hpp) is taken without axial forces. Compression lowers an element's
 // frequencies; tension and the chord's rotation raise them. The tangent of k (eps l)^2 / 2 is
@@ -36,11 +40,14 @@
 // a chord rotation of 0.1 rad with no axial force.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "ntn/beam.hpp"
+#include "ntn/element_pass.hpp"
 
 namespace ntn {
 
@@ -134,6 +141,81 @@ inline std::size_t geometric_forces(const GeometricElement* elements, std::size_
     over += gf.over ? 1 : 0;
   }
   return over;
+}
+
+// kBeamLanes elements with second-order geometry, lane l of each field (GeometricElement), for
+// the SIMD pass; their rotations are a BeamRotations beside it. The blocks take the elements in
+// the model's order (element_order.hpp: of one orientation together, so a block has one pick),
+// each lane with its element's place in Model::geometric (`slot`), where its g goes. Lanes past
+// the last element have DOF offset 0, zero stiffness and lane 0's axes: the pass computes them and
+// keeps nothing of them.
+struct alignas(32) GeometricBlock {
+  BeamLanes axial{};       // N/m, k = E A / l (each lane array 32-byte aligned, as the vectors)
+  BeamLanes inv_length{};  // 1/m
+  BeamLanes limit{};       // N, Q_max
+  std::array<std::int32_t, kBeamLanes> dof_i{};  // kDofsPerNode * node
+  std::array<std::int32_t, kBeamLanes> dof_j{};
+  std::array<std::int32_t, kBeamLanes> slot{};  // its index in Model::geometric
+  std::array<AxisMap, kBeamLanes> axes{};
+};
+
+// What the SIMD pass reads: the blocks and their rotations, block by block.
+struct GeometricArrays {
+  const GeometricBlock* blocks = nullptr;
+  const BeamRotations* rotations = nullptr;
+};
+
+// The `count` elements (in element order) into beam_blocks(count) blocks and rotations, lane by
+// lane in the model's order `order` (the file indices of all its elements, element_order.hpp).
+inline void fill_geometric_blocks(const GeometricElement* elements, std::size_t count,
+                                  std::span<const std::int32_t> order, GeometricBlock* blocks,
+                                  BeamRotations* rotations) {
+  std::size_t n = 0;
+  for (const std::int32_t index : order) {
+    const GeometricElement* e =
+        std::lower_bound(elements, elements + count, index,
+                         [](const GeometricElement& g, std::int32_t i) { return g.element < i; });
+    if (e == elements + count || e->element != index) continue;
+    const std::size_t b = n / kBeamLanes, l = n % kBeamLanes;
+    ++n;
+    GeometricBlock& blk = blocks[b];
+    if (l == 0) blk = GeometricBlock{}, rotations[b] = BeamRotations{};
+    blk.dof_i[l] = e->dof_i, blk.dof_j[l] = e->dof_j;
+    blk.slot[l] = static_cast<std::int32_t>(e - elements);
+    blk.axes[l] = e->axes;
+    blk.axial[l] = e->axial, blk.inv_length[l] = e->inv_length, blk.limit[l] = e->limit;
+    for (std::size_t r = 0; r < 9; ++r)
+      rotations[b].rotation[r][l] = e->rotation[r];
+  }
+  if (n % kBeamLanes != 0) {
+    GeometricBlock& last = blocks[n / kBeamLanes];
+    for (std::size_t l = n % kBeamLanes; l < kBeamLanes; ++l)
+      last.axes[l] = last.axes[0];
+  }
+}
+
+namespace detail {
+#if defined(NTN_SIMD)
+// kernel/src/element_pass.cpp: geometric_forces over the blocks, each element's g into `rows`
+// (4 doubles an element, in element order), then added to f from there in element order (on
+// vectors of another width than kBeamLanes, geometric_forces itself over `elements`).
+std::size_t geometric_forces_simd(const GeometricArrays& a, const GeometricElement* elements,
+                                  std::size_t count, const double* u, double* f, double* rows);
+#endif
+}  // namespace detail
+
+// geometric_forces by the chosen path (Model::element_pass): the same bits either way. `rows`:
+// 4 * count doubles of scratch for the SIMD path.
+inline std::size_t geometric_forces(ElementPass path, const GeometricArrays& a,
+                                    const GeometricElement* elements, std::size_t count,
+                                    const double* u, double* f, double* rows) {
+#if defined(NTN_SIMD)
+  if (path == ElementPass::kSimd)
+    return detail::geometric_forces_simd(a, elements, count, u, f, rows);
+#else
+  (void)path, (void)a, (void)rows;
+#endif
+  return geometric_forces(elements, count, u, f);
 }
 
 // The geometric stiffness of an axial force N (tension positive) in global axes (DOF order of

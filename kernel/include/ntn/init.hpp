@@ -485,9 +485,9 @@ InitStatus init_time_step(const ModelSpec<S>& spec, const SpecView& v, Model<S>&
 
 // The elements with second-order geometry (p_delta, leaning) and the corotational ones, each
 // kind in element order, each element with its stable-step bound (geometric_force_limit,
-// geometry.hpp) for the step the run takes.
+// geometry.hpp) for the step the run takes; the SIMD pass's blocks of them in the model's order.
 template <Sizes S>
-void init_geometry(const SpecView& v, Model<S>& model) {
+void init_geometry(const SpecView& v, std::span<const std::int32_t> order, Model<S>& model) {
   std::size_t k = 0, c = 0;
   for (std::size_t i = 0; i < v.elements.size(); ++i) {
     const ElementSpec& e = v.elements[i];
@@ -509,6 +509,8 @@ void init_geometry(const SpecView& v, Model<S>& model) {
     ge = geometric_element(e, index, a, b);
     ge.limit = limit;
   }
+  fill_geometric_blocks(model.geometric.data(), k, order, model.geometric_blocks.data(),
+                        model.geometric_rotations.data());
 }
 
 }  // namespace detail
@@ -529,7 +531,7 @@ template <Sizes S>
   init_laws(spec, model);
   init_channels(spec, model);
   if (const InitStatus st = init_time_step(spec, v, model); !st.ok()) return st;
-  init_geometry(v, model);
+  init_geometry(v, order, model);
   return {};
 }
 

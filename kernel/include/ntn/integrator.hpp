@@ -157,14 +157,16 @@ bool corotational_end_force(const Model<S>& m, const State<S>& s, int element, i
 }
 
 // F_n += the second-order forces of the elements with nonlinear geometry (geometry.hpp), in their
-// order after the element pass (so the same bits for any team), each element past its stable-step
-// bound counted in State::geometry_bound and flagged (kFaultGeometryBound). Nothing in a model of
-// linear elements.
+// order after the element pass (so the same bits for any team), by the element pass's path (the
+// same bits either way), each element past its stable-step bound counted in State::geometry_bound
+// and flagged (kFaultGeometryBound). Nothing in a model of linear elements.
 template <Sizes S>
 void geometric_stage(const Model<S>& m, State<S>& s, Scratch<S>& w) {
   if (m.sizes.geometric == 0) return;
+  const GeometricArrays a{m.geometric_blocks.data(), m.geometric_rotations.data()};
   const std::size_t over =
-      geometric_forces(m.geometric.data(), m.sizes.geometric, s.u.data(), w.f.data());
+      geometric_forces(m.element_pass, a, m.geometric.data(), m.sizes.geometric, s.u.data(),
+                       w.f.data(), w.geometric_rows.data());
   if (over == 0) return;
   s.geometry_bound += over;
   s.faults |= kFaultGeometryBound;

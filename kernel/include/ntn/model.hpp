@@ -45,6 +45,9 @@ struct Model : SizesOf<S> {
   // The elements with second-order geometry (p_delta, leaning columns), in element order: what
   // the step adds after the element pass (geometry.hpp).
   Array<GeometricElement, S, S.geometric> geometric{};
+  // The same elements kBeamLanes to a block, and their rotations: what the SIMD pass reads.
+  Array<GeometricBlock, S, beam_blocks(S.geometric)> geometric_blocks{};
+  Array<BeamRotations, S, beam_blocks(S.geometric)> geometric_rotations{};
   // The corotational elements, in element order: their force is the corotational stage's, the
   // element pass gives them none (their stiffness there is zero).
   Array<CorotationalElement, S, S.corotational> corotational{};

@@ -113,6 +113,10 @@ struct Scratch : SizesOf<S> {
   // Internal force F_n: written by element forces and hinge springs, read by the residual stage
   // and the reaction and hinge-force outputs.
   Array<double, S, kDofs> f{};
+  // The second-order chord forces (geometry.hpp) on the SIMD path: each element's g in global axes,
+  // (g_x, g_y, g_z, 0.0) in Model::geometric's order, written by the lanes (which take the
+  // elements in the model's order) and added to F from here (geometric_stage).
+  Array<double, S, 4 * S.geometric> geometric_rows{};
   // Acceleration a_n: written by the residual stage (a_n at DOFs no hinge couples) and the NTN
   // coupling stage (the coupled DOFs), read by outputs and the update; the stops and the
   // constraint projection add their S 35-37 increments. A model without hinges: written at the
