@@ -36,11 +36,7 @@ namespace corotational_step_test {
 using Rt = ntn::hil::LoadedModel;
 constexpr double kPi = std::numbers::pi;
 
-std::string num(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
+using ntn_test::num;
 
 // A slender steel bar: E I = 2.1e5 N m^2, E A = 2.1e9 N (radius of gyration 1 cm), so that
 // Mattiasson's loads stretch it by P / E A < 1e-4 (his beam is inextensible).
@@ -48,20 +44,7 @@ constexpr double kE = 210e9, kA = 1e-2, kI = 1e-6, kRho = 7850;
 constexpr double kEI = kE * kI;
 
 std::string bar_material() {
-  return R"(
-[[materials]]
-id = "steel"
-E = 210e9
-nu = 0.3
-rho = 7850.0
-
-[[sections]]
-id = "bar"
-A = 1e-2
-Iy = 1e-6
-Iz = 1e-6
-J = 2e-6
-)";
+  return ntn_test::kSlenderBar;
 }
 
 std::unique_ptr<Rt> load(const std::string& text) {

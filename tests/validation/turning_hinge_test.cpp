@@ -31,35 +31,17 @@ namespace turning_hinge_test {
 using Rt = ntn::hil::LoadedModel;
 using V3 = std::array<double, 3>;
 
-std::string num(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
+using ntn_test::num;
 
 std::string vec(const V3& v) {
   return "[" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + "]";
 }
 
-// E I = 2.1e5 N m^2 about both axes, G J = 1.6e5 N m^2, E A = 2.1e9 N (a pure moment stretches
-// nothing).
+// ntn_test::kSlenderBar: E I = 2.1e5 N m^2 about both axes, E A = 2.1e9 N (a pure moment
+// stretches nothing).
 constexpr double kEI = 210e9 * 1e-6;
 constexpr double kL = 4.0;  // the bar, two members of L / 2
-
-const char* const kMaterial = R"(
-[[materials]]
-id = "steel"
-E = 210e9
-nu = 0.3
-rho = 7850.0
-
-[[sections]]
-id = "bar"
-A = 1e-2
-Iy = 1e-6
-Iz = 1e-6
-J = 2e-6
-)";
+const char* const kMaterial = ntn_test::kSlenderBar;
 
 // Rodrigues' rotation of v about the unit axis a by the angle t (test side: libm is fine here).
 V3 rotate(const V3& a, double t, const V3& v) {
